@@ -1,0 +1,48 @@
+# sitegen: `make site` builds the book into build/; `make test` runs every test.
+# Both set up what they need on a fresh machine (.venv, node_modules, Debian's chromium for tests).
+
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+SUDO   := $(if $(filter 0,$(shell id -u)),,sudo)
+PORT   ?= 8000
+export OPENBLAS_NUM_THREADS := 1
+export DEBIAN_FRONTEND := noninteractive
+
+.PHONY: site test serve bench clean tools-node tools-chromium
+
+site: $(VENV)/.site-installed node_modules/.installed
+	$(BIN)/sitegen build
+
+test: $(VENV)/.test-installed node_modules/.installed tools-chromium
+	$(BIN)/pytest
+
+serve: site
+	$(BIN)/sitegen serve --dir build --port $(PORT)
+
+bench: $(VENV)/.test-installed node_modules/.installed tools-chromium
+	$(BIN)/python bench/run.py
+
+clean:
+	rm -rf build .build.new-* .build.old build-bench .cache
+
+$(VENV)/.site-installed: pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install --quiet --disable-pip-version-check -e .
+	touch $@
+
+$(VENV)/.test-installed: $(VENV)/.site-installed pyproject.toml
+	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[test]'
+	touch $@
+
+node_modules/.installed: package.json package-lock.json | tools-node
+	npm ci --no-audit --no-fund --loglevel=error
+	touch $@
+
+# Temml (TeX -> MathML) runs on node at build time.
+tools-node:
+	@command -v node >/dev/null && command -v npm >/dev/null || { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q nodejs npm; }
+
+# Browser tests drive Debian's chromium through Playwright (Playwright cannot download browsers here).
+tools-chromium:
+	@test -x /usr/bin/chromium || { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q chromium; }

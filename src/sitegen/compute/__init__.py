@@ -1,0 +1,1 @@
+"""Axes, tabulation of model outputs over slider grids, and display quantisation."""

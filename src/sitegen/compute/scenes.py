@@ -1,0 +1,143 @@
+"""Resolving a scene block against the model registry: every author mistake becomes an error."""
+from __future__ import annotations
+
+import difflib
+from dataclasses import dataclass
+from decimal import Decimal
+
+from ..content.scenes import SceneSpec, SliderSpec
+from ..errors import AuthorError
+from ..physics import Model, Output
+from .grid import Axis
+
+MAX_STOPS = 100_001  # per slider; more is almost certainly a typo in the step
+
+
+@dataclass(frozen=True)
+class ResolvedScene:
+    """A scene ready to compute: its model, slider axes, fixed values, effects and readouts."""
+
+    spec: SceneSpec
+    model: Model
+    axes: tuple[Axis, ...]
+    default_stops: tuple[int, ...]
+    fixed: tuple[tuple[str, float], ...]
+    effects: frozenset[str]
+    readouts: tuple[Output, ...]
+
+    @property
+    def id(self) -> str:
+        """The scene's id, unique on its page."""
+        return self.spec.id
+
+    def axis_index(self, param: str) -> int | None:
+        """Position of the slider for `param`, or None when it has no slider."""
+        return next((i for i, a in enumerate(self.axes) if a.param == param), None)
+
+    def base_values(self) -> dict[str, float]:
+        """Every parameter at the value the scene starts from (sliders at their defaults)."""
+        values = {**self.model.defaults(), **dict(self.fixed)}
+        for axis, stop in zip(self.axes, self.default_stops):
+            values[axis.param] = float(axis.stop(stop))
+        return values
+
+
+def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[ResolvedScene | None, list[AuthorError]]:
+    """Check a scene block against its model; return the resolved scene or every error found."""
+    if spec.model not in models:
+        message = f"unknown model '{spec.model}'{_suggest(spec.model, models)} Known models: {', '.join(sorted(models))}"
+        return None, [AuthorError(spec.loc_of("model"), message, spec.id)]
+    model = models[spec.model]()
+    errors: list[AuthorError] = []
+
+    def error(key: str, message: str) -> None:
+        errors.append(AuthorError(spec.loc_of(key), message, spec.id))
+
+    axes, stops = [], []
+    seen: set[str] = set()
+    for slider in spec.sliders:
+        problem = _slider_problem(slider, model, seen)
+        seen.add(slider.param)
+        if problem:
+            error(f"slider {slider.param}", f"slider '{slider.param}' {problem}")
+            continue
+        axis = Axis(slider.param, slider.lo, slider.step, int((slider.hi - slider.lo) / slider.step) + 1)
+        axes.append(axis)
+        stops.append(axis.index_of(slider.default))
+    fixed = []
+    for item in spec.fixed:
+        if item.param not in {p.name for p in model.params}:
+            problem = _no_such_param(item.param, model)
+        elif item.param in seen:
+            problem = "also has a slider; keep the slider or the fixed value"
+        else:
+            problem = _domain_problem(model, item.param, item.value, "value")
+        if problem:
+            error(f"fix {item.param}", f"fixed '{item.param}' {problem}")
+        else:
+            fixed.append((item.param, float(item.value)))
+    offered = set(model.effects)
+    for effect in spec.effects:
+        if effect not in offered:
+            what = f"offers: {', '.join(model.effects)}" if model.effects else "offers no effects"
+            error("effects", f"model '{model.name}' has no effect '{effect}'{_suggest(effect, offered)} It {what}")
+    known = {o.name: o for o in model.outputs}
+    for name in spec.readouts:
+        if name not in known:
+            error("readouts", f"model '{model.name}' has no output '{name}'{_suggest(name, known)} Its outputs: {', '.join(known)}")
+    if errors:
+        return None, errors
+    readouts = tuple(known[n] for n in spec.readouts) if spec.readouts else model.outputs
+    scene = ResolvedScene(spec, model, tuple(axes), tuple(stops), tuple(fixed), frozenset(spec.effects), readouts)
+    return scene, []
+
+
+def _slider_problem(s: SliderSpec, model: Model, seen: set[str]) -> str | None:
+    """What is wrong with one slider (said after "slider 'NAME' "), or None."""
+    if s.param not in {p.name for p in model.params}:
+        return _no_such_param(s.param, model)
+    if s.param in seen:
+        return "appears twice; keep one slider per parameter"
+    if s.step <= 0:
+        return f"step {s.step} must be positive"
+    if s.lo >= s.hi:
+        return f"min {s.lo} must be below max {s.hi}"
+    count = (s.hi - s.lo) / s.step
+    if count != count.to_integral_value():
+        return f"range {s.lo}..{s.hi} is not a whole number of steps of {s.step}; max {s.lo + s.step * int(count)} would be"
+    if count + 1 > MAX_STOPS:
+        return f"has {int(count) + 1} stops, more than {MAX_STOPS}; use a larger step"
+    for bound, value in (("min", s.lo), ("max", s.hi)):
+        if problem := _domain_problem(model, s.param, value, bound):
+            return problem
+    k = (s.default - s.lo) / s.step
+    if not (s.lo <= s.default <= s.hi) or k != k.to_integral_value():
+        below = s.lo + s.step * max(0, min(int(k), int(count)))
+        near = sorted({below, min(below + s.step, s.hi)})
+        return f"default {s.default} is not a stop of {s.lo}..{s.hi} step {s.step}; nearest stops: {', '.join(map(str, near))}"
+    return None
+
+
+def _no_such_param(name: str, model: Model) -> str:
+    names = [p.name for p in model.params]
+    return f"names no parameter of model '{model.name}'{_suggest(name, names)} Its parameters: {', '.join(names)}"
+
+
+def _domain_problem(model: Model, name: str, value: Decimal, what: str) -> str | None:
+    """What is wrong with `value` for parameter `name` (said after the subject), or None."""
+    param = model.param(name)
+    if param.contains(float(value)):
+        return None
+    if float(value) > param.hi:
+        return f"{what} {value} exceeds the model's bound {_bound(param.hi)}"
+    return f"{what} {value} is outside the model's domain {param.domain_text()}"
+
+
+def _bound(value: float) -> str:
+    return f"{value:.1f}" if value == int(value) else f"{value:g}"
+
+
+def _suggest(name: str, choices) -> str:
+    """A " — did you mean 'x'?" for a near miss, else just the end of the sentence."""
+    close = difflib.get_close_matches(name, list(choices), n=1, cutoff=0.5)
+    return f" — did you mean '{close[0]}'?" if close else "."

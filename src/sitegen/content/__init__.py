@@ -1,0 +1,1 @@
+"""Reading the author's sources: pages, front matter, scene blocks, Markdown and math."""

@@ -1,0 +1,145 @@
+"""Scene blocks: the author's declaration of an interactive figure, parsed line by line.
+
+    ```scene
+    model: collision
+    id: collision
+    slider m1: 0.5..5 step 0.5 default 1
+    fix e: 1
+    effects: restitution_law
+    readouts: v1f v2f
+    caption: Two carts meet on a frictionless track.
+    ```
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from decimal import Decimal, InvalidOperation
+
+from ..errors import AuthorError, SourceLoc
+
+KEYS = ("model", "id", "slider", "fix", "effects", "readouts", "figure", "caption")
+_LINE = re.compile(r"^(?P<key>[A-Za-z_]+)(?:\s+(?P<name>[A-Za-z_][A-Za-z0-9_]*))?\s*:\s*(?P<value>.*?)\s*$")
+_NUMBER = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?"
+_SLIDER = re.compile(
+    rf"^(?P<lo>{_NUMBER})\s*\.\.\s*(?P<hi>{_NUMBER})\s+step\s+(?P<step>{_NUMBER})\s+default\s+(?P<default>{_NUMBER})$"
+)
+_ID = re.compile(r"^[a-z][a-z0-9-]*$")
+SLIDER_FORM = "slider NAME: MIN..MAX step STEP default VALUE, e.g. 'slider m1: 0.5..5 step 0.5 default 1'"
+
+
+@dataclass(frozen=True)
+class SliderSpec:
+    """One slider as the author wrote it."""
+
+    param: str
+    lo: Decimal
+    hi: Decimal
+    step: Decimal
+    default: Decimal
+    loc: SourceLoc
+
+
+@dataclass(frozen=True)
+class FixedSpec:
+    """A parameter held at one value in this scene."""
+
+    param: str
+    value: Decimal
+    loc: SourceLoc
+
+
+@dataclass(frozen=True)
+class SceneSpec:
+    """A scene block as written: what to compute, which sliders, what to show."""
+
+    loc: SourceLoc
+    id: str
+    model: str
+    sliders: tuple[SliderSpec, ...] = ()
+    fixed: tuple[FixedSpec, ...] = ()
+    effects: tuple[str, ...] = ()
+    readouts: tuple[str, ...] = ()
+    figure: str | None = None
+    caption: str = ""
+    lines: tuple[tuple[str, SourceLoc], ...] = ()  # (key, place) of every line, to point errors at
+
+    def loc_of(self, key: str) -> SourceLoc:
+        """Where the author wrote `key` (the block's opening line if nowhere)."""
+        return next((loc for k, loc in self.lines if k == key), self.loc)
+
+
+def parse_scene_block(body: list[str], fence: SourceLoc) -> tuple[SceneSpec | None, list[AuthorError]]:
+    """Parse the lines between the fences; return the spec (None if unusable) and every error."""
+    errors: list[AuthorError] = []
+    fields: dict[str, object] = {"sliders": [], "fixed": [], "lines": []}
+    for offset, text in enumerate(body, start=1):
+        loc = SourceLoc(fence.path, fence.line + offset)
+        if not text.strip() or text.lstrip().startswith("#"):
+            continue
+        try:
+            _parse_line(text.strip(), loc, fields)
+        except AuthorError as error:
+            errors.append(error)
+    if "model" not in fields:
+        errors.append(AuthorError(fence, "scene block has no 'model:' line; add e.g. 'model: collision'"))
+        return None, errors
+    scene_id = str(fields.get("id", fields["model"]))
+    errors = [AuthorError(e.loc, e.message, scene_id) for e in errors]
+    spec = SceneSpec(
+        loc=fence,
+        id=scene_id,
+        model=str(fields["model"]),
+        sliders=tuple(fields["sliders"]),
+        fixed=tuple(fields["fixed"]),
+        effects=tuple(fields.get("effects", ())),
+        readouts=tuple(fields.get("readouts", ())),
+        figure=fields.get("figure"),
+        caption=str(fields.get("caption", "")),
+        lines=tuple(fields["lines"]),
+    )
+    return spec, errors
+
+
+def _parse_line(text: str, loc: SourceLoc, fields: dict) -> None:
+    match = _LINE.match(text)
+    if not match:
+        raise AuthorError(loc, f"cannot read '{text}'; a scene line is 'KEY: VALUE' with KEY one of {', '.join(KEYS)}")
+    key, name, value = match["key"], match["name"], match["value"]
+    if key not in KEYS:
+        raise AuthorError(loc, f"unknown key '{key}'; a scene block takes {', '.join(KEYS)}")
+    needs_name = key in ("slider", "fix")
+    if needs_name != bool(name):
+        form = SLIDER_FORM if key == "slider" else "fix NAME: VALUE" if key == "fix" else f"{key}: VALUE"
+        raise AuthorError(loc, f"malformed '{key}' line; write {form}")
+    fields["lines"].append((f"{key} {name}" if name else key, loc))
+    if key == "slider":
+        fields["sliders"].append(_parse_slider(name, value, loc))
+    elif key == "fix":
+        fields["fixed"].append(FixedSpec(name, _decimal(value, loc, f"fixed value of '{name}'"), loc))
+    elif key in ("effects", "readouts"):
+        fields[key] = tuple(value.replace(",", " ").split())
+    elif key == "id" and not _ID.match(value):
+        raise AuthorError(loc, f"scene id '{value}' must be lower-case letters, digits and '-', starting with a letter")
+    elif key in fields:
+        raise AuthorError(loc, f"'{key}' is given twice in one scene block")
+    else:
+        fields[key] = value
+
+
+def _parse_slider(name: str, value: str, loc: SourceLoc) -> SliderSpec:
+    match = _SLIDER.match(value)
+    if not match:
+        raise AuthorError(loc, f"malformed slider '{name}': '{value}'; write {SLIDER_FORM}")
+    lo, hi, step, default = (_decimal(match[k], loc, k) for k in ("lo", "hi", "step", "default"))
+    return SliderSpec(name, lo, hi, step, default, loc)
+
+
+def _decimal(text: str, loc: SourceLoc, what: str) -> Decimal:
+    try:
+        number = Decimal(text)
+    except InvalidOperation:
+        raise AuthorError(loc, f"{what} '{text}' is not a number") from None
+    if not number.is_finite():
+        raise AuthorError(loc, f"{what} must be a finite number, not '{text}'")
+    return number

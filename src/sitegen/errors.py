@@ -1,0 +1,52 @@
+"""Author-facing errors: where in the sources, what is wrong, and what would be right."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True, order=True)
+class SourceLoc:
+    """A place in the author's sources: a path relative to the project and a 1-based line."""
+
+    path: str
+    line: int
+
+    def __str__(self) -> str:
+        return f"{self.path}:{self.line}"
+
+
+@dataclass(frozen=True)
+class AuthorError(Exception):
+    """One mistake in the sources, reported as `path:line: scene 'id': message`."""
+
+    loc: SourceLoc
+    message: str
+    scene: str | None = None
+
+    def __str__(self) -> str:
+        where = f"scene '{self.scene}': " if self.scene else ""
+        return f"{self.loc}: {where}{self.message}"
+
+
+class BuildFailed(Exception):
+    """The build found author errors; it carries all of them, sorted by place."""
+
+    def __init__(self, errors: list[AuthorError]):
+        self.errors = sorted(errors, key=lambda e: (e.loc, e.message))
+        super().__init__("\n".join(str(e) for e in self.errors))
+
+
+class ErrorLog:
+    """Collects author errors so one run can report every one of them."""
+
+    def __init__(self) -> None:
+        self.errors: list[AuthorError] = []
+
+    def add(self, error: AuthorError) -> None:
+        """Record one error."""
+        self.errors.append(error)
+
+    def raise_if_any(self) -> None:
+        """End the build with every error collected so far, if there are any."""
+        if self.errors:
+            raise BuildFailed(self.errors)

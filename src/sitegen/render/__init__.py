@@ -1,0 +1,1 @@
+"""Figures: a static matplotlib SVG background plus moving layers stored as data."""

@@ -1,0 +1,47 @@
+"""One visual language for every figure: fonts, colours, line weights, deterministic SVG."""
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("svg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+
+INK = "#1d2430"
+MUTED = "#5b6472"
+GRID = "#d9dde3"
+BLUE = "#1f63b5"
+ORANGE = "#c8541c"
+FILL_BLUE = "#9cc2ea"
+LOST = "#b8bec8"
+WIDTH_IN = 6.0  # figure width in inches; 72 dpi so that SVG units are points
+
+RC = {
+    "svg.hashsalt": "sitegen",  # fixed salt: byte-stable ids in the SVG
+    "svg.fonttype": "none",  # text stays text: small, selectable, readable in diffs
+    "font.family": "DejaVu Sans",
+    "font.size": 10,
+    "axes.edgecolor": MUTED,
+    "axes.labelcolor": INK,
+    "axes.linewidth": 0.8,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "axes.grid": True,
+    "grid.color": GRID,
+    "grid.linewidth": 0.6,
+    "xtick.color": MUTED,
+    "ytick.color": MUTED,
+    "xtick.labelcolor": INK,
+    "ytick.labelcolor": INK,
+    "lines.linewidth": 2.0,
+    "figure.dpi": 72,
+    "savefig.dpi": 72,
+    "path.simplify": False,
+}
+
+
+def new_figure(height_in: float, ncols: int = 1, **kwargs):
+    """A figure and its axes in the house style."""
+    with plt.rc_context(RC):
+        fig, axes = plt.subplots(1, ncols, figsize=(WIDTH_IN, height_in), **kwargs)
+    return fig, list(axes) if ncols > 1 else [axes]

@@ -1,0 +1,78 @@
+"""The static SVG of a figure (matplotlib, byte-stable) with its moving layers spliced in."""
+from __future__ import annotations
+
+import io
+import re
+from dataclasses import dataclass
+from html import escape
+
+import matplotlib.pyplot as plt
+
+from .layers import Layer
+from .style import RC
+
+_ID_ATTR = re.compile(r'\bid="([^"]+)"')
+_ID_REF = re.compile(r'(url\(#|xlink:href="#|href="#)([^")]+)')
+
+
+@dataclass(frozen=True)
+class AxesFrame:
+    """How data coordinates of one axes map to SVG user units, and its clipping box."""
+
+    matrix: tuple[float, float, float, float]  # (a, d, e, f) of matrix(a 0 0 d e f)
+    box: tuple[float, float, float, float]  # x, y, width, height in SVG units
+
+
+def figure_svg(fig, layers: list[Layer], points: list[list[tuple[float, float]]], prefix: str, label: str) -> str:
+    """Save `fig` as inline SVG, add the layers at the given vertices, and make its ids unique."""
+    frames = [_frame(fig, ax) for ax in fig.axes]
+    buffer = io.StringIO()
+    with plt.rc_context(RC):
+        fig.savefig(buffer, format="svg", metadata={"Date": None, "Creator": None, "Format": None, "Type": None})
+    plt.close(fig)
+    svg = buffer.getvalue()
+    svg = svg[svg.index("<svg") :]
+    svg = re.sub(r"<metadata>.*?</metadata>\s*", "", svg, flags=re.S)
+    svg = re.sub(r'<svg[^>]*?(viewBox="[^"]+")[^>]*>', rf'<svg xmlns="http://www.w3.org/2000/svg" \1 class="scene-svg" role="img" aria-label="{escape(label)}">', svg, count=1)
+    svg = svg.replace("</svg>", _layers_svg(layers, points, frames) + "</svg>")
+    svg = _ID_ATTR.sub(lambda m: f'id="{prefix}-{m[1]}"', svg)
+    return _ID_REF.sub(lambda m: f"{m[1]}{prefix}-{m[2]}", svg).strip() + "\n"
+
+
+def _frame(fig, ax) -> AxesFrame:
+    height = fig.get_figheight() * 72.0
+    (x0, y0), (x1, y1) = ax.transData.transform([(0.0, 0.0), (1.0, 1.0)])
+    bbox = ax.get_window_extent()
+    matrix = (x1 - x0, -(y1 - y0), x0, height - y0)
+    return AxesFrame(tuple(round(v, 4) for v in matrix), tuple(round(v, 3) for v in (bbox.x0, height - bbox.y1, bbox.width, bbox.height)))
+
+
+def _layers_svg(layers: list[Layer], points: list[list[tuple[float, float]]], frames: list[AxesFrame]) -> str:
+    parts = ['<g class="layers">']
+    for index, frame in enumerate(frames):
+        members = [(layer, pts) for layer, pts in zip(layers, points) if layer.axes == index]
+        if not members:
+            continue
+        x, y, w, h = frame.box
+        a, d, e, f = frame.matrix
+        parts.append(f'<clipPath id="layers-clip-{index}"><rect x="{x}" y="{y}" width="{w}" height="{h}"/></clipPath>')
+        parts.append(f'<g clip-path="url(#layers-clip-{index})"><g transform="matrix({a} 0 0 {d} {e} {f})">')
+        for layer, pts in members:
+            style = " ".join(f'{k}="{v}"' for k, v in sorted(layer.style.items()))
+            parts.append(
+                f'<{layer.kind} data-layer="{layer.name}" points="{format_points(pts)}" {style} '
+                'vector-effect="non-scaling-stroke" stroke-linejoin="round"/>'
+            )
+        parts.append("</g></g>")
+    parts.append("</g>")
+    return "\n".join(parts)
+
+
+def format_points(points: list[tuple[float, float]]) -> str:
+    """SVG points text with short, stable numbers (the page's script writes the same form)."""
+    return " ".join(f"{_short(x)},{_short(y)}" for x, y in points)
+
+
+def _short(value: float) -> str:
+    text = f"{value:.6g}"
+    return "0" if text == "-0" else text

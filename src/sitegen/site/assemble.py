@@ -1,0 +1,167 @@
+"""HTML through jinja2: scenes (controls, readouts, figure, inline tables) and whole pages."""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import jinja2
+
+from ..compute.quantize import format_quantum
+from ..compute.scenes import ResolvedScene
+from ..compute.tabulate import Table
+from ..content.pages import Page
+from ..render.layers import Layer
+
+_ENV = jinja2.Environment(
+    loader=jinja2.FileSystemLoader(Path(__file__).with_name("templates")),
+    autoescape=True,
+    keep_trailing_newline=True,
+    trim_blocks=False,
+)
+
+
+@dataclass(frozen=True)
+class RenderedScene:
+    """A scene's finished figure: the SVG with layers at the defaults, and the layer specs."""
+
+    svg: str
+    layers: tuple[Layer, ...]
+
+
+def scene_html(scene: ResolvedScene, tables: dict[str, Table], figure: RenderedScene, caption: str) -> str:
+    """The scene element: figure, labelled sliders, readouts at the defaults, and its data."""
+    stops = scene.default_stops
+    sliders = [_slider_view(scene, i, stops[i]) for i in range(len(scene.axes))]
+    readouts = [
+        {"name": o.name, "label": o.label, "is_text": o.is_text, "text": readout_text(tables[o.name], o.unit, stops)}
+        for o in scene.readouts
+    ]
+    return _ENV.get_template("scene.html").render(
+        id=dom_id(scene),
+        model=scene.model.name,
+        svg=figure.svg,
+        sliders=sliders,
+        readouts=readouts,
+        caption=caption,
+        data=scene_payload(scene, tables, figure.layers),
+    )
+
+
+def dom_id(scene: ResolvedScene) -> str:
+    """The scene element's id (prefixed so it never collides with a heading's id)."""
+    return f"scene-{scene.id}"
+
+
+def readout_text(table: Table, unit: str, stops: tuple[int, ...]) -> str:
+    """A readout as the page shows it: a phrase, or the rounded number and its unit."""
+    q = table.at(stops)
+    if table.labels:
+        return table.labels[q]
+    text = format_quantum(q, table.decimals)
+    return f"{text} {unit}" if unit else text
+
+
+def slider_text(scene: ResolvedScene, index: int, stop: int) -> str:
+    """A slider's value as shown beside it and announced (aria-valuetext)."""
+    axis = scene.axes[index]
+    unit = scene.model.param(axis.param).unit
+    text = format_quantum(int(axis.stop(stop).scaleb(axis.decimals)), axis.decimals)
+    return f"{text} {unit}" if unit else text
+
+
+def _slider_view(scene: ResolvedScene, index: int, stop: int) -> dict:
+    axis = scene.axes[index]
+    param = scene.model.param(axis.param)
+    return {
+        "param": axis.param,
+        "symbol": param.symbol,
+        "unit": param.unit,
+        "description": param.description,
+        "min": _plain(axis.lo),
+        "max": _plain(axis.hi),
+        "step": _plain(axis.step),
+        "value": _plain(axis.stop(stop)),
+        "text": slider_text(scene, index, stop),
+    }
+
+
+def scene_payload(scene: ResolvedScene, tables: dict[str, Table], layers: tuple[Layer, ...]) -> str:
+    """The scene's tables, slider grids and layer recipes as JSON safe inside a <script> element."""
+    sliders = [
+        {
+            "param": a.param,
+            "lo": int(a.lo.scaleb(a.decimals)),
+            "step": int(a.step.scaleb(a.decimals)),
+            "count": a.count,
+            "d": a.decimals,
+            "unit": scene.model.param(a.param).unit,
+        }
+        for a in scene.axes
+    ]
+    payload = {
+        "sliders": sliders,
+        "tables": _tables_json(tables),
+        "readouts": [{"out": o.name, "unit": o.unit} for o in scene.readouts],
+        "layers": [{"name": layer.name, "pts": [[_ref_json(r, scene) for r in xy] for xy in layer.points]} for layer in layers],
+    }
+    text = json.dumps(payload, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
+    return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+
+
+def _tables_json(tables: dict[str, Table]) -> dict:
+    """Every table once: an output whose table equals an earlier one's refers to it by name."""
+    out, first_of = {}, {}
+    for name, table in sorted(tables.items()):
+        key = (table.axes, table.decimals, table.labels, table.quanta.tobytes())
+        out[name] = {"same": first_of[key]} if key in first_of else _table_json(table)
+        first_of.setdefault(key, name)
+    return out
+
+
+def _table_json(table: Table) -> dict:
+    out = {"axes": list(table.axes), "shape": list(table.shape), "d": table.decimals, "q": table.quanta.tolist()}
+    if table.labels:
+        out["labels"] = list(table.labels)
+    return out
+
+
+def _ref_json(ref, scene: ResolvedScene):
+    if not isinstance(ref, str):
+        return ref
+    kind, name = ref.split(":", 1)
+    if kind == "out":
+        return ["o", name]
+    index = scene.axis_index(name)
+    return ["i", index] if index is not None else scene.base_values()[name]
+
+
+def _plain(value) -> str:
+    text = format(value.normalize(), "f")
+    return "0" if text == "-0" else text
+
+
+@dataclass(frozen=True)
+class TocEntry:
+    """A top-level page in the book's contents, with the pages under it."""
+
+    page: Page
+    children: tuple[Page, ...]
+
+
+def page_html(page: Page, body: str, pages: list[Page], book_title: str) -> str:
+    """A whole page: header with the trail of parents, the article, and (on the home page) the contents."""
+    by_slug = {p.slug: p for p in pages}
+    crumbs, parent = [], page.parent
+    while parent and parent in by_slug and len(crumbs) < len(pages):
+        crumbs.insert(0, by_slug[parent])
+        parent = by_slug[parent].parent
+    contents = _contents(pages) if page.slug == "index" else []
+    return _ENV.get_template("base.html").render(
+        page=page, body=body, crumbs=crumbs, contents=contents, book_title=book_title
+    )
+
+
+def _contents(pages: list[Page]) -> list[TocEntry]:
+    ordered = sorted((p for p in pages if p.slug != "index"), key=lambda p: (p.order, p.slug))
+    return [TocEntry(p, tuple(c for c in ordered if c.parent == p.slug)) for p in ordered if not p.parent]

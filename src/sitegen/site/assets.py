@@ -1,0 +1,50 @@
+"""Static assets: the page script, the stylesheet (ours plus Temml's), and a subset math font."""
+from __future__ import annotations
+
+import io
+import re
+from html import unescape
+from pathlib import Path
+
+from fontTools import subset
+from fontTools.ttLib import TTFont
+
+STATIC = Path(__file__).with_name("static")
+FONT_FILE = "latinmodern-math.woff2"
+_FONT_FACE = re.compile(r"@font-face\s*\{[^}]*\}\s*")
+_TEMML_FONT_RULES = re.compile(r"(\*\.mathscr|mo\.tml-prime)\s*\{[^}]*\}\s*")
+_MATH_ELEMENT = re.compile(r"<math\b.*?</math>", re.S)
+_TAG = re.compile(r"<[^>]+>")
+
+
+def script() -> bytes:
+    """The one script every page loads."""
+    return (STATIC / "sitegen.js").read_bytes()
+
+
+def stylesheet(node_modules: Path) -> bytes:
+    """Our stylesheet followed by the rules Temml's MathML needs (its font faces removed)."""
+    temml_css = (node_modules / "temml" / "dist" / "Temml-Latin-Modern.css").read_text(encoding="utf-8")
+    temml_css = _TEMML_FONT_RULES.sub("", _FONT_FACE.sub("", temml_css))
+    ours = (STATIC / "sitegen.css").read_text(encoding="utf-8")
+    return (ours + "\n/* Rules for Temml's MathML (MIT licence), from temml/dist/Temml-Latin-Modern.css */\n" + temml_css).encode()
+
+
+def math_font(pages_html: list[str]) -> bytes:
+    """Latin Modern Math cut down to the characters the pages' formulas use (with their variants)."""
+    characters = set()
+    for html in pages_html:
+        for element in _MATH_ELEMENT.findall(html):
+            characters.update(unescape(_TAG.sub("", element)))
+    font = TTFont(STATIC / FONT_FILE, recalcTimestamp=False)  # keep head.modified: byte-stable output
+    options = subset.Options()
+    options.layout_features = ["*"]
+    options.flavor = "woff2"
+    options.name_IDs = ["*"]
+    subsetter = subset.Subsetter(options)
+    subsetter.populate(text="".join(sorted(characters | set("()[]{}|=+−0123456789"))))
+    subsetter.subset(font)
+    buffer = io.BytesIO()
+    font.save(buffer)
+    return buffer.getvalue()
+

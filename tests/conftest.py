@@ -1,0 +1,20 @@
+"""Shared fixtures: the project's own book built once per test session."""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from sitegen.build import BuildConfig, build
+
+ROOT = Path(__file__).resolve().parents[1]
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+
+@pytest.fixture(scope="session")
+def built_site(tmp_path_factory) -> Path:
+    """The book under content/, built into a temporary folder (build/ is left alone)."""
+    out = tmp_path_factory.mktemp("site") / "build"
+    build(BuildConfig.at(ROOT, out), progress=None)
+    return out

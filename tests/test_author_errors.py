@@ -1,0 +1,136 @@
+"""Broken pages give exact `file:line: message` errors, all of them in one run."""
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sitegen.build import BuildConfig, build
+from sitegen.errors import BuildFailed
+from sitegen.physics import MODELS, Model, Output, Param
+from sitegen.render.style import new_figure
+from sitegen.render.views import FIGURES
+
+HERE = Path(__file__).parent
+INVALID = HERE / "invalid"
+ROOT = HERE.parent
+HOME = '+++\ntitle = "Test book"\n+++\n\nA home page.\n'
+CASES = sorted(p.stem for p in INVALID.glob("*.md"))
+
+
+def make_book(tmp_path: Path, pages: dict[str, str]) -> BuildConfig:
+    """A throwaway project with the given pages (and a home page unless one is given)."""
+    content = tmp_path / "content"
+    content.mkdir()
+    for name, text in {"index": HOME, **pages}.items():
+        (content / f"{name}.md").write_text(text, encoding="utf-8")
+    return BuildConfig(tmp_path, content, tmp_path / "build", ROOT / "node_modules")
+
+
+def build_errors(config: BuildConfig) -> list[str]:
+    """The author errors of a build that must fail."""
+    with pytest.raises(BuildFailed) as failure:
+        build(config, progress=None)
+    return [str(e) for e in failure.value.errors]
+
+
+def test_every_invalid_fixture_has_expected_messages():
+    """Each broken page in tests/invalid/ comes with the messages it must produce."""
+    assert CASES and all((INVALID / f"{name}.expected").is_file() for name in CASES)
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_invalid_page_reports_exact_errors(tmp_path, name):
+    """A broken page fails the build with exactly the expected `file:line: message` lines."""
+    config = make_book(tmp_path, {name: (INVALID / f"{name}.md").read_text(encoding="utf-8")})
+    expected = (INVALID / f"{name}.expected").read_text(encoding="utf-8").splitlines()
+    assert build_errors(config) == expected
+
+
+def test_errors_from_several_pages_are_reported_together(tmp_path):
+    """One run reports every error of every page, sorted by file and line."""
+    pages = {name: (INVALID / f"{name}.md").read_text(encoding="utf-8") for name in ("bad-range", "unknown-model")}
+    expected = [line for name in ("bad-range", "unknown-model") for line in (INVALID / f"{name}.expected").read_text().splitlines()]
+    assert build_errors(make_book(tmp_path, pages)) == expected
+
+
+def test_failed_build_leaves_previous_build_untouched(tmp_path):
+    """A build that fails does not touch the build/ folder of the last good build."""
+    config = make_book(tmp_path, {})
+    build(config, progress=None)
+    before = {p.relative_to(config.out): p.read_bytes() for p in config.out.rglob("*") if p.is_file()}
+    (config.content / "broken.md").write_text((INVALID / "unknown-model.md").read_text(), encoding="utf-8")
+    build_errors(config)
+    after = {p.relative_to(config.out): p.read_bytes() for p in config.out.rglob("*") if p.is_file()}
+    assert after == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["build", "content"]
+
+
+def test_duplicate_scene_ids_on_one_page(tmp_path):
+    """Two scenes with one id on a page: the second is reported at its own line."""
+    block = "```scene\nmodel: impulse\n```\n\n"
+    config = make_book(tmp_path, {"twice": '+++\ntitle = "Twice"\n+++\n\n' + block + block})
+    assert build_errors(config) == [
+        "content/twice.md:9: scene 'impulse': another scene on this page has id 'impulse'; add 'id: <unique-name>'"
+    ]
+
+
+def test_unknown_effect_lists_what_the_model_offers(tmp_path):
+    """An effect the model does not offer is an error that names the effects it does offer."""
+    page = '+++\ntitle = "Effects"\n+++\n\n```scene\nmodel: collision\neffects: restitution_law drag\n```\n'
+    assert build_errors(make_book(tmp_path, {"effects": page})) == [
+        "content/effects.md:7: scene 'collision': model 'collision' has no effect 'drag'. It offers: restitution_law"
+    ]
+
+
+def test_unknown_parent_page(tmp_path):
+    """A parent that is not a page is reported at the page's first line."""
+    page = '+++\ntitle = "Orphan"\nparent = "nowhere"\n+++\n\nText.\n'
+    assert build_errors(make_book(tmp_path, {"orphan": page})) == [
+        "content/orphan.md:1: parent 'nowhere' is not a page; pages: index, orphan"
+    ]
+
+
+class _BareFigure:
+    """A figure with axes and no moving layers."""
+
+    label = "empty axes"
+
+    def layers(self, scene):
+        return []
+
+    def draw(self, scene, tables):
+        return new_figure(2.0)[0]
+
+
+class _Singular(Model):
+    """A model whose output is 1/x: infinite at x = 0."""
+
+    name = "singular"
+    title = "Singular"
+    params = (Param("x", "x", "", 1.0),)
+    outputs = (Output("inverse", "1/x", "", ("x",)),)
+
+    def _evaluate(self, x, wanted, effects):
+        with np.errstate(divide="ignore"):
+            return {"inverse": 1.0 / x["x"]}
+
+
+def test_non_finite_output_fails_the_build_naming_the_stop(tmp_path, monkeypatch):
+    """A model returning inf at some stop fails the build, naming the scene and the slider values."""
+    monkeypatch.setitem(MODELS, "singular", _Singular)
+    monkeypatch.setitem(FIGURES, "singular", _BareFigure())
+    page = '+++\ntitle = "Pole"\n+++\n\n```scene\nmodel: singular\nslider x: -1..1 step 0.5 default 1\n```\n'
+    assert build_errors(make_book(tmp_path, {"pole": page})) == [
+        "content/pole.md:5: scene 'singular': output 'inverse' is not finite (inf) at x=0.0; the model must return finite numbers"
+    ]
+
+
+def test_project_book_builds_cleanly(tmp_path):
+    """The book in content/ itself has no author errors."""
+    content = tmp_path / "content"
+    shutil.copytree(ROOT / "content", content)
+    report = build(BuildConfig(tmp_path, content, tmp_path / "build", ROOT / "node_modules"), progress=None)
+    assert report.pages >= 2 and report.scenes >= 2

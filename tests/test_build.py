@@ -1,0 +1,112 @@
+"""The built site as a whole: determinism, budgets, self-containment, and the command line."""
+from __future__ import annotations
+
+import gzip
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PAGE_BUDGET_GZIP = 400 * 1024
+SCRIPT_BUDGET = 16 * 1024
+
+
+def _tree(folder: Path) -> dict[str, bytes]:
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def _cli_build(out: Path, seed: str) -> subprocess.CompletedProcess:
+    env = {**os.environ, "PYTHONHASHSEED": seed}
+    return subprocess.run(
+        [sys.executable, "-m", "sitegen.cli", "build", "--root", str(ROOT), "--out", str(out)],
+        capture_output=True, text=True, env=env, check=False,
+    )
+
+
+def test_builds_are_byte_identical_across_folders_and_hash_seeds(tmp_path, built_site):
+    """Two builds into different folders with different hash seeds give the same bytes."""
+    first, second = tmp_path / "a" / "build", tmp_path / "b" / "out"
+    assert _cli_build(first, "1").returncode == 0
+    assert _cli_build(second, "2").returncode == 0
+    assert _tree(first) == _tree(second) == _tree(built_site)
+
+
+def test_output_holds_no_absolute_paths_or_dates(built_site):
+    """Nothing in build/ mentions the machine's folders or a timestamp."""
+    for name, data in _tree(built_site).items():
+        if name.endswith((".html", ".css", ".js")):
+            text = data.decode()
+            assert str(ROOT) not in text and str(built_site) not in text, name
+            assert not re.search(r"20\d\d-\d\d-\d\dT\d\d:\d\d", text), name
+
+
+def _page_load_bytes(site: Path, page: str) -> tuple[int, int]:
+    """Raw and gzip bytes of a page plus every asset it links."""
+    html = (site / page).read_text()
+    assets = sorted(set(re.findall(r'(?:href|src)="(assets/[^"]+)"', html)) | {"assets/latinmodern-math.woff2"})
+    files = [site / page, *(site / a for a in assets)]
+    return sum(f.stat().st_size for f in files), sum(len(gzip.compress(f.read_bytes(), 9, mtime=0)) for f in files)
+
+
+@pytest.mark.parametrize("page", ["index.html", "newtons-laws.html"])
+def test_page_and_what_it_loads_fit_the_budget(built_site, page):
+    """Each page with its script, stylesheet and math font stays within 400 KB gzip."""
+    raw, packed = _page_load_bytes(built_site, page)
+    assert packed <= PAGE_BUDGET_GZIP, f"{page}: {packed / 1024:.0f} KB gzip (raw {raw / 1024:.0f} KB)"
+
+
+def test_one_small_script(built_site):
+    """One script, within 16 KB unminified, loaded as a classic script by every page."""
+    assert sorted(p.name for p in (built_site / "assets").glob("*.js")) == ["sitegen.js"]
+    assert (built_site / "assets" / "sitegen.js").stat().st_size <= SCRIPT_BUDGET
+    for page in built_site.glob("*.html"):
+        scripts = re.findall(r"<script\b[^>]*>", page.read_text())
+        assert all('type="module"' not in s for s in scripts)
+
+
+@pytest.mark.parametrize("page", ["index.html", "newtons-laws.html"])
+def test_pages_are_self_contained(built_site, page):
+    """No URL leaves the site, no link points at a bare directory, every local link exists."""
+    html = (built_site / page).read_text()
+    links = re.findall(r'(?:href|src)="([^"#]+)', html)
+    assert not [u for u in links if re.match(r"[a-z]+:", u)], "external URL"
+    for link in links:
+        assert not link.endswith("/") and (built_site / link).is_file(), link
+
+
+def test_scene_tables_are_strict_json(built_site):
+    """Inline tables parse as strict JSON (no NaN/Infinity) and hide no raw '<', '>' or '&'."""
+    html = (built_site / "newtons-laws.html").read_text()
+    blocks = re.findall(r'<script type="application/json" class="scene-data">(.*?)</script>', html, re.S)
+    assert len(blocks) == 2
+    for block in blocks:
+        assert not re.search(r"[<>&]", block)
+        json.loads(block, parse_constant=lambda name: pytest.fail(f"non-finite constant {name}"))
+
+
+def test_math_is_converted_at_build_time(built_site):
+    """Every formula became MathML; no TeX delimiters or placeholders are left in the page."""
+    html = (built_site / "newtons-laws.html").read_text()
+    assert html.count("<math") > 20
+    text = re.sub(r"<(script|math)\b.*?</\1>", "", html, flags=re.S)
+    assert "$" not in text and "data-math-slot" not in html and "data-scene-slot" not in html
+    assert "𝐅" in html  # \mathbf F as a bold mathematical letter, which Chromium renders
+
+
+def test_cli_reports_author_errors_without_traceback(tmp_path):
+    """`sitegen build` on a broken book prints file:line errors, exits 1 and keeps quiet about Python."""
+    content = tmp_path / "content"
+    content.mkdir()
+    (content / "index.md").write_text('+++\ntitle = "Book"\n+++\n\n```scene\nmodel: colision\n```\n')
+    (tmp_path / "node_modules").symlink_to(ROOT / "node_modules")
+    done = subprocess.run([sys.executable, "-m", "sitegen.cli", "build", "--root", str(tmp_path)],
+                          capture_output=True, text=True, check=False)
+    assert done.returncode == 1
+    assert "content/index.md:6: scene 'colision': unknown model 'colision'" in done.stderr
+    assert "Traceback" not in done.stderr
+    assert not (tmp_path / "build").exists()

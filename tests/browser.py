@@ -153,8 +153,10 @@ class Slider:
         return sorted({0, last, *(round(i * last / (n + 1)) for i in range(1, n + 1))})
 
 
-_SLIDERS_JS = """
-(root) => [...root.querySelectorAll('input[type="range"][data-param]')].map(el => {
+# The helpers below run one page.evaluate() each: resolving a Playwright locator costs several
+# milliseconds on the chapter's large DOM, page.evaluate about one.
+_ROOT_JS = "const root = document.getElementById('scene-' + sceneId); if (!root) throw new Error('no scene ' + sceneId);"
+_SLIDERS_JS = """[...root.querySelectorAll('input[type="range"][data-param]')].map(el => {
   const out = root.querySelector(`output[data-value-of="${el.dataset.param}"]`);
   const label = el.id ? document.querySelector(`label[for="${el.id}"]`) : null;
   return {
@@ -162,17 +164,27 @@ _SLIDERS_JS = """
     step: el.getAttribute('step'), value: el.value, valuetext: el.getAttribute('aria-valuetext'),
     shown: out ? out.textContent : null, label: label ? label.textContent : null,
   };
-})
-"""
+})"""
+_READOUTS_JS = "Object.fromEntries([...root.querySelectorAll('[data-out]')].map(el => [el.dataset.out, el.textContent]))"
+_LAYERS_JS = "Object.fromEntries([...root.querySelectorAll('svg [data-layer]')].map(el => [el.dataset.layer, el.getAttribute('points')]))"
+
+
+def _in_scene(page, scene_id: str, body: str, arg=None):
+    """Evaluate `body` (an expression over `root`, the scene element, and `arg`) in the page."""
+    return page.evaluate(f"([sceneId, arg]) => {{ {_ROOT_JS} return {body}; }}", [scene_id, arg])
 
 
 def scene_root(page, scene_id: str):
+    """The scene's <figure> as a Playwright locator."""
     return page.locator(f"#scene-{scene_id}")
 
 
 def scene_sliders(page, scene_id: str) -> list[Slider]:
     """The scene's sliders in DOM order, with their current values."""
-    rows = scene_root(page, scene_id).evaluate(_SLIDERS_JS)
+    return _sliders(scene_id, _in_scene(page, scene_id, _SLIDERS_JS))
+
+
+def _sliders(scene_id: str, rows: list[dict]) -> list[Slider]:
     return [
         Slider(
             scene_id=scene_id,
@@ -190,29 +202,49 @@ def scene_sliders(page, scene_id: str) -> list[Slider]:
     ]
 
 
+_SET_JS = "(el, v) => { el.value = v; el.dispatchEvent(new Event('input', {bubbles: true})); }"
+
+
+def _value_text(value) -> str:
+    return plain(value) if isinstance(value, Decimal) else str(value)
+
+
 def set_slider(page, target, value) -> None:
-    """Set a range input's value (a Locator, ElementHandle or CSS selector) and fire `input`."""
-    text = plain(value) if isinstance(value, Decimal) else str(value)
-    script = "(el, v) => { el.value = v; el.dispatchEvent(new Event('input', {bubbles: true})); }"
+    """Set a range input's value and fire `input` (as a user's move does).
+
+    `target` is a Locator, an ElementHandle or a CSS selector.
+    """
     if isinstance(target, str):
-        page.locator(target).evaluate(script, text)
+        page.evaluate(f"([sel, v]) => ({_SET_JS})(document.querySelector(sel), v)", [target, _value_text(value)])
     else:
-        target.evaluate(script, text)
+        target.evaluate(_SET_JS, _value_text(value))
+
+
+def set_sliders(page, scene_id: str, values: Mapping[str, object]) -> None:
+    """set_slider() for several sliders of a scene ({param: value}, in that order), one round trip."""
+    pairs = [[param, _value_text(v)] for param, v in values.items()]
+    _in_scene(
+        page,
+        scene_id,
+        f"""arg.forEach(([param, v]) => ({_SET_JS})(root.querySelector(`input[type="range"][data-param="${{param}}"]`), v))""",
+        pairs,
+    )
 
 
 def readouts(page, scene_id: str) -> dict[str, str]:
     """Every readout of the scene: data-out name -> its text."""
-    return scene_root(page, scene_id).evaluate(
-        "(root) => Object.fromEntries([...root.querySelectorAll('[data-out]')].map(el => [el.dataset.out, el.textContent]))"
-    )
+    return _in_scene(page, scene_id, _READOUTS_JS)
+
+
+def scene_state(page, scene_id: str) -> tuple[list[Slider], dict[str, str]]:
+    """scene_sliders() and readouts() read together, in one round trip."""
+    rows, texts = _in_scene(page, scene_id, f"[{_SLIDERS_JS}, {_READOUTS_JS}]")
+    return _sliders(scene_id, rows), texts
 
 
 def layer_points(page, scene_id: str) -> dict[str, str]:
     """The `points` attribute of every moving layer of the scene's figure."""
-    return scene_root(page, scene_id).evaluate(
-        "(root) => Object.fromEntries([...root.querySelectorAll('svg [data-layer]')]"
-        ".map(el => [el.dataset.layer, el.getAttribute('points')]))"
-    )
+    return _in_scene(page, scene_id, _LAYERS_JS)
 
 
 # --- expected values ----------------------------------------------------------------------------
@@ -242,7 +274,11 @@ def expected_readouts(
     texts = {}
     for name in wanted:
         output = model.output(name)
+        if getattr(output, "size", 0):
+            raise NotImplementedError(f"output {name!r} is a vector; these helpers know scalar readouts only")
         value = float(np.asarray(values[name]))
+        if not np.isfinite(value):
+            raise NotImplementedError(f"output {name!r} is {value} here; these helpers know finite readouts only")
         if output.labels:
             texts[name] = output.labels[int(value)]
         else:

@@ -11,7 +11,7 @@ from sitegen.build import BuildConfig, build
 from sitegen.errors import BuildFailed
 from sitegen.physics import MODELS, Model, Output, Param
 from sitegen.render.style import new_figure
-from sitegen.render.views import FIGURES
+from sitegen.render.figures import FIGURES
 
 HERE = Path(__file__).parent
 INVALID = HERE / "invalid"

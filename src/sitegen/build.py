@@ -14,7 +14,8 @@ from .content.pages import Page, discover_pages, read_page
 from .errors import AuthorError, ErrorLog, SourceLoc
 from .physics import MODELS
 from .render.svg import figure_svg
-from .render.views import FIGURES, layer_points
+from .render.figures import FIGURES
+from .render.layers import layer_points
 from .site import assets
 from .site.assemble import RenderedScene, dom_id, page_html, scene_html
 from .site.writer import write_tree

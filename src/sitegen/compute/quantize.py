@@ -4,15 +4,20 @@ from __future__ import annotations
 import numpy as np
 
 MINUS = "\u2212"
+SPECIAL = np.iinfo(np.int64).min  # marks a value the page shows in words (e.g. "∞"); null in JSON
 
 
-def quantize(values, decimals: int) -> np.ndarray:
+def quantize(values, decimals: int, special: bool = False) -> np.ndarray:
     """Round to `decimals` digits and return the integer count of 10**-decimals units.
 
-    A value that rounds to zero becomes plain 0, so a page never shows "-0.000".
+    A value that rounds to zero becomes plain 0, so a page never shows "-0.000". With `special`,
+    infinite values become the SPECIAL marker.
     """
-    scaled = np.rint(np.asarray(values, dtype=float) * 10.0**decimals)
-    return scaled.astype(np.int64) + 0  # + 0 folds -0 into 0 (integers carry no sign of zero)
+    values = np.asarray(values, dtype=float)
+    infinite = np.isinf(values) if special else np.zeros(values.shape, bool)
+    scaled = np.rint(np.where(infinite, 0.0, values) * 10.0**decimals)
+    quanta = scaled.astype(np.int64) + 0  # + 0 folds -0 into 0 (integers carry no sign of zero)
+    return np.where(infinite, SPECIAL, quanta)
 
 
 def format_quantum(quantum: int, decimals: int) -> str:

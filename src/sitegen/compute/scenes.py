@@ -5,10 +5,10 @@ import difflib
 from dataclasses import dataclass
 from decimal import Decimal
 
-from ..content.scenes import SceneSpec, SliderSpec
+from ..content.scenes import CHOICE_FORM, ChoiceSpec, SceneSpec, SliderSpec
 from ..errors import AuthorError
 from ..physics import Model, Output
-from .grid import Axis
+from .grid import CHOICE, LIST, Axis
 
 MAX_STOPS = 100_001  # per slider; more is almost certainly a typo in the step
 
@@ -55,15 +55,21 @@ def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[Reso
 
     axes, stops = [], []
     seen: set[str] = set()
-    for slider in spec.sliders:
-        problem = _slider_problem(slider, model, seen)
-        seen.add(slider.param)
+    for control in spec.sliders:
+        if isinstance(control, ChoiceSpec):
+            axis, problem = _choice_axis(control, model, seen)
+            what = "choice"
+        else:
+            axis, problem = _slider_axis(control, model, seen)
+            what = "slider"
+        seen.add(control.param)
         if problem:
-            error(f"slider {slider.param}", f"slider '{slider.param}' {problem}")
+            errors.append(AuthorError(control.loc, f"{what} '{control.param}' {problem}", spec.id))
             continue
-        axis = Axis(slider.param, slider.lo, slider.step, int((slider.hi - slider.lo) / slider.step) + 1)
         axes.append(axis)
-        stops.append(axis.index_of(slider.default))
+        stops.append(axis.index_of(_default_code(control, model)))
+    if spec.animate is not None and spec.animate not in {a.param for a in axes}:
+        error("animate", f"animate '{spec.animate}' is not one of the scene's sliders: {', '.join(a.param for a in axes) or 'none'}")
     fixed = []
     for item in spec.fixed:
         if item.param not in {p.name for p in model.params}:
@@ -92,12 +98,66 @@ def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[Reso
     return scene, []
 
 
-def _slider_problem(s: SliderSpec, model: Model, seen: set[str]) -> str | None:
-    """What is wrong with one slider (said after "slider 'NAME' "), or None."""
-    if s.param not in {p.name for p in model.params}:
-        return _no_such_param(s.param, model)
-    if s.param in seen:
-        return "appears twice; keep one slider per parameter"
+def _slider_axis(s: SliderSpec, model: Model, seen: set[str]) -> tuple[Axis | None, str | None]:
+    """The slider's grid, or what is wrong with it (said after "slider 'NAME' ")."""
+    problem = _control_problem(s.param, model, seen) or (
+        "is a choice of the model; write it as " + CHOICE_FORM if model.param(s.param).choices else None
+    ) or (_list_problem(s, model) if s.listed else _range_problem(s, model))
+    if problem:
+        return None, problem
+    if s.listed:
+        return Axis(s.param, s.listed, LIST), None
+    return Axis.evenly(s.param, s.lo, s.step, int((s.hi - s.lo) / s.step) + 1), None
+
+
+def _choice_axis(c: ChoiceSpec, model: Model, seen: set[str]) -> tuple[Axis | None, str | None]:
+    """The radio group's grid (codes of the chosen options), or what is wrong with it."""
+    problem = _control_problem(c.param, model, seen)
+    if problem:
+        return None, problem
+    offered = model.param(c.param).choices
+    if not offered:
+        return None, f"is not a choice of model '{model.name}'; give it a slider"
+    for option in (*c.options, c.default):
+        if option not in offered:
+            return None, f"has no option '{option}'{_suggest(option, offered)} Options: {' | '.join(offered)}"
+    if c.default not in c.options:
+        return None, f"default '{c.default}' is not among the options offered: {' | '.join(c.options)}"
+    if len(set(c.options)) != len(c.options):
+        return None, "lists an option twice"
+    codes = tuple(Decimal(offered.index(o)) for o in c.options)
+    return Axis(c.param, codes, CHOICE, c.options), None
+
+
+def _default_code(control: SliderSpec | ChoiceSpec, model: Model) -> Decimal:
+    if isinstance(control, ChoiceSpec):
+        return Decimal(model.param(control.param).choices.index(control.default))
+    return control.default
+
+
+def _control_problem(name: str, model: Model, seen: set[str]) -> str | None:
+    if name not in {p.name for p in model.params}:
+        return _no_such_param(name, model)
+    if name in seen:
+        return "appears twice; keep one control per parameter"
+    return None
+
+
+def _list_problem(s: SliderSpec, model: Model) -> str | None:
+    if list(s.listed) != sorted(set(s.listed)):
+        return "stops must be listed in increasing order, each once"
+    for value in s.listed:
+        if problem := _domain_problem(model, s.param, value, "stop"):
+            return problem
+    if s.default not in s.listed:
+        return f"default {s.default} is not one of the listed stops"
+    if len(s.listed) > MAX_STOPS:
+        return f"has {len(s.listed)} stops, more than {MAX_STOPS}"
+    return None
+
+
+def _range_problem(s: SliderSpec, model: Model) -> str | None:
+    """What is wrong with an evenly spaced slider (said after "slider 'NAME' "), or None."""
     if s.step <= 0:
         return f"step {s.step} must be positive"
     if s.lo >= s.hi:

@@ -22,6 +22,7 @@ class Page:
     title: str
     order: int
     parent: str | None
+    summary: str
     html: str
     found: Extracted
 
@@ -51,6 +52,7 @@ def read_page(path: Path, root: Path) -> tuple[Page | None, list[AuthorError]]:
         title=str(meta["title"]),
         order=int(meta.get("order", 0)),
         parent=meta.get("parent"),
+        summary=str(meta.get("summary", "")),
         html=html,
         found=found,
     )

@@ -18,25 +18,42 @@ from decimal import Decimal, InvalidOperation
 
 from ..errors import AuthorError, SourceLoc
 
-KEYS = ("model", "id", "slider", "fix", "effects", "readouts", "figure", "caption")
+KEYS = ("model", "id", "slider", "choice", "fix", "effects", "readouts", "figure", "caption", "animate")
 _LINE = re.compile(r"^(?P<key>[A-Za-z_]+)(?:\s+(?P<name>[A-Za-z_][A-Za-z0-9_]*))?\s*:\s*(?P<value>.*?)\s*$")
 _NUMBER = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?"
 _SLIDER = re.compile(
     rf"^(?P<lo>{_NUMBER})\s*\.\.\s*(?P<hi>{_NUMBER})\s+step\s+(?P<step>{_NUMBER})\s+default\s+(?P<default>{_NUMBER})$"
 )
+_LIST = re.compile(rf"^(?P<values>{_NUMBER}(?:\s*,\s*{_NUMBER})+)\s+default\s+(?P<default>{_NUMBER})$")
+_CHOICE = re.compile(r"^(?P<options>[\w-]+(?:\s*\|\s*[\w-]+)+)\s+default\s+(?P<default>[\w-]+)$")
 _ID = re.compile(r"^[a-z][a-z0-9-]*$")
-SLIDER_FORM = "slider NAME: MIN..MAX step STEP default VALUE, e.g. 'slider m1: 0.5..5 step 0.5 default 1'"
+SLIDER_FORM = (
+    "slider NAME: MIN..MAX step STEP default VALUE, e.g. 'slider m1: 0.5..5 step 0.5 default 1', "
+    "or slider NAME: V1, V2, ... default VALUE"
+)
+CHOICE_FORM = "choice NAME: OPTION | OPTION ... default OPTION, e.g. 'choice force: spring | drag default spring'"
 
 
 @dataclass(frozen=True)
 class SliderSpec:
-    """One slider as the author wrote it."""
+    """One slider as the author wrote it: evenly spaced (lo..hi step) or a list of stops."""
 
     param: str
     lo: Decimal
     hi: Decimal
     step: Decimal
     default: Decimal
+    loc: SourceLoc
+    listed: tuple[Decimal, ...] = ()  # the stops, when the author listed them
+
+
+@dataclass(frozen=True)
+class ChoiceSpec:
+    """A radio group: the options offered (names of the model's choices) and the default."""
+
+    param: str
+    options: tuple[str, ...]
+    default: str
     loc: SourceLoc
 
 
@@ -56,12 +73,13 @@ class SceneSpec:
     loc: SourceLoc
     id: str
     model: str
-    sliders: tuple[SliderSpec, ...] = ()
+    sliders: tuple[SliderSpec | ChoiceSpec, ...] = ()  # in the order written
     fixed: tuple[FixedSpec, ...] = ()
     effects: tuple[str, ...] = ()
     readouts: tuple[str, ...] = ()
     figure: str | None = None
     caption: str = ""
+    animate: str | None = None  # a slider stepped by a play button
     lines: tuple[tuple[str, SourceLoc], ...] = ()  # (key, place) of every line, to point errors at
 
     def loc_of(self, key: str) -> SourceLoc:
@@ -96,6 +114,7 @@ def parse_scene_block(body: list[str], fence: SourceLoc) -> tuple[SceneSpec | No
         readouts=tuple(fields.get("readouts", ())),
         figure=fields.get("figure"),
         caption=str(fields.get("caption", "")),
+        animate=fields.get("animate"),
         lines=tuple(fields["lines"]),
     )
     return spec, errors
@@ -108,13 +127,16 @@ def _parse_line(text: str, loc: SourceLoc, fields: dict) -> None:
     key, name, value = match["key"], match["name"], match["value"]
     if key not in KEYS:
         raise AuthorError(loc, f"unknown key '{key}'; a scene block takes {', '.join(KEYS)}")
-    needs_name = key in ("slider", "fix")
+    needs_name = key in ("slider", "choice", "fix")
     if needs_name != bool(name):
-        form = SLIDER_FORM if key == "slider" else "fix NAME: VALUE" if key == "fix" else f"{key}: VALUE"
+        forms = {"slider": SLIDER_FORM, "choice": CHOICE_FORM, "fix": "fix NAME: VALUE"}
+        form = forms.get(key, f"{key}: VALUE")
         raise AuthorError(loc, f"malformed '{key}' line; write {form}")
     fields["lines"].append((f"{key} {name}" if name else key, loc))
     if key == "slider":
         fields["sliders"].append(_parse_slider(name, value, loc))
+    elif key == "choice":
+        fields["sliders"].append(_parse_choice(name, value, loc))
     elif key == "fix":
         fields["fixed"].append(FixedSpec(name, _decimal(value, loc, f"fixed value of '{name}'"), loc))
     elif key in ("effects", "readouts"):
@@ -128,11 +150,22 @@ def _parse_line(text: str, loc: SourceLoc, fields: dict) -> None:
 
 
 def _parse_slider(name: str, value: str, loc: SourceLoc) -> SliderSpec:
+    listed = _LIST.match(value)
+    if listed:
+        stops = tuple(_decimal(v, loc, "stop") for v in listed["values"].split(","))
+        return SliderSpec(name, min(stops), max(stops), Decimal(0), _decimal(listed["default"], loc, "default"), loc, stops)
     match = _SLIDER.match(value)
     if not match:
         raise AuthorError(loc, f"malformed slider '{name}': '{value}'; write {SLIDER_FORM}")
     lo, hi, step, default = (_decimal(match[k], loc, k) for k in ("lo", "hi", "step", "default"))
     return SliderSpec(name, lo, hi, step, default, loc)
+
+
+def _parse_choice(name: str, value: str, loc: SourceLoc) -> ChoiceSpec:
+    match = _CHOICE.match(value)
+    if not match:
+        raise AuthorError(loc, f"malformed choice '{name}': '{value}'; write {CHOICE_FORM}")
+    return ChoiceSpec(name, tuple(o.strip() for o in match["options"].split("|")), match["default"], loc)
 
 
 def _decimal(text: str, loc: SourceLoc, what: str) -> Decimal:

@@ -21,11 +21,18 @@ class Param:
     hi: float = math.inf
     lo_open: bool = False  # True when the domain is lo < x rather than lo <= x
     description: str = ""
+    choices: tuple[str, ...] = ()  # a discrete parameter: its value is the index of one of these
+
+    @classmethod
+    def choice(cls, name: str, symbol: str, choices: tuple[str, ...], default: str, description: str = "") -> "Param":
+        """A parameter that takes one of a few named values, coded 0, 1, ..."""
+        return cls(name, symbol, "", float(choices.index(default)), 0.0, float(len(choices) - 1), False, description, choices)
 
     def contains(self, value):
-        """Whether `value` (a number or an array) lies in the model's domain; NaN never does."""
+        """Whether `value` (a number or an array) lies in the model's domain; NaN and ±inf never do."""
         above = np.greater(value, self.lo) if self.lo_open else np.greater_equal(value, self.lo)
-        return above & np.less_equal(value, self.hi)
+        inside = np.isfinite(value) & above & np.less_equal(value, self.hi)
+        return inside & np.equal(np.round(value), value) if self.choices else inside
 
     def domain_text(self) -> str:
         """The domain written for an author, e.g. `m1 > 0` or `0 <= e <= 1`."""
@@ -43,6 +50,9 @@ class Output:
     """A computed quantity: its label, unit, the parameters it depends on and how it is shown.
 
     A number output is shown with `decimals` digits; a text output is an index into `labels`.
+    A vector output (`size` > 0) gives `size` numbers per parameter point, e.g. the geometry of a
+    curve; a ragged one pads with NaN after its last element. Where the physics is singular an
+    output may be non-finite if it says how to show that (`special`, e.g. "∞").
     """
 
     name: str
@@ -51,6 +61,9 @@ class Output:
     deps: tuple[str, ...]
     decimals: int = 3
     labels: tuple[str, ...] = ()
+    size: int = 0
+    ragged: bool = False
+    special: str = ""
 
     @property
     def is_text(self) -> bool:

@@ -59,10 +59,11 @@ def _layers_svg(layers: list[Layer], points: list[list[tuple[float, float]]], fr
         parts.append(f'<g clip-path="url(#layers-clip-{index})"><g transform="matrix({a} 0 0 {d} {e} {f})">')
         for layer, pts in members:
             style = " ".join(f'{k}="{v}"' for k, v in sorted(layer.style.items()))
-            parts.append(
-                f'<{layer.kind} data-layer="{layer.name}" points="{format_points(pts)}" {style} '
-                'vector-effect="non-scaling-stroke" stroke-linejoin="round"/>'
-            )
+            if layer.kind == "dots":  # a zero-length stroke with round caps is a dot
+                shape = f'path data-layer="{layer.name}" d="{format_dots(pts)}" stroke-linecap="round"'
+            else:
+                shape = f'{layer.kind} data-layer="{layer.name}" points="{format_points(pts)}" stroke-linejoin="round"'
+            parts.append(f'<{shape} {style} vector-effect="non-scaling-stroke"/>')
         parts.append("</g></g>")
     parts.append("</g>")
     return "\n".join(parts)
@@ -71,6 +72,11 @@ def _layers_svg(layers: list[Layer], points: list[list[tuple[float, float]]], fr
 def format_points(points: list[tuple[float, float]]) -> str:
     """SVG points text with short, stable numbers (the page's script writes the same form)."""
     return " ".join(f"{_short(x)},{_short(y)}" for x, y in points)
+
+
+def format_dots(points: list[tuple[float, float]]) -> str:
+    """SVG path text drawing a dot at every point."""
+    return " ".join(f"M{_short(x)},{_short(y)}h0" for x, y in points)
 
 
 def _short(value: float) -> str:

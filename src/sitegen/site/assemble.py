@@ -7,7 +7,8 @@ from pathlib import Path
 
 import jinja2
 
-from ..compute.quantize import format_quantum
+from ..compute.grid import CHOICE, RANGE
+from ..compute.quantize import SPECIAL, format_quantum
 from ..compute.scenes import ResolvedScene
 from ..compute.tabulate import Table
 from ..content.pages import Page
@@ -44,6 +45,7 @@ def scene_html(scene: ResolvedScene, tables: dict[str, Table], figure: RenderedS
         sliders=sliders,
         readouts=readouts,
         caption=caption,
+        animate=scene.spec.animate,
         data=scene_payload(scene, tables, figure.layers),
     )
 
@@ -58,13 +60,17 @@ def readout_text(table: Table, unit: str, stops: tuple[int, ...]) -> str:
     q = table.at(stops)
     if table.labels:
         return table.labels[q]
+    if q == SPECIAL:
+        return table.special
     text = format_quantum(q, table.decimals)
     return f"{text} {unit}" if unit else text
 
 
 def slider_text(scene: ResolvedScene, index: int, stop: int) -> str:
-    """A slider's value as shown beside it and announced (aria-valuetext)."""
+    """A control's value as shown beside it and announced (aria-valuetext)."""
     axis = scene.axes[index]
+    if axis.kind == CHOICE:
+        return axis.labels[stop]
     unit = scene.model.param(axis.param).unit
     text = format_quantum(int(axis.stop(stop).scaleb(axis.decimals)), axis.decimals)
     return f"{text} {unit}" if unit else text
@@ -73,40 +79,45 @@ def slider_text(scene: ResolvedScene, index: int, stop: int) -> str:
 def _slider_view(scene: ResolvedScene, index: int, stop: int) -> dict:
     axis = scene.axes[index]
     param = scene.model.param(axis.param)
-    return {
+    view = {
         "param": axis.param,
+        "kind": axis.kind,
         "symbol": param.symbol,
         "unit": param.unit,
         "description": param.description,
-        "min": _plain(axis.lo),
-        "max": _plain(axis.hi),
-        "step": _plain(axis.step),
-        "value": _plain(axis.stop(stop)),
+        "stop": stop,
         "text": slider_text(scene, index, stop),
+        "options": axis.labels,
     }
+    if axis.kind == RANGE:
+        view.update(min=_plain(axis.lo), max=_plain(axis.hi), step=_plain(axis.step), value=_plain(axis.stop(stop)))
+    else:  # a listed slider moves by index; its value text says the stop
+        view.update(min="0", max=str(axis.count - 1), step="1", value=str(stop))
+    return view
 
 
 def scene_payload(scene: ResolvedScene, tables: dict[str, Table], layers: tuple[Layer, ...]) -> str:
     """The scene's tables, slider grids and layer recipes as JSON safe inside a <script> element."""
-    sliders = [
-        {
-            "param": a.param,
-            "lo": int(a.lo.scaleb(a.decimals)),
-            "step": int(a.step.scaleb(a.decimals)),
-            "count": a.count,
-            "d": a.decimals,
-            "unit": scene.model.param(a.param).unit,
-        }
-        for a in scene.axes
-    ]
+    sliders = [_axis_json(scene, i) for i in range(len(scene.axes))]
     payload = {
         "sliders": sliders,
         "tables": _tables_json(tables),
         "readouts": [{"out": o.name, "unit": o.unit} for o in scene.readouts],
-        "layers": [{"name": layer.name, "pts": [[_ref_json(r, scene) for r in xy] for xy in layer.points]} for layer in layers],
+        "layers": [_layer_json(layer, scene) for layer in layers],
     }
     text = json.dumps(payload, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
     return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+
+
+def _axis_json(scene: ResolvedScene, index: int) -> dict:
+    """A control's grid for the script: evenly spaced stops as integers of the last digit, else a list."""
+    axis = scene.axes[index]
+    out = {"param": axis.param, "kind": axis.kind, "count": axis.count, "unit": scene.model.param(axis.param).unit}
+    if axis.kind == RANGE:
+        out.update(lo=int(axis.lo.scaleb(axis.decimals)), step=int(axis.step.scaleb(axis.decimals)), d=axis.decimals)
+    else:
+        out.update(values=[float(v) for v in axis.stops], texts=[slider_text(scene, index, k) for k in range(axis.count)])
+    return out
 
 
 def _tables_json(tables: dict[str, Table]) -> dict:
@@ -120,13 +131,29 @@ def _tables_json(tables: dict[str, Table]) -> dict:
 
 
 def _table_json(table: Table) -> dict:
-    out = {"axes": list(table.axes), "shape": list(table.shape), "d": table.decimals, "q": table.quanta.tolist()}
+    rows = table.rows()
+    if table.special:  # the marker becomes null, shown as the output's phrase
+        rows = [None if q == SPECIAL else q for q in rows]
+    out = {"axes": list(table.axes), "shape": list(table.shape), "d": table.decimals, "q": rows}
     if table.labels:
         out["labels"] = list(table.labels)
+    if table.special:
+        out["special"] = table.special
+    return out
+
+
+def _layer_json(layer: Layer, scene: ResolvedScene) -> dict:
+    out = {"name": layer.name, "kind": layer.kind}
+    if layer.xs is not None:
+        out.update(xs=_ref_json(layer.xs, scene), ys=_ref_json(layer.ys, scene))
+    else:
+        out["pts"] = [[_ref_json(r, scene) for r in xy] for xy in layer.points]
     return out
 
 
 def _ref_json(ref, scene: ResolvedScene):
+    if isinstance(ref, tuple):
+        return list(ref)
     if not isinstance(ref, str):
         return ref
     kind, name = ref.split(":", 1)

@@ -1,10 +1,11 @@
 /* sitegen page script: moves scenes by selecting precomputed results.
- * It knows sliders, tables and layers, and nothing of physics: every number it shows was
- * computed and rounded at build time; here it is only looked up and written out. */
+ * It knows controls, tables and layers, and nothing of physics: every number it shows was
+ * computed and rounded when the book was built; here it is only looked up and written out. */
 (function () {
   "use strict";
 
   var MINUS = "\u2212";
+  var FRAME_MS = 1000 / 24; // animation: one slider stop per frame
 
   /* An integer count of 10^-d units, written as the build writes it: (-2333, 3) -> "−2.333". */
   function formatQuantum(q, d) {
@@ -18,22 +19,26 @@
     return unit ? text + " " + unit : text;
   }
 
-  /* The entry of a table at the current slider stops (row-major over the table's own axes). */
+  /* The entry of a table at the current stops (row-major over the table's own axes). */
   function lookup(table, stops) {
     var flat = 0;
     for (var k = 0; k < table.axes.length; k++) flat = flat * table.shape[k] + stops[table.axes[k]];
     return table.q[flat];
   }
 
+  function short(x) {
+    return String(Math.round(x * 1e6) / 1e6);
+  }
+
   function Scene(root) {
     var data = JSON.parse(root.querySelector("script.scene-data").textContent);
     Object.keys(data.tables).forEach(function (name) {
       var table = data.tables[name];
-      if (table.same) data.tables[name] = data.tables[table.same];  // identical tables are stored once
+      if (table.same) data.tables[name] = data.tables[table.same]; // identical tables are stored once
     });
     this.data = data;
-    this.inputs = data.sliders.map(function (s) {
-      return root.querySelector('input[data-param="' + s.param + '"]');
+    this.controls = data.sliders.map(function (s) {
+      return root.querySelector('[data-param="' + s.param + '"]');
     });
     this.valueTexts = data.sliders.map(function (s) {
       return root.querySelector('output[data-value-of="' + s.param + '"]');
@@ -45,54 +50,130 @@
       return root.querySelector('[data-layer="' + l.name + '"]');
     });
     var update = this.update.bind(this);
-    this.inputs.forEach(function (input) {
-      input.addEventListener("input", update);
+    this.controls.forEach(function (control) {
+      control.addEventListener("input", update);
+      control.addEventListener("change", update);
     });
+    var button = root.querySelector("button[data-animate]");
+    if (button) this.animation = new Animation(this, root, button);
     this.update();
   }
 
-  /* The stop index of every slider, from the inputs' current values. */
-  Scene.prototype.stops = function () {
-    var sliders = this.data.sliders;
-    return this.inputs.map(function (input, i) {
-      var s = sliders[i], scale = Math.pow(10, s.d);
-      var k = Math.round((parseFloat(input.value) * scale - s.lo) / s.step);
-      return Math.min(s.count - 1, Math.max(0, k));
-    });
+  /* The stop index of one control: evenly spaced sliders carry values, listed ones indices. */
+  Scene.prototype.stop = function (i) {
+    var s = this.data.sliders[i], control = this.controls[i], k;
+    if (s.kind === "choice") {
+      var checked = control.querySelector("input:checked");
+      k = checked ? parseInt(checked.value, 10) : 0;
+    } else if (s.kind === "list") {
+      k = Math.round(parseFloat(control.value));
+    } else {
+      k = Math.round((parseFloat(control.value) * Math.pow(10, s.d) - s.lo) / s.step);
+    }
+    return Math.min(s.count - 1, Math.max(0, k));
   };
 
+  Scene.prototype.stops = function () {
+    var stops = [];
+    for (var i = 0; i < this.controls.length; i++) stops.push(this.stop(i));
+    return stops;
+  };
+
+  /* A control's value as text, as the build wrote it next to the control. */
+  Scene.prototype.stopText = function (i, k) {
+    var s = this.data.sliders[i];
+    return s.texts ? s.texts[k] : withUnit(formatQuantum(s.lo + k * s.step, s.d), s.unit);
+  };
+
+  /* A layer reference: a number, [number, ...], ["i", control] or ["o", table] (a number or a list). */
   Scene.prototype.value = function (ref, stops) {
     if (typeof ref === "number") return ref;
+    if (typeof ref[0] === "number") return ref;
     if (ref[0] === "i") {
-      var s = this.data.sliders[ref[1]];
-      return (s.lo + stops[ref[1]] * s.step) / Math.pow(10, s.d);
+      var s = this.data.sliders[ref[1]], k = stops[ref[1]];
+      return s.values ? s.values[k] : (s.lo + k * s.step) / Math.pow(10, s.d);
     }
-    var table = this.data.tables[ref[1]];
-    return lookup(table, stops) / Math.pow(10, table.d);
+    var table = this.data.tables[ref[1]], q = lookup(table, stops), scale = Math.pow(10, -table.d);
+    return Array.isArray(q) ? q.map(function (v) { return v * scale; }) : q * scale;
+  };
+
+  Scene.prototype.vertices = function (layer, stops) {
+    var self = this;
+    if (layer.pts) {
+      return layer.pts.map(function (xy) {
+        return [self.value(xy[0], stops), self.value(xy[1], stops)];
+      });
+    }
+    var xs = this.value(layer.xs, stops), ys = this.value(layer.ys, stops), out = [];
+    for (var j = 0; j < Math.min(xs.length, ys.length); j++) out.push([xs[j], ys[j]]);
+    return out;
   };
 
   Scene.prototype.update = function () {
     var stops = this.stops(), data = this.data, self = this;
     data.sliders.forEach(function (s, i) {
-      var text = withUnit(formatQuantum(s.lo + stops[i] * s.step, s.d), s.unit);
-      self.inputs[i].setAttribute("aria-valuetext", text);
+      var text = self.stopText(i, stops[i]);
+      if (s.kind !== "choice") self.controls[i].setAttribute("aria-valuetext", text);
       if (self.valueTexts[i]) self.valueTexts[i].textContent = text;
     });
     data.readouts.forEach(function (r, i) {
-      var table = data.tables[r.out], q = lookup(table, stops);
-      self.readouts[i].textContent = table.labels ? table.labels[q] : withUnit(formatQuantum(q, table.d), r.unit);
+      var table = data.tables[r.out], q = lookup(table, stops), text;
+      if (table.labels) text = table.labels[q];
+      else if (q === null) text = table.special;
+      else text = withUnit(formatQuantum(q, table.d), r.unit);
+      if (self.readouts[i].textContent !== text) self.readouts[i].textContent = text;
     });
     data.layers.forEach(function (layer, i) {
-      var points = layer.pts.map(function (xy) {
-        return round6(self.value(xy[0], stops)) + "," + round6(self.value(xy[1], stops));
-      });
-      if (self.layers[i]) self.layers[i].setAttribute("points", points.join(" "));
+      var element = self.layers[i];
+      if (!element) return;
+      var vertices = self.vertices(layer, stops);
+      if (layer.kind === "dots") {
+        element.setAttribute("d", vertices.map(function (p) { return "M" + short(p[0]) + "," + short(p[1]) + "h0"; }).join(" "));
+      } else {
+        element.setAttribute("points", vertices.map(function (p) { return short(p[0]) + "," + short(p[1]); }).join(" "));
+      }
     });
   };
 
-  function round6(x) {
-    return String(Math.round(x * 1e6) / 1e6);
+  /* Play/pause for a scene that animates one slider; it pauses when the scene leaves the screen. */
+  function Animation(scene, root, button) {
+    this.scene = scene;
+    this.button = button;
+    this.index = scene.data.sliders.map(function (s) { return s.param; }).indexOf(button.getAttribute("data-animate"));
+    this.timer = null;
+    var self = this;
+    button.addEventListener("click", function () {
+      if (self.timer) self.pause();
+      else self.play();
+    });
+    if ("IntersectionObserver" in window) {
+      new IntersectionObserver(function (entries) {
+        if (!entries[0].isIntersecting) self.pause();
+      }).observe(root);
+    }
   }
+
+  Animation.prototype.play = function () {
+    var self = this;
+    this.button.setAttribute("aria-pressed", "true");
+    this.button.textContent = "Pause";
+    this.timer = setInterval(function () { self.step(); }, FRAME_MS);
+  };
+
+  Animation.prototype.pause = function () {
+    if (!this.timer) return;
+    clearInterval(this.timer);
+    this.timer = null;
+    this.button.setAttribute("aria-pressed", "false");
+    this.button.textContent = "Play";
+  };
+
+  Animation.prototype.step = function () {
+    var s = this.scene.data.sliders[this.index], control = this.scene.controls[this.index];
+    var k = (this.scene.stop(this.index) + 1) % s.count;
+    control.value = s.kind === "list" ? String(k) : String((s.lo + k * s.step) / Math.pow(10, s.d));
+    this.scene.update();
+  };
 
   function start() {
     var scenes = document.querySelectorAll("[data-scene]");

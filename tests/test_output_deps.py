@@ -1,0 +1,76 @@
+"""Every output's declared `deps` are exactly the parameters it depends on: none missing, none superfluous.
+
+The build tabulates an output only over its deps (spec §0.2), so a missing dep freezes a slider's effect and
+a superfluous one wastes table bytes.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from sitegen.physics import MODELS
+from sitegen.physics.base import Param
+
+POINTS = 16  # random valid points per check
+SPAN = 5.0  # sample each domain within [-SPAN, SPAN]
+
+CASES = [
+    pytest.param(model, output.name, id=f"{name}-{output.name}")
+    for name, model in MODELS.items()
+    for output in model.outputs
+]
+
+
+def _sample(param: Param, rng: np.random.Generator, size: int) -> np.ndarray:
+    """Uniform values in the parameter's domain, clipped to [-SPAN, SPAN], never the open lower bound."""
+    lo, hi = max(param.lo, -SPAN), min(param.hi, SPAN)
+    values = rng.uniform(lo, hi, size)
+    if param.lo_open:
+        values = np.where(values <= param.lo, np.nextafter(param.lo, np.inf), values)
+    assert np.all(param.contains(values))
+    return values
+
+
+def _bitwise_changed(before: np.ndarray, after: np.ndarray) -> np.ndarray:
+    """Point by point, whether two 1-D output arrays differ in any bit (so −0.0 vs 0.0 counts as a change)."""
+    assert before.shape == after.shape == (POINTS,) and before.dtype == after.dtype
+    return np.any(before.view(np.uint8).reshape(POINTS, -1) != after.view(np.uint8).reshape(POINTS, -1), axis=1)
+
+
+def _params_that_change(model, output: str, seed: int) -> dict[str, int]:
+    """For each parameter, at how many of POINTS random valid points perturbing it alone changes `output`."""
+    rng = np.random.default_rng(seed)
+    base = {p.name: _sample(p, rng, POINTS) for p in model.params}
+    reference = model().evaluate(base, wanted=[output])[output]
+    counts = {}
+    for p in model.params:
+        moved = _sample(p, rng, POINTS)
+        assert np.all(moved != base[p.name]), "perturbation must move the parameter"
+        result = model().evaluate({**base, p.name: moved}, wanted=[output])[output]
+        counts[p.name] = int(np.count_nonzero(_bitwise_changed(reference, result)))
+    return counts
+
+
+@pytest.mark.parametrize("model, output", CASES)
+def test_output_ignores_parameters_outside_its_deps(model, output):
+    """Perturbing a parameter not in the output's deps leaves it bitwise unchanged at every random point."""
+    counts = _params_that_change(model, output, seed=20240611)
+    deps = set(model.output(output).deps)
+    undeclared = {name: n for name, n in counts.items() if name not in deps and n > 0}
+    assert not undeclared, f"{output} changes with undeclared parameters (points changed): {undeclared}"
+
+
+@pytest.mark.parametrize("model, output", CASES)
+def test_output_responds_to_every_declared_dep(model, output):
+    """Perturbing each declared dep changes the output at at least one random point (no superfluous dep)."""
+    counts = _params_that_change(model, output, seed=20240611)
+    inert = sorted(name for name in model.output(output).deps if counts[name] == 0)
+    assert not inert, f"{output} declares deps it never responds to: {inert}"
+
+
+@pytest.mark.parametrize("model, output", CASES)
+def test_deps_name_declared_parameters(model, output):
+    """Every dep of an output is one of the model's parameters, listed once."""
+    deps = model.output(output).deps
+    assert set(deps) <= {p.name for p in model.params}
+    assert len(set(deps)) == len(deps)

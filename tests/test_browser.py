@@ -41,6 +41,11 @@ TRANSPORTS = ("file", "http")
 SCENES = [(page, spec) for page in PAGES for spec in page.found.scenes]
 
 
+def is_range_slider(control) -> bool:
+    """A `slider NAME: MIN..MAX step STEP` line (not a listed slider or a choice)."""
+    return hasattr(control, "step") and not getattr(control, "listed", ())
+
+
 def _scene_id(page, spec) -> str:
     """'collision', or 'newtons-laws-collision' if another page has a scene with the same id."""
     clash = sum(s.id == spec.id for _, s in SCENES) > 1
@@ -66,11 +71,6 @@ def _slider_params(transports=TRANSPORTS):
         for page, spec, param in SLIDERS
         for t in transports
     ]
-
-
-def is_range_slider(control) -> bool:
-    """A `slider NAME: MIN..MAX step STEP` line (not a listed slider or a choice)."""
-    return hasattr(control, "step") and not getattr(control, "listed", ())
 
 
 def readout_names(spec) -> list[str]:

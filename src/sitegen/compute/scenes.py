@@ -87,13 +87,18 @@ def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[Reso
         if effect not in offered:
             what = f"offers: {', '.join(model.effects)}" if model.effects else "offers no effects"
             error("effects", f"model '{model.name}' has no effect '{effect}'{_suggest(effect, offered)} It {what}")
-    known = {o.name: o for o in model.outputs}
+    enabled = set(spec.effects)
+    for name in [a.param for a in axes] + [name for name, _ in fixed]:
+        needs = model.param(name).effect
+        if needs and needs not in enabled:
+            error("effects", f"parameter '{name}' belongs to effect '{needs}'; add it to the scene's 'effects:' line")
+    known = {o.name: o for o in model.outputs if not o.effect or o.effect in enabled}
     for name in spec.readouts:
         if name not in known:
             error("readouts", f"model '{model.name}' has no output '{name}'{_suggest(name, known)} Its outputs: {', '.join(known)}")
     if errors:
         return None, errors
-    readouts = tuple(known[n] for n in spec.readouts) if spec.readouts else model.outputs
+    readouts = tuple(known[n] for n in spec.readouts) if spec.readouts else tuple(o for o in known.values() if not o.size)
     scene = ResolvedScene(spec, model, tuple(axes), tuple(stops), tuple(fixed), frozenset(spec.effects), readouts)
     return scene, []
 

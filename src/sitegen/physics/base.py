@@ -3,7 +3,7 @@ vectorised evaluation. Physics only: nothing here knows about pages or plotting.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import ClassVar, Iterable, Mapping
 
 import numpy as np
@@ -22,11 +22,16 @@ class Param:
     lo_open: bool = False  # True when the domain is lo < x rather than lo <= x
     description: str = ""
     choices: tuple[str, ...] = ()  # a discrete parameter: its value is the index of one of these
+    effect: str = ""  # the effect this parameter belongs to; usable only when the scene enables it
 
     @classmethod
     def choice(cls, name: str, symbol: str, choices: tuple[str, ...], default: str, description: str = "") -> "Param":
         """A parameter that takes one of a few named values, coded 0, 1, ..."""
         return cls(name, symbol, "", float(choices.index(default)), 0.0, float(len(choices) - 1), False, description, choices)
+
+    def with_effect(self, effect: str) -> "Param":
+        """The same parameter, marked as belonging to `effect`."""
+        return replace(self, effect=effect)
 
     def contains(self, value):
         """Whether `value` (a number or an array) lies in the model's domain; NaN and ±inf never do."""
@@ -64,6 +69,7 @@ class Output:
     size: int = 0
     ragged: bool = False
     special: str = ""
+    effect: str = ""  # the effect this output belongs to; shown only when the scene enables it
 
     @property
     def is_text(self) -> bool:

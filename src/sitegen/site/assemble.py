@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import zlib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -135,11 +136,25 @@ def _table_json(table: Table) -> dict:
     if table.special:  # the marker becomes null, shown as the output's phrase
         rows = [None if q == SPECIAL else q for q in rows]
     out = {"axes": list(table.axes), "shape": list(table.shape), "d": table.decimals, "q": rows}
+    deltas = None if table.special or table.labels else _deltas(rows)
+    if deltas is not None and _packed_size(deltas) < _packed_size(rows):
+        out.update(q=deltas, enc="delta")
     if table.labels:
         out["labels"] = list(table.labels)
     if table.special:
         out["special"] = table.special
     return out
+
+
+def _deltas(rows: list) -> list:
+    """Differences between neighbours (within each vector), which compress better when smooth."""
+    if rows and isinstance(rows[0], list):
+        return [_deltas(row) for row in rows]
+    return [b - a for a, b in zip([0, *rows[:-1]], rows)]
+
+
+def _packed_size(rows: list) -> int:
+    return len(zlib.compress(json.dumps(rows, separators=(",", ":")).encode(), 6))
 
 
 def _layer_json(layer: Layer, scene: ResolvedScene) -> dict:

@@ -26,6 +26,14 @@
     return table.q[flat];
   }
 
+  /* Tables may be stored as differences between neighbours (within each vector): add them up. */
+  function undelta(rows) {
+    if (rows.length && Array.isArray(rows[0])) return rows.map(undelta);
+    var out = new Array(rows.length), sum = 0;
+    for (var i = 0; i < rows.length; i++) out[i] = sum += rows[i];
+    return out;
+  }
+
   function short(x) {
     return String(Math.round(x * 1e6) / 1e6);
   }
@@ -35,6 +43,7 @@
     Object.keys(data.tables).forEach(function (name) {
       var table = data.tables[name];
       if (table.same) data.tables[name] = data.tables[table.same]; // identical tables are stored once
+      else if (table.enc === "delta") table.q = undelta(table.q);
     });
     this.data = data;
     this.controls = data.sliders.map(function (s) {

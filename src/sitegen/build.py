@@ -169,11 +169,11 @@ def assemble_site(pages, scenes, tables, figures, mathml, config: BuildConfig) -
     files: dict[str, bytes] = {}
     for page in pages:
         html = [
-            scene_html(s.scene, tables[_key(s)], figures[_key(s)], fill_slots(s.caption, mathml[page.slug], []))
+            scene_html(s.scene, tables[_key(s)], figures[_key(s)], fill_slots(s.caption, page.found, mathml[page.slug], []))
             for s in scenes
             if s.page is page
         ]
-        body = fill_slots(page.html, mathml[page.slug], html)
+        body = fill_slots(page.html, page.found, mathml[page.slug], html)
         files[page.output_name] = page_html(page, body, pages, book_title).encode()
     files["assets/sitegen.js"] = assets.script()
     files["assets/sitegen.css"] = assets.stylesheet(config.node_modules)

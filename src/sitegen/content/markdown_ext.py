@@ -21,15 +21,19 @@ _SCENE_FENCE = re.compile(r"^```\s*scene\s*$")
 _CODE_FENCE = re.compile(r"^(```|~~~)")
 _INLINE_MATH = re.compile(r"(?<![\\$\w])\$(?=[^\s$])(?P<tex>[^$\n]*?[^\s\\$])\$(?![\w$])")
 _SLOT = re.compile(r'<(div|span) data-(math|scene)-slot="(\d+)"></\1>')
+_DISPLAY_END = re.compile(r"^(?P<tex>.*)\$\$\s*(?:\{#(?P<label>eq-[a-z0-9-]+)\})?\s*$")
+_EQ_REF = re.compile(r"\(@(?P<label>eq-[a-z0-9-]+)\)")
+_EQ_REF_SLOT = re.compile(r'<a data-eqref="(eq-[a-z0-9-]+)"></a>')
 
 
 @dataclass(frozen=True)
 class MathItem:
-    """One formula: its TeX, whether it is displayed, and where the author wrote it."""
+    """One formula: its TeX, whether it is displayed, where the author wrote it, and its label."""
 
     tex: str
     display: bool
     loc: SourceLoc
+    label: str | None = None  # "eq-name" for a numbered display equation
 
 
 @dataclass
@@ -39,6 +43,8 @@ class Extracted:
     maths: list[MathItem] = field(default_factory=list)
     scenes: list[SceneSpec] = field(default_factory=list)
     errors: list[AuthorError] = field(default_factory=list)
+    numbers: dict[str, int] = field(default_factory=dict)  # equation label -> its number on the page
+    references: list[tuple[str, SourceLoc]] = field(default_factory=list)
 
 
 class _SlotPreprocessor(Preprocessor):
@@ -47,6 +53,7 @@ class _SlotPreprocessor(Preprocessor):
         self.path, self.first_line, self.found = path, first_line, found
 
     def run(self, lines: list[str]) -> list[str]:
+        first_reference = len(self.found.references)
         out: list[str] = []
         i = 0
         while i < len(lines):
@@ -59,8 +66,13 @@ class _SlotPreprocessor(Preprocessor):
             elif line.lstrip().startswith("$$"):
                 i = self._display_math(lines, i, loc, out)
             else:
-                out.append(_INLINE_MATH.sub(lambda m: self._inline_math(m, loc), line))
+                line = _INLINE_MATH.sub(lambda m: self._inline_math(m, loc), line)
+                out.append(_EQ_REF.sub(lambda m: self._reference(m, loc), line))
                 i += 1
+        for label, where in self.found.references[first_reference:]:
+            if label not in self.found.numbers:
+                known = ", ".join(self.found.numbers) or "none"
+                self.found.errors.append(AuthorError(where, f"reference (@{label}) names no equation on this page; labelled equations: {known}"))
         return out
 
     def _scene(self, lines, i, loc, out) -> int:
@@ -84,18 +96,30 @@ class _SlotPreprocessor(Preprocessor):
 
     def _display_math(self, lines, i, loc, out) -> int:
         first = lines[i].lstrip()[2:]
-        if first.rstrip().endswith("$$"):
-            end, tex = i, first.rstrip()[:-2]
+        closing = _DISPLAY_END.match(first)
+        if closing:
+            end, tex = i, closing["tex"]
         else:
-            end = next((j for j in range(i + 1, len(lines)) if lines[j].rstrip().endswith("$$")), None)
+            end = next((j for j in range(i + 1, len(lines)) if _DISPLAY_END.match(lines[j])), None)
             if end is None:
                 self.found.errors.append(AuthorError(loc, "display math '$$' is not closed; end it with '$$'"))
                 return len(lines)
-            tex = "\n".join([first, *lines[i + 1 : end], lines[end].rstrip()[:-2]])
-        self.found.maths.append(MathItem(tex.strip(), True, loc))
+            closing = _DISPLAY_END.match(lines[end])
+            tex = "\n".join([first, *lines[i + 1 : end], closing["tex"]])
+        label = closing["label"]
+        if label:
+            if label in self.found.numbers:
+                self.found.errors.append(AuthorError(loc, f"equation label '{label}' is used twice on this page"))
+            self.found.numbers.setdefault(label, len(self.found.numbers) + 1)
+            tex = f"{tex.strip()} \\tag{{{self.found.numbers[label]}}}"
+        self.found.maths.append(MathItem(tex.strip(), True, loc, label))
         slot = f'<div data-math-slot="{len(self.found.maths) - 1}"></div>'
         out.extend(["", slot, ""])
         return end + 1
+
+    def _reference(self, match: re.Match, loc: SourceLoc) -> str:
+        self.found.references.append((match["label"], loc))
+        return f'<a data-eqref="{match["label"]}"></a>'
 
     def _inline_math(self, match: re.Match, loc: SourceLoc) -> str:
         self.found.maths.append(MathItem(match["tex"], False, loc))
@@ -126,13 +150,18 @@ def markdown_to_html(text: str, path: str, first_line: int, found: Extracted, in
     return html
 
 
-def fill_slots(html: str, maths: list[str], scenes: list[str]) -> str:
-    """Replace every slot placeholder with its MathML or scene HTML."""
+def fill_slots(html: str, found: Extracted, mathml: list[str], scenes: list[str]) -> str:
+    """Replace every placeholder with its MathML, scene HTML or equation number."""
 
     def substitute(match: re.Match) -> str:
         tag, kind, index = match[1], match[2], int(match[3])
         if kind == "scene":
             return scenes[index]
-        return f'<div class="equation">{maths[index]}</div>' if tag == "div" else maths[index]
+        if tag == "span":
+            return mathml[index]
+        label = found.maths[index].label
+        anchor = f' id="{label}"' if label else ""
+        return f'<div class="equation"{anchor}>{mathml[index]}</div>'
 
-    return _SLOT.sub(substitute, html)
+    html = _SLOT.sub(substitute, html)
+    return _EQ_REF_SLOT.sub(lambda m: f'<a class="eqref" href="#{m[1]}">({found.numbers[m[1]]})</a>', html)

@@ -6,8 +6,12 @@ import re
 from html import unescape
 from pathlib import Path
 
+import logging
+
 from fontTools import subset
 from fontTools.ttLib import TTFont
+
+logging.getLogger("fontTools.subset").setLevel(logging.ERROR)  # it notes dropping tables we do not need
 
 STATIC = Path(__file__).with_name("static")
 FONT_FILE = "latinmodern-math.woff2"

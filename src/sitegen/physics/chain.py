@@ -1,0 +1,325 @@
+"""I5: a chain of N masses between walls, solved exactly mode by mode, against the continuum string.
+
+The linear chain m ü_j = κ(u_{j+1} − 2u_j + u_{j−1}) is diagonalised by a sine transform (fixed
+ends, DST-I), a cosine transform (free ends, DCT-II) or an FFT (a ring), so any time t is reached
+in O(N log N) with no time-step error. The dashed reference is d'Alembert's solution of the wave
+equation with the matching reflections. Units: L = 1 m, c = 1 m/s, μ = 1 kg/m.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft
+
+from .base import Model, Output, Param
+
+LENGTH, SPEED, DENSITY = 1.0, 1.0, 1.0  # L (m), c (m/s), μ (kg/m)
+CENTRE = 0.3  # x0: where the pulse starts (m)
+AMPLITUDE = 0.01  # A: the pulse height on the page (m); the model is linear, so everything scales with it
+MAX_N = 256  # the largest chain the page shows: vector outputs are padded to this length
+CONTINUUM_POINTS = 201  # the dashed curve's vertices; 2 px apart at the page's width, smooth at pixel level
+ENDS = ("fixed", "free", "periodic")
+LAUNCHES = ("right-moving", "split")
+RIGHT_MOVING, SPLIT = 0, 1
+RESOLVED, UNDER_RESOLVED = 0, 1
+
+
+@dataclass(frozen=True)
+class Terms:
+    """The optional terms of the chain: how its ends are held, on-site damping γ and on-site spring ω0."""
+
+    ends: str = "fixed"
+    gamma: float = 0.0  # 1/s: the force −mγu̇ on every mass
+    omega0: float = 0.0  # rad/s: the force −mω0²u on every mass (Klein–Gordon)
+
+    def __post_init__(self):
+        if self.ends not in ENDS:
+            raise ValueError(f"`ends` must be one of {', '.join(ENDS)}, not {self.ends!r}")
+        if not (self.gamma >= 0 and self.omega0 >= 0):
+            raise ValueError("`gamma` and `omega0` must be >= 0")
+
+
+BARE = Terms()
+
+
+# --- geometry and the normal modes ---------------------------------------------------------------------------
+
+
+def spacing(n, ends: str = "fixed"):
+    """Lattice spacing a: L/(N+1) between fixed walls, L/N for free ends or a ring."""
+    return LENGTH / (np.asarray(n) + 1) if ends == "fixed" else LENGTH / np.asarray(n)
+
+
+def positions(n: int, ends: str = "fixed") -> np.ndarray:
+    """Rest positions x_j of the N masses: j·a between fixed walls, cell centres (j − ½)·a otherwise."""
+    j = np.arange(1, n + 1, dtype=float)
+    return j * spacing(n, ends) if ends == "fixed" else (j - 0.5) * spacing(n, ends)
+
+
+def mass_and_stiffness(n, ends: str = "fixed"):
+    """m = μa and κ = μc²/a, so that c = a√(κ/m) whatever N is."""
+    a = spacing(n, ends)
+    return DENSITY * a, DENSITY * SPEED**2 / a
+
+
+def wavenumbers(n: int, ends: str = "fixed") -> np.ndarray:
+    """k of each mode, in the order of the transform's coefficients."""
+    if ends == "fixed":
+        return np.pi * np.arange(1, n + 1) / LENGTH
+    if ends == "free":
+        return np.pi * np.arange(n) / LENGTH
+    return 2 * np.pi * np.fft.fftfreq(n, d=1.0 / n) / LENGTH
+
+
+def mode_frequencies(n: int, terms: Terms = BARE) -> np.ndarray:
+    """ω of each mode: ω² = ω0² + (2c/a)² sin²(ka/2), in the order of the transform's coefficients."""
+    a = spacing(n, terms.ends)
+    lattice = 2 * SPEED / a * np.abs(np.sin(wavenumbers(n, terms.ends) * a / 2))
+    return np.hypot(lattice, terms.omega0) if terms.omega0 else lattice
+
+
+def cutoff_frequency(n, terms: Terms = BARE):
+    """The top of the band, ω_max = √(ω0² + 4κ/m) = √(ω0² + (2c/a)²)."""
+    return np.hypot(2 * SPEED / spacing(n, terms.ends), terms.omega0)
+
+
+# --- initial state, the transforms and the exact evolution -----------------------------------------------------
+
+
+def initial_state(x, sigma, launch, amplitude: float = AMPLITUDE):
+    """u(0) = A exp(−(x−x0)²/2σ²); u̇(0) = −c u0'(x) for a right-moving pulse, 0 for the split launch."""
+    x, sigma, launch = np.broadcast_arrays(*(np.asarray(v, float) for v in (x, sigma, launch)))
+    u = amplitude * np.exp(-((x - CENTRE) ** 2) / (2 * sigma**2))
+    v = np.where(launch == RIGHT_MOVING, SPEED * (x - CENTRE) / sigma**2 * u, 0.0)
+    return u, v
+
+
+def _forward(values: np.ndarray, ends: str) -> np.ndarray:
+    if ends == "fixed":
+        return scipy.fft.dst(values, type=1, axis=-1)
+    if ends == "free":
+        return scipy.fft.dct(values, type=2, axis=-1)
+    return scipy.fft.fft(values, axis=-1)
+
+
+def _inverse(coefficients: np.ndarray, ends: str) -> np.ndarray:
+    if ends == "fixed":
+        return scipy.fft.idst(coefficients, type=1, axis=-1)
+    if ends == "free":
+        return scipy.fft.idct(coefficients, type=2, axis=-1)
+    return scipy.fft.ifft(coefficients, axis=-1).real  # ω(k) = ω(−k), so the result is real
+
+
+def _oscillation(omega: np.ndarray, gamma: float, t: np.ndarray):
+    """C(t) and S(t) of a mode with damped frequency ω_d² = ω² − γ²/4: cos ω_d t and sin(ω_d t)/ω_d.
+
+    S is t·sinc so that ω_d → 0 (a rigid or critically damped mode) needs no special case; an
+    overdamped mode (ω_d² < 0) takes cosh and sinh(|ω_d|t)/|ω_d|, which join the others continuously.
+    """
+    squared = omega**2 - gamma**2 / 4 if gamma else omega**2
+    rate = np.sqrt(np.abs(squared))
+    phase = rate * t
+    cos, sinc = np.cos(phase), np.sinc(phase / np.pi)
+    if gamma and np.any(squared < 0):
+        ratio = np.divide(np.sinh(phase), phase, out=np.ones_like(phase), where=phase > 0)
+        cos, sinc = np.where(squared < 0, np.cosh(phase), cos), np.where(squared < 0, ratio, sinc)
+    return cos, t * sinc, squared
+
+
+def evolve(u0: np.ndarray, v0: np.ndarray, t, terms: Terms = BARE) -> tuple[np.ndarray, np.ndarray]:
+    """The exact u(t), u̇(t) of chains (last axis: the masses) from u(0), u̇(0), at times t (one per chain)."""
+    n = u0.shape[-1]
+    t = np.asarray(t, float)[..., None]
+    a, b = _forward(u0, terms.ends), _forward(v0, terms.ends)
+    omega = mode_frequencies(n, terms)
+    cos, sine, squared = _oscillation(omega, terms.gamma, t)
+    # Modal solution of ä + γȧ + ω²a = 0: decay × [a C + (b + γa/2) S]; its velocity, with C' = −ω_d² S, S' = C.
+    decay = np.exp(-terms.gamma * t / 2) if terms.gamma else 1.0
+    u = decay * (a * cos + (b + terms.gamma * a / 2) * sine)
+    v = decay * (b * cos - (omega**2 * a + terms.gamma * b / 2) * sine)
+    return _inverse(u, terms.ends), _inverse(v, terms.ends)
+
+
+def chain_motion(n: int, sigma, t, launch, terms: Terms = BARE, amplitude: float = AMPLITUDE):
+    """u_j(t) and u̇_j(t) of an N-mass chain released as the Gaussian pulse, for arrays of (σ, t, launch)."""
+    sigma, t, launch = np.broadcast_arrays(*(np.asarray(v, float) for v in (sigma, t, launch)))
+    u0, v0 = initial_state(positions(n, terms.ends), sigma[..., None], launch[..., None], amplitude)
+    return evolve(u0, v0, t, terms)
+
+
+def energy(u: np.ndarray, v: np.ndarray, terms: Terms = BARE) -> np.ndarray:
+    """E = ½m Σu̇² + ½κ Σ(u_{j+1} − u_j)² (+ ½mω0² Σu²), with the springs to the walls when the ends are fixed."""
+    n = u.shape[-1]
+    m, kappa = mass_and_stiffness(n, terms.ends)
+    if terms.ends == "fixed":
+        stretch = np.diff(u, axis=-1, prepend=0.0, append=0.0)
+    elif terms.ends == "free":
+        stretch = np.diff(u, axis=-1)
+    else:
+        stretch = np.roll(u, -1, axis=-1) - u
+    kinetic = 0.5 * m * np.sum(v**2, axis=-1)
+    potential = 0.5 * kappa * np.sum(stretch**2, axis=-1)
+    onsite = 0.5 * m * terms.omega0**2 * np.sum(u**2, axis=-1) if terms.omega0 else 0.0
+    return kinetic + potential + onsite
+
+
+# --- the continuum string --------------------------------------------------------------------------------------
+
+
+def _pulse_images(s, sigma, period: float, amplitude: float):
+    """Σ_k u0(s − k·period): the initial pulse repeated with the period (three images suffice for σ ≤ 0.05 L)."""
+    shifted = np.mod(s - CENTRE + period / 2, period) - period / 2  # nearest image of x0, in [−P/2, P/2)
+    total = 0.0
+    for k in (-1, 0, 1):
+        total = total + amplitude * np.exp(-((shifted - k * period) ** 2) / (2 * sigma**2))
+    return total
+
+
+def continuum(x, t, sigma, launch, ends: str = "fixed", amplitude: float = AMPLITUDE):
+    """d'Alembert's u_c(x, t) for the same launch: odd reflections at fixed ends, even at free ends, or a ring."""
+    x, t, sigma, launch = np.broadcast_arrays(*(np.asarray(v, float) for v in (x, t, sigma, launch)))
+    period = LENGTH if ends == "periodic" else 2 * LENGTH
+    sign = {"fixed": -1.0, "free": 1.0, "periodic": 0.0}[ends]
+
+    def reflected(s):  # the extension of u0 beyond [0, L] that the ends impose
+        return _pulse_images(s, sigma, period, amplitude) + sign * _pulse_images(-s, sigma, period, amplitude)
+
+    right = _pulse_images(x - SPEED * t, sigma, period, amplitude) + sign * _pulse_images(-x - SPEED * t, sigma, period, amplitude)
+    split = 0.5 * (reflected(x - SPEED * t) + reflected(x + SPEED * t))
+    return np.where(launch == RIGHT_MOVING, right, split)
+
+
+def continuum_energy(sigma, launch):
+    """The string's energy per μc²A²: √π/(2σ) for the right-moving pulse, half of that (all potential) when split."""
+    sigma, launch = np.broadcast_arrays(np.asarray(sigma, float), np.asarray(launch, float))
+    return np.sqrt(np.pi) / (2 * sigma) * np.where(launch == RIGHT_MOVING, 1.0, 0.5)
+
+
+def deviation(n: int, sigma, t, launch, terms: Terms = BARE):
+    """max_j |u_j − u_c(x_j)| / A: how far the chain is from the continuum string (the physics error)."""
+    u, _ = chain_motion(n, sigma, t, launch, terms, amplitude=1.0)
+    x = positions(n, terms.ends)
+    sigma, t, launch = np.broadcast_arrays(*(np.asarray(v, float) for v in (sigma, t, launch)))
+    reference = continuum(x, t[..., None], sigma[..., None], launch[..., None], terms.ends, amplitude=1.0)
+    return np.max(np.abs(u - reference), axis=-1)
+
+
+# --- the model the page tabulates -------------------------------------------------------------------------------
+
+
+def _per_chain(N: np.ndarray, compute, width: int = 0) -> np.ndarray:
+    """Apply compute(n, index) to the points of each distinct N, filling a result of N's shape (+ width)."""
+    counts = np.rint(N).astype(int)
+    out = np.full(counts.shape + ((width,) if width else ()), np.nan)
+    for n in np.unique(counts):
+        where = counts == n
+        out[where] = compute(int(n), where)
+    return out
+
+
+def _padded(values: np.ndarray) -> np.ndarray:
+    return np.concatenate([values, np.full(values.shape[:-1] + (MAX_N - values.shape[-1],), np.nan)], axis=-1)
+
+
+class Chain(Model):
+    """N masses on springs between walls, released as a Gaussian pulse; exact modal solution vs the string."""
+
+    name = "chain"
+    title = "The continuum limit: chain of N masses"
+    params = (
+        Param("N", "N", "", 64.0, lo=1.0, hi=float(MAX_N), description="number of masses (a whole number; fractions round)"),
+        Param("sigma", "σ", "m", 0.05, lo=0.0, hi=0.05, lo_open=True, description="pulse width (≤ L/20 keeps it off the walls)"),
+        Param("t", "t", "s", 0.5, lo=0.0, description="time since release"),
+        Param.choice("launch", "launch", LAUNCHES, "right-moving", description="pulse moving right, or released at rest (splits in two)"),
+        # Effect parameters are constants of a scene (`fix gamma: 0.5`): outputs do not list them in deps.
+        Param.choice("ends", "ends", ENDS, "fixed", description="how the chain's ends are held").with_effect("boundary"),
+        Param("gamma", "γ", "1/s", 0.0, lo=0.0, description="on-site damping rate").with_effect("onsite_damping"),
+        Param("omega0", "ω<sub>0</sub>", "rad/s", 0.0, lo=0.0, description="on-site spring frequency").with_effect("onsite_spring"),
+    )
+    _motion = ("N", "sigma", "t", "launch")
+    outputs = (
+        Output("a", "spacing a", "m", ("N",), decimals=6),
+        Output("m", "mass m = μa", "kg", ("N",), decimals=6),
+        Output("kappa", "spring κ = μc²/a", "N/m", ("N",), decimals=3),
+        Output("c", "c = a√(κ/m)", "m/s", (), decimals=3),
+        Output("omega_max", "cutoff ω<sub>max</sub> = 2√(κ/m)", "rad/s", ("N",), decimals=1),
+        Output("sigma_over_a", "σ/a", "", ("N", "sigma"), decimals=2),
+        Output("dev", "max |u<sub>j</sub> − u<sub>c</sub>|/A", "", _motion, decimals=4),
+        Output("E_chain", "E<sub>chain</sub> (conserved)", "μc²A²", ("N", "sigma", "launch"), decimals=3),
+        Output("E_continuum", "E<sub>string</sub>", "μc²A²", ("sigma", "launch"), decimals=3),
+        Output("E_chain_mJ", "E<sub>chain</sub> at A = 1 cm", "mJ", ("N", "sigma", "launch"), decimals=3),
+        Output("status", "status", "", ("N", "sigma"), labels=("resolved (σ/a ≥ 1)", "pulse under-resolved (σ/a < 1)")),
+        # Layer geometry: the dots in units of A (= cm at A = 1 cm), 1/100 A at about a pixel.
+        Output("x_dots", "x<sub>j</sub>", "m", ("N",), decimals=3, size=MAX_N, ragged=True),
+        Output("u_dots", "u<sub>j</sub>/A", "", _motion, decimals=2, size=MAX_N, ragged=True),
+        Output("u_continuum", "u<sub>c</sub>/A", "", ("sigma", "t", "launch"), decimals=2, size=CONTINUUM_POINTS),
+        Output("mode_k", "k<sub>n</sub>", "rad/m", ("N",), decimals=1, size=MAX_N, ragged=True),
+        Output("mode_omega", "ω<sub>n</sub>", "rad/s", ("N",), decimals=1, size=MAX_N, ragged=True),
+    )
+    effects = ("boundary", "onsite_damping", "onsite_spring")
+
+    def _evaluate(self, x, wanted, effects):
+        terms = _terms(x, effects)
+        N, sigma, t, launch = (x[k] for k in self._motion)
+        a = spacing(np.rint(N), terms.ends)
+        formulas = {
+            "a": lambda: a,
+            "m": lambda: DENSITY * a,
+            "kappa": lambda: DENSITY * SPEED**2 / a,
+            "c": lambda: np.full(N.shape, SPEED),  # a√(κ/m) = c by construction (tested separately)
+            "omega_max": lambda: cutoff_frequency(np.rint(N), terms),
+            "sigma_over_a": lambda: sigma / a,
+            "dev": lambda: _per_chain(N, lambda n, w: deviation(n, sigma[w], t[w], launch[w], terms)),
+            "E_chain": lambda: _initial_energy(N, sigma, launch, terms, 1.0),
+            "E_continuum": lambda: continuum_energy(sigma, launch),
+            "E_chain_mJ": lambda: 1e3 * _initial_energy(N, sigma, launch, terms, AMPLITUDE),
+            "status": lambda: np.where(sigma / a < 1, UNDER_RESOLVED, RESOLVED),
+            "x_dots": lambda: _per_chain(N, lambda n, w: _padded(positions(n, terms.ends)), MAX_N),
+            "u_dots": lambda: _per_chain(N, lambda n, w: _padded(chain_motion(n, sigma[w], t[w], launch[w], terms, 1.0)[0]), MAX_N),
+            "u_continuum": lambda: continuum(_continuum_x(), t[..., None], sigma[..., None], launch[..., None], terms.ends, 1.0),
+            "mode_k": lambda: _per_chain(N, lambda n, w: _padded(_sorted_modes(n, terms)[0]), MAX_N),
+            "mode_omega": lambda: _per_chain(N, lambda n, w: _padded(_sorted_modes(n, terms)[1]), MAX_N),
+        }
+        return {name: formulas[name]() for name in wanted}
+
+
+def _terms(x, effects: frozenset[str]) -> Terms:
+    """The optional terms the scene enabled; a term that is not enabled is not evaluated at all."""
+    def scalar(name):
+        values = np.unique(x[name])
+        if len(values) > 1:
+            raise ValueError(f"`{name}` must be one value per scene (fix it; it cannot have a slider)")
+        return float(values[0])
+
+    return Terms(
+        ends=ENDS[int(scalar("ends"))] if "boundary" in effects else "fixed",
+        gamma=scalar("gamma") if "onsite_damping" in effects else 0.0,
+        omega0=scalar("omega0") if "onsite_spring" in effects else 0.0,
+    )
+
+
+def _initial_energy(N, sigma, launch, terms: Terms, amplitude: float):
+    """The chain's energy at release, per μc²A² when amplitude = 1 (the exact motion conserves it undamped)."""
+    def one_chain(n, where):
+        u, v = initial_state(positions(n, terms.ends), sigma[where][..., None], launch[where][..., None], amplitude)
+        return energy(u, v, terms)
+
+    return _per_chain(N, one_chain)
+
+
+def continuum_grid() -> np.ndarray:
+    """The fixed x points on which the dashed continuum curve is drawn."""
+    return _continuum_x()
+
+
+def _continuum_x() -> np.ndarray:
+    return np.linspace(0.0, LENGTH, CONTINUUM_POINTS)
+
+
+def _sorted_modes(n: int, terms: Terms):
+    """(k, ω) of the modes with k ≥ 0, by increasing k (the dispersion relation's points)."""
+    k, omega = wavenumbers(n, terms.ends), mode_frequencies(n, terms)
+    keep = k >= 0
+    order = np.argsort(k[keep], kind="stable")
+    return k[keep][order], omega[keep][order]

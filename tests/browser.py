@@ -17,6 +17,7 @@ from typing import Iterable, Mapping
 import numpy as np
 
 from sitegen.compute.quantize import fmt
+from sitegen.site.assemble import with_unit
 from sitegen.content.pages import Page, discover_pages, read_page
 from sitegen.physics import MODELS
 
@@ -250,10 +251,6 @@ def layer_points(page, scene_id: str) -> dict[str, str]:
 # --- expected values ----------------------------------------------------------------------------
 
 
-def _with_unit(text: str, unit: str) -> str:
-    return f"{text} {unit}" if unit else text
-
-
 def expected_readouts(
     scene_name: str,
     slider_values: Mapping[str, Decimal | str | float],
@@ -277,12 +274,15 @@ def expected_readouts(
         if getattr(output, "size", 0):
             raise NotImplementedError(f"output {name!r} is a vector; these helpers know scalar readouts only")
         value = float(np.asarray(values[name]))
+        if np.isinf(value) and getattr(output, "special", ""):
+            texts[name] = output.special  # an infinite value shown in words, without a unit
+            continue
         if not np.isfinite(value):
-            raise NotImplementedError(f"output {name!r} is {value} here; these helpers know finite readouts only")
+            raise ValueError(f"output {name!r} of {scene_name} is {value} at {dict(inputs)}")
         if output.labels:
             texts[name] = output.labels[int(value)]
         else:
-            texts[name] = _with_unit(fmt(value, output.decimals), output.unit)
+            texts[name] = with_unit(fmt(value, output.decimals), output.unit)
     return texts
 
 
@@ -295,4 +295,4 @@ def expected_slider_text(scene_name: str, slider: Slider, index: int | None = No
     text = fmt(float(value), digits)
     # fmt goes through a float; make sure that cannot have changed the exact decimal written.
     assert Decimal(text.replace("\u2212", "-")) == value, (text, value)
-    return _with_unit(text, unit)
+    return with_unit(text, unit)

@@ -22,9 +22,15 @@ CASES = [
 
 
 def _sample(param: Param, rng: np.random.Generator, size: int) -> np.ndarray:
-    """Uniform values in the parameter's domain, clipped to [-SPAN, SPAN], never the open lower bound."""
-    lo, hi = max(param.lo, -SPAN), min(param.hi, SPAN)
-    values = rng.uniform(lo, hi, size)
+    """Uniform values in the parameter's domain (a finite stretch of an unbounded one), never an open bound."""
+    if param.choices:
+        return rng.integers(0, len(param.choices), size).astype(float)
+    if np.isfinite(param.lo) and not np.isfinite(param.hi):  # e.g. a mass or a count: spread over decades
+        values = param.lo + 10.0 ** rng.uniform(-1.0, 4.0, size)
+    else:
+        lo = param.lo if np.isfinite(param.lo) else -SPAN
+        hi = param.hi if np.isfinite(param.hi) else SPAN
+        values = rng.uniform(lo, hi, size)
     if param.lo_open:
         values = np.where(values <= param.lo, np.nextafter(param.lo, np.inf), values)
     assert np.all(param.contains(values))
@@ -32,21 +38,31 @@ def _sample(param: Param, rng: np.random.Generator, size: int) -> np.ndarray:
 
 
 def _bitwise_changed(before: np.ndarray, after: np.ndarray) -> np.ndarray:
-    """Point by point, whether two 1-D output arrays differ in any bit (so −0.0 vs 0.0 counts as a change)."""
-    assert before.shape == after.shape == (POINTS,) and before.dtype == after.dtype
+    """Point by point, whether two outputs differ in any bit (so −0.0 vs 0.0 counts as a change)."""
+    before, after = np.ascontiguousarray(before), np.ascontiguousarray(after)
+    assert before.shape == after.shape and before.shape[0] == POINTS and before.dtype == after.dtype
     return np.any(before.view(np.uint8).reshape(POINTS, -1) != after.view(np.uint8).reshape(POINTS, -1), axis=1)
+
+
+def _effects_for(model, output: str) -> set[str]:
+    """The effects an output needs: its own and those its parameters belong to."""
+    declared = model.output(output)
+    return {e for e in (declared.effect, *(model.param(d).effect for d in declared.deps)) if e}
 
 
 def _params_that_change(model, output: str, seed: int) -> dict[str, int]:
     """For each parameter, at how many of POINTS random valid points perturbing it alone changes `output`."""
     rng = np.random.default_rng(seed)
     base = {p.name: _sample(p, rng, POINTS) for p in model.params}
-    reference = model().evaluate(base, wanted=[output])[output]
+    effects = _effects_for(model, output)
+    reference = model().evaluate(base, wanted=[output], effects=effects)[output]
     counts = {}
     for p in model.params:
         moved = _sample(p, rng, POINTS)
-        assert np.all(moved != base[p.name]), "perturbation must move the parameter"
-        result = model().evaluate({**base, p.name: moved}, wanted=[output])[output]
+        if p.choices:  # another option at every point
+            moved = (base[p.name] + 1 + rng.integers(0, max(len(p.choices) - 1, 1), POINTS)) % len(p.choices)
+        assert np.all(moved != base[p.name]) or len(p.choices) == 1, "perturbation must move the parameter"
+        result = model().evaluate({**base, p.name: moved}, wanted=[output], effects=effects)[output]
         counts[p.name] = int(np.count_nonzero(_bitwise_changed(reference, result)))
     return counts
 

@@ -68,8 +68,9 @@ def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[Reso
             continue
         axes.append(axis)
         stops.append(axis.index_of(_default_code(control, model)))
-    if spec.animate is not None and spec.animate not in {a.param for a in axes}:
-        error("animate", f"animate '{spec.animate}' is not one of the scene's sliders: {', '.join(a.param for a in axes) or 'none'}")
+    sliders = [a.param for a in axes if a.kind != CHOICE]
+    if spec.animate is not None and spec.animate not in sliders:
+        error("animate", f"animate '{spec.animate}' is not one of the scene's sliders: {', '.join(sliders) or 'none'}")
     fixed = []
     for item in spec.fixed:
         if item.param not in {p.name for p in model.params}:

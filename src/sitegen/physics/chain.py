@@ -19,6 +19,7 @@ CENTRE = 0.3  # x0: where the pulse starts (m)
 AMPLITUDE = 0.01  # A: the pulse height on the page (m); the model is linear, so everything scales with it
 MAX_N = 256  # the largest chain the page shows: vector outputs are padded to this length
 CONTINUUM_POINTS = 201  # the dashed curve's vertices; 2 px apart at the page's width, smooth at pixel level
+PULSE_WAVENUMBERS = 3.0  # the pulse's spectrum e^{−k²σ²/2} is below 1.1 % beyond k = 3/σ
 ENDS = ("fixed", "free", "periodic")
 LAUNCHES = ("right-moving", "split")
 RIGHT_MOVING, SPLIT = 0, 1
@@ -112,19 +113,28 @@ def _inverse(coefficients: np.ndarray, ends: str) -> np.ndarray:
 
 
 def _oscillation(omega: np.ndarray, gamma: float, t: np.ndarray):
-    """C(t) and S(t) of a mode with damped frequency ω_d² = ω² − γ²/4: cos ω_d t and sin(ω_d t)/ω_d.
+    """The decaying C(t) and S(t) of each mode: e^{−γt/2}·cos ω_d t and e^{−γt/2}·sin(ω_d t)/ω_d, ω_d² = ω² − γ²/4.
 
-    S is t·sinc so that ω_d → 0 (a rigid or critically damped mode) needs no special case; an
-    overdamped mode (ω_d² < 0) takes cosh and sinh(|ω_d|t)/|ω_d|, which join the others continuously.
+    S is t·sinc, so ω_d → 0 (a rigid or critically damped mode) needs no special case. An overdamped
+    mode (ω_d² < 0, rate r = |ω_d|) takes e^{−γt/2}·cosh rt and e^{−γt/2}·sinh(rt)/r, written with
+    e^{(r − γ/2)t} so that they neither overflow nor lose digits; both join the others continuously.
     """
-    squared = omega**2 - gamma**2 / 4 if gamma else omega**2
+    if not gamma:
+        phase = omega * t
+        return np.cos(phase), t * np.sinc(phase / np.pi)
+    squared = omega**2 - gamma**2 / 4
     rate = np.sqrt(np.abs(squared))
+    decay = np.exp(-gamma * t / 2)
     phase = rate * t
-    cos, sinc = np.cos(phase), np.sinc(phase / np.pi)
-    if gamma and np.any(squared < 0):
-        ratio = np.divide(np.sinh(phase), phase, out=np.ones_like(phase), where=phase > 0)
-        cos, sinc = np.where(squared < 0, np.cosh(phase), cos), np.where(squared < 0, ratio, sinc)
-    return cos, t * sinc, squared
+    under_c, under_s = decay * np.cos(phase), decay * t * np.sinc(phase / np.pi)
+    over = squared < 0
+    if not np.any(over):
+        return under_c, under_s
+    slowest = np.exp(-omega**2 / (gamma / 2 + rate) * t)  # e^{(r − γ/2)t}, with r − γ/2 = −ω²/(γ/2 + r)
+    twice = 2 * np.where(over, phase, 0.0)
+    shrink = np.divide(-np.expm1(-twice), twice, out=np.ones_like(twice), where=twice > 0)  # (1 − e^{−2rt})/(2rt)
+    over_c, over_s = slowest * (1 + np.exp(-twice)) / 2, slowest * t * shrink
+    return np.where(over, over_c, under_c), np.where(over, over_s, under_s)
 
 
 def evolve(u0: np.ndarray, v0: np.ndarray, t, terms: Terms = BARE) -> tuple[np.ndarray, np.ndarray]:
@@ -133,11 +143,11 @@ def evolve(u0: np.ndarray, v0: np.ndarray, t, terms: Terms = BARE) -> tuple[np.n
     t = np.asarray(t, float)[..., None]
     a, b = _forward(u0, terms.ends), _forward(v0, terms.ends)
     omega = mode_frequencies(n, terms)
-    cos, sine, squared = _oscillation(omega, terms.gamma, t)
-    # Modal solution of ä + γȧ + ω²a = 0: decay × [a C + (b + γa/2) S]; its velocity, with C' = −ω_d² S, S' = C.
-    decay = np.exp(-terms.gamma * t / 2) if terms.gamma else 1.0
-    u = decay * (a * cos + (b + terms.gamma * a / 2) * sine)
-    v = decay * (b * cos - (omega**2 * a + terms.gamma * b / 2) * sine)
+    cos, sine = _oscillation(omega, terms.gamma, t)
+    # Each mode obeys ä + γȧ + ω²a = 0: a C + (b + γa/2) S, and its velocity, from C' = −(γ/2)C − ω_d²S, S' = C − (γ/2)S.
+    half = terms.gamma / 2
+    u = a * cos + (b + half * a) * sine
+    v = b * cos - (omega**2 * a + half * b) * sine
     return _inverse(u, terms.ends), _inverse(v, terms.ends)
 
 
@@ -169,7 +179,9 @@ def energy(u: np.ndarray, v: np.ndarray, terms: Terms = BARE) -> np.ndarray:
 
 def _pulse_images(s, sigma, period: float, amplitude: float):
     """Σ_k u0(s − k·period): the initial pulse repeated with the period (three images suffice for σ ≤ 0.05 L)."""
-    shifted = np.mod(s - CENTRE + period / 2, period) - period / 2  # nearest image of x0, in [−P/2, P/2)
+    # Reduce s first (np.mod is exact), then measure from x0: s and s ± P then round identically.
+    shifted = np.mod(s, period) - CENTRE
+    shifted = np.where(shifted >= period / 2, shifted - period, shifted)  # the image of x0 nearest s
     total = 0.0
     for k in (-1, 0, 1):
         total = total + amplitude * np.exp(-((shifted - k * period) ** 2) / (2 * sigma**2))
@@ -208,14 +220,21 @@ def deviation(n: int, sigma, t, launch, terms: Terms = BARE):
 # --- the model the page tabulates -------------------------------------------------------------------------------
 
 
-def _per_chain(N: np.ndarray, compute, width: int = 0) -> np.ndarray:
-    """Apply compute(n, index) to the points of each distinct N, filling a result of N's shape (+ width)."""
-    counts = np.rint(N).astype(int)
-    out = np.full(counts.shape + ((width,) if width else ()), np.nan)
-    for n in np.unique(counts):
-        where = counts == n
-        out[where] = compute(int(n), where)
+def _per_chain(groups, compute, width: int = 0) -> np.ndarray:
+    """compute(n, terms, where) on the points of each distinct chain, filling an array (+ width) over the points."""
+    counts, terms_of, shape = groups
+    out = np.full(shape + ((width,) if width else ()), np.nan)
+    for (n, *key), where in _distinct(counts, terms_of):
+        out[where] = compute(n, Terms(ENDS[key[0]], key[1], key[2]), where)
     return out
+
+
+def _distinct(counts: np.ndarray, terms_of: np.ndarray):
+    """((N, ends, γ, ω0), mask) for each distinct chain among the points."""
+    keys = np.column_stack([counts.ravel(), terms_of.reshape(-1, 3)])
+    unique, inverse = np.unique(keys, axis=0, return_inverse=True)
+    for index, key in enumerate(unique):
+        yield (int(key[0]), int(key[1]), float(key[2]), float(key[3])), (inverse.ravel() == index).reshape(counts.shape)
 
 
 def _padded(values: np.ndarray) -> np.ndarray:
@@ -232,94 +251,107 @@ class Chain(Model):
         Param("sigma", "σ", "m", 0.05, lo=0.0, hi=0.05, lo_open=True, description="pulse width (≤ L/20 keeps it off the walls)"),
         Param("t", "t", "s", 0.5, lo=0.0, description="time since release"),
         Param.choice("launch", "launch", LAUNCHES, "right-moving", description="pulse moving right, or released at rest (splits in two)"),
-        # Effect parameters are constants of a scene (`fix gamma: 0.5`): outputs do not list them in deps.
         Param.choice("ends", "ends", ENDS, "fixed", description="how the chain's ends are held").with_effect("boundary"),
         Param("gamma", "γ", "1/s", 0.0, lo=0.0, description="on-site damping rate").with_effect("onsite_damping"),
         Param("omega0", "ω<sub>0</sub>", "rad/s", 0.0, lo=0.0, description="on-site spring frequency").with_effect("onsite_spring"),
     )
-    _motion = ("N", "sigma", "t", "launch")
+    # Effect parameters count only when the scene enables their effect (the build never varies them otherwise).
+    _motion = ("N", "sigma", "t", "launch", "ends", "gamma", "omega0")
+    _energy = ("N", "sigma", "launch", "ends", "omega0")
     outputs = (
-        Output("a", "spacing a", "m", ("N",), decimals=6),
-        Output("m", "mass m = μa", "kg", ("N",), decimals=6),
-        Output("kappa", "spring κ = μc²/a", "N/m", ("N",), decimals=3),
+        Output("a", "spacing a", "m", ("N", "ends"), decimals=6),
+        Output("m", "mass m = μa", "kg", ("N", "ends"), decimals=6),
+        Output("kappa", "spring κ = μc²/a", "N/m", ("N", "ends"), decimals=3),
         Output("c", "c = a√(κ/m)", "m/s", (), decimals=3),
-        Output("omega_max", "cutoff ω<sub>max</sub> = 2√(κ/m)", "rad/s", ("N",), decimals=1),
-        Output("sigma_over_a", "σ/a", "", ("N", "sigma"), decimals=2),
+        Output("omega_max", "cutoff ω<sub>max</sub> = 2√(κ/m)", "rad/s", ("N", "ends", "omega0"), decimals=1),
+        Output("sigma_over_a", "σ/a", "", ("N", "sigma", "ends"), decimals=2),
         Output("dev", "max |u<sub>j</sub> − u<sub>c</sub>|/A", "", _motion, decimals=4),
-        Output("E_chain", "E<sub>chain</sub> (conserved)", "μc²A²", ("N", "sigma", "launch"), decimals=3),
+        Output("E_chain", "E<sub>chain</sub> (conserved)", "μc²A²", _energy, decimals=3),
         Output("E_continuum", "E<sub>string</sub>", "μc²A²", ("sigma", "launch"), decimals=3),
-        Output("E_chain_mJ", "E<sub>chain</sub> at A = 1 cm", "mJ", ("N", "sigma", "launch"), decimals=3),
-        Output("status", "status", "", ("N", "sigma"), labels=("resolved (σ/a ≥ 1)", "pulse under-resolved (σ/a < 1)")),
+        Output("E_chain_mJ", "E<sub>chain</sub> at A = 1 cm", "mJ", _energy, decimals=3),
+        Output("E_now", "E<sub>chain</sub>(t), damped", "μc²A²", _motion, decimals=3, effect="onsite_damping"),
+        Output("status", "status", "", ("N", "sigma", "ends"), labels=("resolved (σ/a ≥ 1)", "pulse under-resolved (σ/a < 1)")),
         # Layer geometry: the dots in units of A (= cm at A = 1 cm), 1/100 A at about a pixel.
-        Output("x_dots", "x<sub>j</sub>", "m", ("N",), decimals=3, size=MAX_N, ragged=True),
+        Output("x_dots", "x<sub>j</sub>", "m", ("N", "ends"), decimals=3, size=MAX_N, ragged=True),
         Output("u_dots", "u<sub>j</sub>/A", "", _motion, decimals=2, size=MAX_N, ragged=True),
-        Output("u_continuum", "u<sub>c</sub>/A", "", ("sigma", "t", "launch"), decimals=2, size=CONTINUUM_POINTS),
-        Output("mode_k", "k<sub>n</sub>", "rad/m", ("N",), decimals=1, size=MAX_N, ragged=True),
-        Output("mode_omega", "ω<sub>n</sub>", "rad/s", ("N",), decimals=1, size=MAX_N, ragged=True),
+        Output("u_continuum", "u<sub>c</sub>/A", "", ("sigma", "t", "launch", "ends"), decimals=2, size=CONTINUUM_POINTS),
+        # The dispersion inset is log–log, so its vertices are log10 k and log10 ω (0.01 decade ≈ 0.5 px).
+        Output("log_k", "log<sub>10</sub> k<sub>n</sub>", "", ("N", "ends"), decimals=2, size=MAX_N, ragged=True),
+        Output("log_omega", "log<sub>10</sub> ω<sub>n</sub>", "", ("N", "ends", "omega0"), decimals=2, size=MAX_N, ragged=True),
+        Output("log_k_pulse", "log<sub>10</sub>(3/σ)", "", ("sigma",), decimals=2),
     )
     effects = ("boundary", "onsite_damping", "onsite_spring")
 
     def _evaluate(self, x, wanted, effects):
-        terms = _terms(x, effects)
-        N, sigma, t, launch = (x[k] for k in self._motion)
-        a = spacing(np.rint(N), terms.ends)
+        N, sigma, t, launch = (x[k] for k in self._motion[:4])
+        groups = _groups(x, effects)
+        ends = groups[1][..., 0]
+        a = np.where(ends == ENDS.index("fixed"), LENGTH / (np.rint(N) + 1), LENGTH / np.rint(N))
+
+        def motion(n, terms, w):
+            return chain_motion(n, sigma[w], t[w], launch[w], terms, 1.0)
+
+        def modes(pick):
+            return lambda: _per_chain(groups, lambda n, terms, w: _padded(np.log10(_sorted_modes(n, terms)[pick])), MAX_N)
+
         formulas = {
             "a": lambda: a,
             "m": lambda: DENSITY * a,
             "kappa": lambda: DENSITY * SPEED**2 / a,
             "c": lambda: np.full(N.shape, SPEED),  # a√(κ/m) = c by construction (tested separately)
-            "omega_max": lambda: cutoff_frequency(np.rint(N), terms),
+            "omega_max": lambda: np.hypot(2 * SPEED / a, groups[1][..., 2]),
             "sigma_over_a": lambda: sigma / a,
-            "dev": lambda: _per_chain(N, lambda n, w: deviation(n, sigma[w], t[w], launch[w], terms)),
-            "E_chain": lambda: _initial_energy(N, sigma, launch, terms, 1.0),
+            "dev": lambda: _per_chain(groups, lambda n, terms, w: deviation(n, sigma[w], t[w], launch[w], terms)),
+            "E_chain": lambda: _per_chain(groups, lambda n, terms, w: _initial_energy(n, sigma[w], launch[w], terms, 1.0)),
             "E_continuum": lambda: continuum_energy(sigma, launch),
-            "E_chain_mJ": lambda: 1e3 * _initial_energy(N, sigma, launch, terms, AMPLITUDE),
+            "E_chain_mJ": lambda: 1e3 * _per_chain(groups, lambda n, terms, w: _initial_energy(n, sigma[w], launch[w], terms, AMPLITUDE)),
+            "E_now": lambda: _per_chain(groups, lambda n, terms, w: energy(*motion(n, terms, w), terms)),
             "status": lambda: np.where(sigma / a < 1, UNDER_RESOLVED, RESOLVED),
-            "x_dots": lambda: _per_chain(N, lambda n, w: _padded(positions(n, terms.ends)), MAX_N),
-            "u_dots": lambda: _per_chain(N, lambda n, w: _padded(chain_motion(n, sigma[w], t[w], launch[w], terms, 1.0)[0]), MAX_N),
-            "u_continuum": lambda: continuum(_continuum_x(), t[..., None], sigma[..., None], launch[..., None], terms.ends, 1.0),
-            "mode_k": lambda: _per_chain(N, lambda n, w: _padded(_sorted_modes(n, terms)[0]), MAX_N),
-            "mode_omega": lambda: _per_chain(N, lambda n, w: _padded(_sorted_modes(n, terms)[1]), MAX_N),
+            "x_dots": lambda: _per_chain(groups, lambda n, terms, w: _padded(positions(n, terms.ends)), MAX_N),
+            "u_dots": lambda: _per_chain(groups, lambda n, terms, w: _padded(motion(n, terms, w)[0]), MAX_N),
+            "u_continuum": lambda: _continuum_curves(t, sigma, launch, ends),
+            "log_k": modes(0),
+            "log_omega": modes(1),
+            "log_k_pulse": lambda: np.log10(PULSE_WAVENUMBERS / sigma),
         }
         return {name: formulas[name]() for name in wanted}
 
 
-def _terms(x, effects: frozenset[str]) -> Terms:
-    """The optional terms the scene enabled; a term that is not enabled is not evaluated at all."""
-    def scalar(name):
-        values = np.unique(x[name])
-        if len(values) > 1:
-            raise ValueError(f"`{name}` must be one value per scene (fix it; it cannot have a slider)")
-        return float(values[0])
-
-    return Terms(
-        ends=ENDS[int(scalar("ends"))] if "boundary" in effects else "fixed",
-        gamma=scalar("gamma") if "onsite_damping" in effects else 0.0,
-        omega0=scalar("omega0") if "onsite_spring" in effects else 0.0,
-    )
+def _groups(x, effects: frozenset[str]):
+    """Each point's N and its (ends, γ, ω0), with a term that is not enabled held at its neutral value."""
+    N = x["N"]
+    zero = np.zeros(N.shape)
+    terms_of = np.stack([
+        x["ends"] if "boundary" in effects else zero,
+        x["gamma"] if "onsite_damping" in effects else zero,
+        x["omega0"] if "onsite_spring" in effects else zero,
+    ], axis=-1)
+    return np.rint(N).astype(int), terms_of, N.shape
 
 
-def _initial_energy(N, sigma, launch, terms: Terms, amplitude: float):
-    """The chain's energy at release, per μc²A² when amplitude = 1 (the exact motion conserves it undamped)."""
-    def one_chain(n, where):
-        u, v = initial_state(positions(n, terms.ends), sigma[where][..., None], launch[where][..., None], amplitude)
-        return energy(u, v, terms)
+def _initial_energy(n: int, sigma, launch, terms: Terms, amplitude: float):
+    """The chain's energy at release, per μc²A² when amplitude = 1 (the exact motion keeps it when undamped)."""
+    u, v = initial_state(positions(n, terms.ends), sigma[..., None], launch[..., None], amplitude)
+    return energy(u, v, terms)
 
-    return _per_chain(N, one_chain)
+
+def _continuum_curves(t, sigma, launch, ends):
+    """The string u_c/A on the fixed x points, for each point's time, width, launch and ends."""
+    out = np.empty(t.shape + (CONTINUUM_POINTS,))
+    for code in np.unique(ends):
+        where = ends == code
+        out[where] = continuum(continuum_grid(), t[where][..., None], sigma[where][..., None], launch[where][..., None], ENDS[int(code)], 1.0)
+    return out
 
 
 def continuum_grid() -> np.ndarray:
     """The fixed x points on which the dashed continuum curve is drawn."""
-    return _continuum_x()
-
-
-def _continuum_x() -> np.ndarray:
     return np.linspace(0.0, LENGTH, CONTINUUM_POINTS)
 
 
 def _sorted_modes(n: int, terms: Terms):
-    """(k, ω) of the modes with k ≥ 0, by increasing k (the dispersion relation's points)."""
+    """(k, ω) of the modes with k > 0, by increasing k (the dispersion relation's points; no rigid mode)."""
     k, omega = wavenumbers(n, terms.ends), mode_frequencies(n, terms)
-    keep = k >= 0
+    keep = k > 0
     order = np.argsort(k[keep], kind="stable")
     return k[keep][order], omega[keep][order]

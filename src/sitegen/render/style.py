@@ -13,6 +13,7 @@ GRID = "#d9dde3"
 BLUE = "#1f63b5"
 ORANGE = "#c8541c"
 FILL_BLUE = "#9cc2ea"
+FILL_ORANGE = "#f2c2a6"
 LOST = "#b8bec8"
 WIDTH_IN = 6.0  # figure width in inches; 72 dpi so that SVG units are points
 

@@ -60,7 +60,8 @@ def _layers_svg(layers: list[Layer], points: list[list[tuple[float, float]]], fr
         for layer, pts in members:
             style = " ".join(f'{k}="{v}"' for k, v in sorted(layer.style.items()))
             if layer.kind == "dots":  # a zero-length stroke with round caps is a dot
-                shape = f'path data-layer="{layer.name}" d="{format_dots(pts)}" stroke-linecap="round"'
+                # inline style: matplotlib's stylesheet sets stroke-linecap: butt on every element
+                shape = f'path data-layer="{layer.name}" d="{format_dots(pts)}" style="stroke-linecap: round"'
             else:
                 shape = f'{layer.kind} data-layer="{layer.name}" points="{format_points(pts)}" stroke-linejoin="round"'
             parts.append(f'<{shape} {style} vector-effect="non-scaling-stroke"/>')

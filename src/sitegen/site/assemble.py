@@ -9,7 +9,7 @@ from pathlib import Path
 import jinja2
 
 from ..compute.grid import CHOICE, RANGE
-from ..compute.quantize import SPECIAL, format_quantum
+from ..compute.quantize import MINUS, SPECIAL, format_quantum
 from ..compute.scenes import ResolvedScene
 from ..compute.tabulate import Table
 from ..content.pages import Page
@@ -63,8 +63,14 @@ def readout_text(table: Table, unit: str, stops: tuple[int, ...]) -> str:
         return table.labels[q]
     if q == SPECIAL:
         return table.special
-    text = format_quantum(q, table.decimals)
-    return f"{text} {unit}" if unit else text
+    return with_unit(format_quantum(q, table.decimals), unit)
+
+
+def with_unit(text: str, unit: str) -> str:
+    """A value and its unit; a multiplier sign hugs the number ("1.00×"), other units are spaced."""
+    if not unit:
+        return text
+    return f"{text}{unit}" if unit.startswith("×") else f"{text} {unit}"
 
 
 def slider_text(scene: ResolvedScene, index: int, stop: int) -> str:
@@ -73,8 +79,11 @@ def slider_text(scene: ResolvedScene, index: int, stop: int) -> str:
     if axis.kind == CHOICE:
         return axis.labels[stop]
     unit = scene.model.param(axis.param).unit
-    text = format_quantum(int(axis.stop(stop).scaleb(axis.decimals)), axis.decimals)
-    return f"{text} {unit}" if unit else text
+    if axis.kind == RANGE:  # evenly spaced: every stop with the same number of decimals
+        text = format_quantum(int(axis.stop(stop).scaleb(axis.decimals)), axis.decimals)
+    else:  # listed: each stop as the author wrote it
+        text = _plain(axis.stop(stop)).replace("-", MINUS)
+    return with_unit(text, unit)
 
 
 def _slider_view(scene: ResolvedScene, index: int, stop: int) -> dict:

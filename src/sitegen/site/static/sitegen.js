@@ -15,8 +15,9 @@
     return (q < 0 ? MINUS : "") + body;
   }
 
+  /* A value and its unit; a multiplier sign hugs the number ("1.00×"), other units are spaced. */
   function withUnit(text, unit) {
-    return unit ? text + " " + unit : text;
+    return unit ? text + (unit.charAt(0) === "\u00d7" ? "" : " ") + unit : text;
   }
 
   /* The entry of a table at the current stops (row-major over the table's own axes). */
@@ -185,8 +186,12 @@
   };
 
   function start() {
-    var scenes = document.querySelectorAll("[data-scene]");
-    for (var i = 0; i < scenes.length; i++) new Scene(scenes[i]);
+    var elements = document.querySelectorAll("[data-scene]"), scenes = [];
+    for (var i = 0; i < elements.length; i++) scenes.push(new Scene(elements[i]));
+    // Going Back restores the controls' positions after load without an input event: redraw.
+    window.addEventListener("pageshow", function () {
+      scenes.forEach(function (scene) { scene.update(); });
+    });
   }
 
   if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);

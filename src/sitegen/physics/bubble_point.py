@@ -1,0 +1,268 @@
+"""K4 helpers: one point of a slider grid, composed into a nondimensional Problem and read back.
+
+`compose` turns parameter values and the enabled effects into a Problem with only those terms
+(and the initial state consistent with them); `read_run` turns a solved Run into every dynamic
+output in display units, with inf where a value does not exist (the page shows "—").
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import bubble_terms as terms
+from .bubble_solve import (
+    ANALYTIC, CAP_NFEV, CAP_WALL, CORE, CURVE_POINTS, EXPLICIT_RTOL, FAILED, IMPLICIT_RTOL, KM_STOP, MACH,
+    POINT, UNBOUNDED_GROWTH, Run,
+)
+from .bubble_terms import P0, T0, Problem
+
+DRIVE_PERIODS = 2  # the driven bubble runs two acoustic periods from rest at R0
+CURVE_EXTREMA = 200  # event-detected extrema merged into the drawn curve (the deepest, if more)
+CURVE_SIZE = CURVE_POINTS + CURVE_EXTREMA + 1  # samples, extrema and the stop
+
+NEEDS = {"vdw_hard_core": ("gas",), "thermal_damping": ("gas",), "radiation": ("gas",), "ramp": ("gas", "surface_tension")}
+EXCLUSIVE = (("radiation", "keller_miksis"), ("step", "ramp"))
+
+FLAGS = (
+    "valid",
+    "incompressible model invalid: max |Ṙ|/c > 0.2 (needs keller_miksis)",
+    "incompressible model invalid: the wall reaches |Ṙ| = c, where the curve ends",
+    "stopped at |Ṙ| = 0.9c: outside Keller–Miksis validity",
+    "stopped at R = 0.01 R₀: the empty cavity collapses to a point",
+    "tolerance too loose: the solution reached the van der Waals hard core",
+    "stopped at R = 10 R_B: unbounded growth",
+    "evaluation cap hit: solve abandoned",
+    "wall-time cap hit: solve abandoned",
+    "solver failed: step size underflow",
+)
+_FLAG_OF_STATUS = {MACH: 2, KM_STOP: 3, POINT: 4, CORE: 5, UNBOUNDED_GROWTH: 6, CAP_NFEV: 7, CAP_WALL: 8, FAILED: 9}
+SOLVER_LABELS = ("analytic (betaincinv)", "DOP853, rtol 1e−6", "LSODA (stiff: 4µT/ρR₀² > 10³), rtol 1e−6", "other")
+BLAKE_LABELS = ("bounded: R stayed below the Blake radius", "R passed R_B but stayed below 10 R_B", "unbounded: R reached 10 R_B")
+
+TERMINAL = (MACH, KM_STOP, POINT, CORE, UNBOUNDED_GROWTH)
+ABANDONED = (CAP_NFEV, CAP_WALL, FAILED)
+
+
+def check_effects(effects) -> None:
+    """Raise ValueError for an effect set that is not a model: a missing companion or two rivals."""
+    for effect, needed in NEEDS.items():
+        missing = [n for n in needed if n not in effects]
+        if effect in effects and missing:
+            raise ValueError(f"effect `{effect}` needs {', '.join(f'`{m}`' for m in missing)}")
+    for a, b in EXCLUSIVE:
+        if a in effects and b in effects:
+            raise ValueError(f"effects `{a}` and `{b}` exclude each other; enable one")
+
+
+class Scales:
+    """The SI scales of one point: R_i, t_ref = R_i/U, and the seconds per unit of the figure's x."""
+
+    def __init__(self, point: dict, effects, pb: Problem):
+        self.radius = point["R0"] * 1e-6
+        self.t_ref = self.radius / math.sqrt(P0 / point["rho"])
+        if "drive" in effects:
+            self.x_unit, self.x_name = 1.0 / (point["f"] * 1e3), "T"
+        elif "ramp" in effects:
+            self.x_unit, self.x_name = 1e-6, "µs"
+        else:
+            self.x_unit, self.x_name = terms.rayleigh_tau(_collapse_dp(pb)) * self.t_ref, "t_c"
+
+    def x(self, tau):
+        """Nondimensional time in the figure's unit."""
+        return np.asarray(tau, float) * self.t_ref / self.x_unit
+
+
+def _collapse_dp(pb: Problem) -> float:
+    """ΔP = P∞ − P_v of the collapse; its size when negative, 1 when it vanishes (a time scale only)."""
+    delta = pb.p_inf - pb.vapour
+    return abs(delta) if delta else 1.0
+
+
+def compose(point: dict, effects) -> tuple[Problem, Scales]:
+    """The nondimensional problem of one point with only the enabled terms, and its scales."""
+    radius, rho = point["R0"] * 1e-6, point["rho"]
+    t_ref = radius / math.sqrt(P0 / rho)
+    on = set(effects)
+    vapour = point["p_v"] / P0 if "vapour" in on else 0.0
+    sigma = point["sigma"] / (P0 * radius) if "surface_tension" in on else 0.0
+    visc = point["mu"] / (radius * math.sqrt(rho * P0)) if "viscosity" in on else 0.0
+    p_inf = point["p_inf"] if "step" in on else 1.0  # p_inf is in atm and p0 is 1 atm
+    fields = dict(p_inf=p_inf, vapour=vapour, sigma=sigma, visc=visc, sound=point["c"] * t_ref / radius)
+    if "gas" in on:  # equilibrium at R0 with exactly the enabled terms, unless the step sets the content
+        gas = point["gas_content"] * p_inf if "step" in on else 1.0 - vapour + 2.0 * sigma
+        fields.update(gas=gas, kappa=point["kappa"], eta=point["h_frac"] if "vdw_hard_core" in on else 0.0)
+    if "drive" in on:
+        fields.update(drive=point["p_a"], omega=2e3 * math.pi * point["f"] * t_ref)
+    if "thermal_damping" in on:
+        fields.update(_thermal(point, fields, radius, rho))
+    if "keller_miksis" in on or "radiation" in on:
+        fields["compressible"] = terms.KELLER_MIKSIS if "keller_miksis" in on else terms.RADIATION
+    if "ramp" in on:
+        r_b, p_blake = terms.blake(fields["gas"], sigma, vapour)
+        fields.update(ramp_to=point["p_target"] * float(p_blake), ramp_time=point["t_ramp"] * 1e-6 / t_ref,
+                      r_unbounded=terms.UNBOUNDED * float(r_b))
+    pb = Problem(**fields, tau_end=_window(point, on, Problem(**fields), t_ref))
+    return pb, Scales(point, on, pb)
+
+
+def _window(point: dict, on: set, pb: Problem, t_ref: float) -> float:
+    """The run's length: two acoustic periods, the ramp and hold, or two Rayleigh times."""
+    if "drive" in on:
+        return DRIVE_PERIODS * 2.0 * math.pi / pb.omega
+    if "ramp" in on:
+        return (point["t_ramp"] + point["t_hold"]) * 1e-6 / t_ref
+    return 2.0 * terms.rayleigh_tau(_collapse_dp(pb))
+
+
+def _thermal(point: dict, fields: dict, radius: float, rho: float) -> dict:
+    """Prosperetti's effective polytropic exponent and thermal viscosity at the drive frequency
+    (or, undriven, at the adiabatic natural frequency)."""
+    gamma = point["kappa"]
+    if "omega" in fields:
+        omega = fields["omega"]
+    else:
+        omega = terms.natural_omega(Problem(gas=fields["gas"], kappa=gamma, eta=fields["eta"], sigma=fields["sigma"]))
+    omega_si = omega * math.sqrt(P0 / rho) / radius
+    phi = terms.thermal_phi(gamma, point["D_g"] * 1e-6 / (omega_si * radius**2))
+    mu_thermal = fields["gas"] * P0 * phi.imag / (4.0 * omega_si)
+    return {"kappa": phi.real / 3.0, "visc": fields["visc"] + mu_thermal / (radius * math.sqrt(rho * P0))}
+
+
+# --- reading one run -------------------------------------------------------------------------------------
+
+
+def read_run(run: Run, pb: Problem, scales: Scales, effects) -> dict:
+    """Every dynamic output of one run, in display units (inf where there is no value)."""
+    part = pb.tau_end / DRIVE_PERIODS if "drive" in effects else pb.tau_end
+    first, second = _extremes(run, pb, 0.0, part), _extremes(run, pb, part, pb.tau_end)
+    to_y = _y_transform(pb, effects)
+    out = {
+        "R_max": first["r_max"][1], "t_Rmax": scales.x(first["r_max"][0]),
+        "R_min": first["r_min"][1], "t_Rmin": scales.x(first["r_min"][0]), "t_collapse": scales.x(first["r_min"][0]),
+        "mach_max": first["speed"] / pb.sound,
+        "R_max2": second["r_max"][1], "R_min2": second["r_min"][1],
+        "flag": _flag(run, pb), "solver": _solver_label(run), "blake": _blake_state(run, pb),
+    }
+    out.update(_gas_peaks(pb, first["r_min"][1]))
+    out.update(_figure_marks(run, scales, to_y, first))
+    return out
+
+
+def _extremes(run: Run, pb: Problem, a: float, b: float) -> dict:
+    """R_max, R_min (τ, r) and max |ṙ| over [a, b] from events, plus the ends of [a, b] if reached.
+
+    A run stopped early by a guard has no value where no event was found (e.g. no R_min when the
+    empty collapse stops at |Ṙ| = c); an abandoned run has none at all.
+    """
+    missing = (np.inf, np.inf)
+    if run.status in ABANDONED:
+        return {"r_max": missing, "r_min": missing, "speed": np.inf, "events": ()}
+    inside = lambda rows: [tuple(row) for row in rows if a <= row[0] <= b]  # noqa: E731
+    maxima, minima, speeds = inside(run.maxima), inside(run.minima), inside(run.speeds)
+    events = maxima[:], minima[:]
+    index = [int(round(t / pb.tau_end * (len(run.tau) - 1))) for t in (a, b)]
+    if not math.isnan(run.r[index[1]]):  # the run covered [a, b]: its ends are candidates too
+        ends = [(run.tau[k], run.r[k]) for k in index]
+        maxima, minima = maxima + ends, minima + ends
+        speeds = speeds + [(run.tau[k], run.v[k]) for k in index]
+    stop_t, stop_r, stop_v = run.end
+    if a <= stop_t <= b and run.status == UNBOUNDED_GROWTH:
+        maxima.append((stop_t, stop_r))
+    if a <= stop_t <= b and run.status in (MACH, KM_STOP):
+        speeds.append((stop_t, stop_v))
+    return {
+        "r_max": max(maxima, key=lambda row: row[1], default=missing),
+        "r_min": min(minima, key=lambda row: row[1], default=missing),
+        "speed": max((abs(v) for _, v in speeds), default=np.inf),
+        "events": events,
+    }
+
+
+def _gas_peaks(pb: Problem, r_min: float) -> dict:
+    """Peak gas pressure (GPa), adiabatic temperature (K) and R_min/h at the minimum radius."""
+    if not math.isfinite(r_min) or not pb.gas:
+        return {"pg_peak": np.inf, "Tg_peak": np.inf, "Rmin_h": np.inf if pb.eta == 0 or not math.isfinite(r_min) else r_min / pb.eta}
+    e3 = pb.eta**3
+    compression = (1.0 - e3) / (r_min**3 - e3)
+    return {
+        "pg_peak": pb.gas * compression**pb.kappa * P0 * 1e-9,
+        "Tg_peak": T0 * compression ** (pb.kappa - 1.0),
+        "Rmin_h": r_min / pb.eta if pb.eta else np.inf,
+    }
+
+
+def _y_transform(pb: Problem, effects):
+    """The figure's radius coordinate: log10(R/R0) driven, log10(R/R_B) under a ramp, else R/R0.
+
+    Logarithms because the driven and ramped radii span decades across the sliders' stops.
+    """
+    if "drive" in effects:
+        return lambda r: np.log10(np.asarray(r, float))
+    if "ramp" in effects:
+        r_b = pb.r_unbounded / terms.UNBOUNDED
+        return lambda r: np.log10(np.asarray(r, float) / r_b)
+    return lambda r: np.asarray(r, float)
+
+
+def _figure_marks(run: Run, scales: Scales, to_y, first: dict) -> dict:
+    """The drawn curve (samples with the extrema and the stop merged in), the stop and the R_max, R_min dots.
+
+    Grid samples alone miss a violent collapse: in preset B they bottom out near 0.5 R0 while the
+    event-detected minimum is 0.176 R0 (physics.md §0.3), so the curve passes through the events.
+    """
+    curve = _curve_points(run)
+    pad = CURVE_SIZE - len(curve)
+    out = {
+        "curve_x": np.concatenate([scales.x(curve[:, 0]), np.full(pad, np.nan)]),
+        "curve_y": np.concatenate([to_y(curve[:, 1]), np.full(pad, np.nan)]),
+        "stop_x": np.full(1, np.nan), "stop_y": np.full(1, np.nan),
+    }
+    if run.status in TERMINAL:
+        out.update(stop_x=scales.x([run.end[0]]), stop_y=to_y([run.end[1]]))
+    marked = [row for row in (first["r_max"], first["r_min"]) if any(row in group for group in first["events"]) and row[0] > 0]
+    xs, ys = np.full(2, np.nan), np.full(2, np.nan)
+    for k, (t, r) in enumerate(marked):
+        xs[k], ys[k] = scales.x(t), to_y(r)
+    out.update(mark_x=xs, mark_y=ys)
+    return out
+
+
+def _curve_points(run: Run) -> np.ndarray:
+    """(τ, r) of the grid samples, the deepest CURVE_EXTREMA extrema and a terminal stop, in time order."""
+    reached = np.isfinite(run.r)
+    samples = np.stack([run.tau[reached], run.r[reached]], axis=1)
+    extrema = np.concatenate([run.maxima, run.minima])
+    extrema = extrema[extrema[:, 0] <= run.end[0]]
+    if len(extrema) > CURVE_EXTREMA:
+        depth = np.abs(np.log(extrema[:, 1]))
+        extrema = extrema[np.sort(np.argsort(-depth, kind="stable")[:CURVE_EXTREMA])]
+    stop = [run.end[:2]] if run.status in TERMINAL else []
+    points = np.concatenate([samples, extrema, np.reshape(stop, (-1, 2))])
+    points = points[np.argsort(points[:, 0], kind="stable")]
+    keep = np.concatenate([[True], np.diff(points[:, 0]) > 0])  # one point per time (t = 0 is both)
+    return points[keep]
+
+
+def _flag(run: Run, pb: Problem) -> int:
+    """Index into FLAGS: how the run ended, or invalid if the incompressible wall passed 0.2c."""
+    if run.status in _FLAG_OF_STATUS and run.status != UNBOUNDED_GROWTH:
+        return _FLAG_OF_STATUS[run.status]
+    fastest = max([abs(v) for v in run.speeds[:, 1]] + [float(np.nanmax(np.abs(run.v)))])
+    if pb.compressible == terms.NONE and fastest > terms.INVALID_MACH * pb.sound:
+        return 1
+    return _FLAG_OF_STATUS.get(run.status, 0)
+
+
+def _solver_label(run: Run) -> int:
+    """Index into SOLVER_LABELS."""
+    choices = {(ANALYTIC, 0.0): 0, ("DOP853", EXPLICIT_RTOL): 1, ("LSODA", IMPLICIT_RTOL): 2}
+    return choices.get((run.method, run.rtol), 3)
+
+
+def _blake_state(run: Run, pb: Problem) -> int:
+    """Index into BLAKE_LABELS: unbounded, past R_B, or bounded below R_B."""
+    if run.status == UNBOUNDED_GROWTH:
+        return 2
+    largest = max([float(np.nanmax(run.r))] + list(run.maxima[:, 1]))
+    return 1 if largest > pb.r_unbounded / terms.UNBOUNDED else 0

@@ -1,0 +1,287 @@
+"""K4 helpers: one bubble solved with terminal events and hard caps, or by the analytic collapse.
+
+Every solve stops at a terminal event (collapse to εR_i, |Ṙ| = c or 0.9c, the hard core,
+unbounded growth), at an evaluation cap or at a wall-time cap, and comes back as data: a `Run`
+with a status, never an exception, a hang or a NaN. Samples on the fixed grid are taken from each
+accepted step's interpolant as the step is made, so memory stays bounded whatever the solver does.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
+from scipy.optimize import brentq
+
+from .bubble_terms import (
+    CORE_MARGIN,
+    EPSILON,
+    KELLER_MIKSIS,
+    Problem,
+    make_rhs,
+    mach_one_radius,
+    rayleigh_fraction,
+    rayleigh_radius,
+    rayleigh_tau,
+)
+
+SOLVERS = {"RK45": RK45, "DOP853": DOP853, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
+ANALYTIC = "analytic"
+STIFF = 1e3  # 4µT/(ρR0²) above which explicit methods are stability-limited (physics.md §11.2 C)
+EXPLICIT_RTOL, IMPLICIT_RTOL = 1e-6, 1e-6  # physics.md §11.2 B and C verdicts
+ATOL_PER_RTOL = 1e-3  # nondimensional: atol = 1e-3 rtol on r ~ 1 and ṙ ~ 1
+CURVE_POINTS = 401  # samples of R(t) over the run; the middle one is t = T for a two-period drive
+EPS = np.finfo(float).eps
+
+# Run statuses: how the run ended.
+OK = "ok"  # reached the end of its window
+MACH = "mach"  # the incompressible wall reached |Ṙ| = c
+KM_STOP = "km_limit"  # |Ṙ| reached 0.9c, outside Keller–Miksis validity
+POINT = "point"  # the empty collapse reached R = εR_i
+CORE = "core"  # the van der Waals hard core was reached: the tolerance is too loose
+UNBOUNDED_GROWTH = "unbounded"  # R reached 10 R_B
+CAP_NFEV = "cap_nfev"  # the evaluation cap was hit
+CAP_WALL = "cap_wall"  # the wall-time cap was hit
+FAILED = "failed"  # the solver gave up (step size underflow)
+
+
+@dataclass(frozen=True)
+class Caps:
+    """Hard limits on one solve: right-hand-side evaluations and wall-clock seconds."""
+
+    max_nfev: int = 200_000
+    max_seconds: float = 10.0
+
+
+@dataclass(frozen=True, eq=False)
+class Run:
+    """One solved bubble (nondimensional): samples on the grid, extrema from events, how it ended."""
+
+    status: str
+    method: str
+    rtol: float
+    tau: np.ndarray  # the sample grid over [0, τ_end]
+    r: np.ndarray  # r on the grid, NaN after the run stopped
+    v: np.ndarray  # ṙ on the grid, NaN after the run stopped
+    end: tuple[float, float, float]  # (τ, r, ṙ) where the run stopped
+    maxima: np.ndarray  # (τ, r) of every maximum of r (event ṙ = 0, falling)
+    minima: np.ndarray  # (τ, r) of every minimum of r (event ṙ = 0, rising)
+    speeds: np.ndarray  # (τ, ṙ) at every extremum of ṙ (event r̈ = 0)
+    nfev: int  # the solver's right-hand-side evaluations
+    seconds: float
+
+
+class _CapHit(Exception):
+    def __init__(self, status: str):
+        super().__init__(status)
+        self.status = status
+
+
+class _Budget:
+    """The right-hand side, counted and timed: raises _CapHit past either cap."""
+
+    def __init__(self, fun, caps: Caps):
+        self.fun, self.caps, self.calls = fun, caps, 0
+        self.deadline = time.perf_counter() + caps.max_seconds
+
+    def __call__(self, t, y):
+        self.calls += 1
+        if self.calls > self.caps.max_nfev:
+            raise _CapHit(CAP_NFEV)
+        if self.calls % 64 == 0 and time.perf_counter() > self.deadline:
+            raise _CapHit(CAP_WALL)
+        return self.fun(t, y)
+
+
+@dataclass(frozen=True)
+class Event:
+    """g(τ, y) = 0 crossed in `direction` (+1 rising, −1 falling); a terminal one ends the run."""
+
+    g: object
+    direction: int
+    stop: str = ""  # the run status when terminal, "" when it only records
+    records: str = ""  # "max", "min" or "speed": which extrema this event finds
+
+
+def sample_grid(tau_end: float) -> np.ndarray:
+    """The fixed sample times of a run, CURVE_POINTS over [0, τ_end]."""
+    return np.linspace(0.0, tau_end, CURVE_POINTS)
+
+
+def choose_method(pb: Problem) -> tuple[str, float]:
+    """The solver and rtol the composed terms call for (physics.md §11.2 verdicts)."""
+    if pb.is_rayleigh:
+        return ANALYTIC, 0.0
+    if pb.stiffness > STIFF:
+        return "LSODA", IMPLICIT_RTOL
+    return "DOP853", EXPLICIT_RTOL
+
+
+@lru_cache(maxsize=4096)
+def solve(pb: Problem, method: str | None = None, rtol: float | None = None, caps: Caps = Caps()) -> Run:
+    """Solve one bubble from rest at r = 1, with the chosen (or the given) method; cached."""
+    if method is None:
+        method, rtol = choose_method(pb)
+    if method == ANALYTIC:
+        return rayleigh_run(pb)
+    return integrate(pb, (1.0, 0.0), method, rtol, caps)
+
+
+def bubble_events(pb: Problem, fun) -> list[Event]:
+    """Extrema of r and ṙ (recorded) and the terminal events the composed terms need."""
+    events = [
+        Event(lambda t, y: y[1], -1, records="max"),
+        Event(lambda t, y: y[1], +1, records="min"),
+        Event(lambda t, y: fun(t, y)[1], 0, records="speed"),
+    ]
+    limit = pb.speed_limit
+    if math.isfinite(limit):
+        stop = MACH if limit == pb.sound else KM_STOP
+        events += [Event(lambda t, y: y[1] - limit, +1, stop), Event(lambda t, y: y[1] + limit, -1, stop)]
+    if pb.singular:
+        events.append(Event(lambda t, y: y[0] - EPSILON, -1, POINT))
+    if pb.gas and pb.eta:
+        core = pb.eta * (1.0 + CORE_MARGIN)
+        events.append(Event(lambda t, y: y[0] - core, -1, CORE))
+    if math.isfinite(pb.r_unbounded):
+        events.append(Event(lambda t, y: y[0] - pb.r_unbounded, +1, UNBOUNDED_GROWTH))
+    return events
+
+
+def integrate(pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), events=None) -> Run:
+    """Step `method` from y0 over [0, τ_end] with events and caps; always returns a Run."""
+    start = time.perf_counter()
+    budget = _Budget(make_rhs(pb), caps)
+    stepper = _Stepper(bubble_events(pb, budget) if events is None else events, sample_grid(pb.tau_end), y0)
+    with np.errstate(over="ignore", invalid="ignore"):  # wild trial stages may overflow; their steps are rejected
+        status, solver = _run_guarded(pb, y0, method, rtol, budget, stepper)
+    nfev = budget.calls if solver is None else solver.nfev
+    return _make_run(status, method, rtol, stepper, nfev, time.perf_counter() - start)
+
+
+def _run_guarded(pb: Problem, y0, method: str, rtol: float, budget: _Budget, stepper: "_Stepper"):
+    """Create the solver and step it; a cap, an overflow or an invalid start becomes a status."""
+    if pb.compressible == KELLER_MIKSIS and abs(y0[1]) >= pb.speed_limit:
+        return KM_STOP, None  # already outside Keller–Miksis validity: nothing to integrate
+    solver = None
+    try:
+        solver = SOLVERS[method](budget, 0.0, np.asarray(y0, float), pb.tau_end, rtol=rtol, atol=rtol * ATOL_PER_RTOL)
+        return stepper.run(solver), solver
+    except _CapHit as cap:
+        return cap.status, solver
+    except ArithmeticError:  # an overflow in a term: the run is abandoned, never a crash
+        return FAILED, solver
+
+
+class _Stepper:
+    """The stepping loop: events located on each step's interpolant, samples taken as it goes."""
+
+    def __init__(self, events, grid, y0):
+        self.events, self.grid = events, grid
+        self.hits: list[list] = [[] for _ in events]
+        self.samples = np.full((len(grid), 2), np.nan)
+        self.samples[0] = y0
+        self.next = 1
+        self.last = (0.0, float(y0[0]), float(y0[1]))
+
+    def run(self, solver) -> str:
+        """Step until the end, a terminal event or a failure; return the status."""
+        g_old = [e.g(0.0, solver.y) for e in self.events]
+        while True:
+            if solver.step() is not None or solver.status == "failed" or not np.all(np.isfinite(solver.y)):
+                return FAILED
+            dense = _Lazy(solver)  # built only if an event or a sample falls in this step
+            g_new = [e.g(solver.t, solver.y) for e in self.events]
+            stop = self._locate(g_old, g_new, solver.t_old, solver.t, dense)
+            self._sample(dense, stop[0] if stop else solver.t)
+            if stop:
+                self.last = stop[:3]
+                return stop[3]
+            self.last = (float(solver.t), float(solver.y[0]), float(solver.y[1]))
+            if solver.status == "finished":
+                return OK
+            g_old = g_new
+
+    def found(self, role: str) -> list:
+        """(τ, r, ṙ) of every event recorded in `role` ("max", "min" or "speed")."""
+        return [row for event, rows in zip(self.events, self.hits) if event.records == role for row in rows]
+
+    def _locate(self, g_old, g_new, t_old, t_new, dense):
+        """Record every event crossed in this step up to the first terminal one; return that one."""
+        found = []
+        for index, (event, a, b) in enumerate(zip(self.events, g_old, g_new)):
+            rising, falling = a <= 0.0 <= b and a != b, a >= 0.0 >= b and a != b
+            if (rising and event.direction >= 0) or (falling and event.direction <= 0):
+                found.append((_root(event, dense, t_old, t_new), index))
+        terminal = min(((t, i) for t, i in found if self.events[i].stop), default=None)
+        for t, index in found:
+            if terminal is None or t <= terminal[0]:
+                y = dense(t)
+                self.hits[index].append((t, float(y[0]), float(y[1])))
+        if terminal is None:
+            return None
+        y = dense(terminal[0])
+        return (terminal[0], float(y[0]), float(y[1]), self.events[terminal[1]].stop)
+
+    def _sample(self, dense, t_stop: float) -> None:
+        while self.next < len(self.grid) and self.grid[self.next] <= t_stop:
+            self.samples[self.next] = dense(self.grid[self.next])
+            self.next += 1
+
+
+class _Lazy:
+    """A step's interpolant, made on first use (DOP853 spends three evaluations on it)."""
+
+    def __init__(self, solver):
+        self.solver, self.interpolant = solver, None
+
+    def __call__(self, t):
+        if self.interpolant is None:
+            self.interpolant = self.solver.dense_output()
+        return self.interpolant(t)
+
+
+def _root(event: Event, dense, t_old: float, t_new: float) -> float:
+    """The crossing time on the step's interpolant (its end if the interpolant misses the bracket)."""
+    g = lambda t: event.g(t, dense(t))  # noqa: E731
+    try:
+        return brentq(g, t_old, t_new, xtol=4 * EPS, rtol=4 * EPS)
+    except ValueError:  # an interpolant that does not pass exactly through y_old (LSODA's history)
+        return t_new
+
+
+def _frozen(array) -> np.ndarray:
+    array = np.array(array, float)
+    array.setflags(write=False)
+    return array
+
+
+def _pairs(rows, column: int) -> np.ndarray:
+    return _frozen([(row[0], row[column]) for row in rows]).reshape(-1, 2)
+
+
+def _make_run(status: str, method: str, rtol: float, stepper: _Stepper, nfev: int, seconds: float) -> Run:
+    r, v = _frozen(stepper.samples[:, 0]), _frozen(stepper.samples[:, 1])
+    maxima, minima, speeds = _pairs(stepper.found("max"), 1), _pairs(stepper.found("min"), 1), _pairs(stepper.found("speed"), 2)
+    return Run(status, method, rtol, _frozen(stepper.grid), r, v, tuple(stepper.last), maxima, minima, speeds, nfev, seconds)
+
+
+def rayleigh_run(pb: Problem) -> Run:
+    """The empty collapse in closed form: r(τ) from betaincinv up to |Ṙ| = c (or r = ε)."""
+    start = time.perf_counter()
+    delta = pb.p_inf - pb.vapour
+    tau_c = rayleigh_tau(delta)
+    r_stop = max(float(mach_one_radius(delta, pb.sound)), EPSILON)
+    tau_stop = tau_c * float(rayleigh_fraction(r_stop))
+    speed = lambda r: -np.sqrt(2.0 * delta / 3.0 * (np.asarray(r) ** -3 - 1.0))  # noqa: E731  Ṙ² of ref. 1
+    stepper = _Stepper([Event(None, -1, records="max")], sample_grid(pb.tau_end), (1.0, 0.0))
+    stepper.hits[0].append((0.0, 1.0, 0.0))  # the start at rest is the maximum; r and ṙ are monotonic after it
+    reached = stepper.grid <= tau_stop
+    r = rayleigh_radius(stepper.grid[reached] / tau_c)
+    stepper.samples[reached] = np.stack([r, speed(r)], axis=1)
+    stepper.last = (tau_stop, r_stop, float(speed(r_stop)))
+    status = MACH if r_stop > EPSILON else POINT
+    return _make_run(status, ANALYTIC, 0.0, stepper, 0, time.perf_counter() - start)

@@ -1,0 +1,242 @@
+"""I4: torques on a bar with a mass at each end, resting on a pivot (closed form).
+
+Sign convention (physics.md I4): a torque is positive when it turns the bar counter-clockwise,
+i.e. when it pushes the left end down.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.special import ellipk, ellipkinc
+
+from .base import Model, Output, Param
+
+G = 9.81  # physics.md §0.1 requires 9.81: the seed's 2 kg · 9.81 m/s² · 1 m = 19.62 N·m (9.80665 shows 19.61)
+LENGTH = 2.0  # ℓ, the bar's length (m)
+BALANCED, TIPS_LEFT, TIPS_RIGHT = 0, 1, 2
+STATES = ("balanced", "tips left", "tips right")
+# Relative slack on the balance test, so that a balance point exactly midway between two pivot
+# stops counts for both (the rule is |x_p − x*| ≤ Δx_p/2) whatever the last-bit rounding of the
+# floats. On the 0.01 m × 0.1 kg grids a true |x_p − x*| that is not exactly Δx_p/2 differs from it
+# by at least 0.5 % of Δx_p/2, so the slack changes no other verdict.
+BALANCE_SLACK = 1e-9
+
+# Geometry of the figure, in metres in the bar's own frame (the pivot is at height 0). The page
+# script only looks values up, so every moving vertex that needs arithmetic is an output.
+DRAWN_SLOPE = math.tan(math.radians(5.0))  # how far the drawn bar leans when it tips
+BLOCK_SIDE_PER_CUBE_ROOT_KG = 0.16  # block side ∝ m^(1/3): the blocks' volume grows with mass
+FULCRUM_HALF_WIDTH = 0.11
+MARKER_HALF_WIDTH = 0.05
+EPS = np.finfo(float).eps
+
+_POSITION = ("m_L", "m_R", "x_p")
+_TILT = _POSITION + ("balance_tolerance",)
+_WITH_BAR = ("m_L", "m_R", "x_p", "m_b")
+_TILT_WITH_BAR = _WITH_BAR + ("balance_tolerance",)
+_ROTATION = _POSITION + ("theta_s",)
+
+
+def _tilt_outputs(suffix: str, deps: tuple[str, ...], effect: str = "") -> tuple[Output, ...]:
+    """The heights of the drawn bar's ends and of the blocks' corners, which follow the tilt."""
+    described = ", with the bar's mass" if effect else ""
+    names = [("y_left", "height of the bar's left end"), ("y_right", "height of the bar's right end")]
+    for block in ("left", "right"):
+        for edge, where in (("0", "left"), ("1", "right")):
+            names.append((f"{block}_block_bottom{edge}", f"height of the {block} block's bottom {where} corner"))
+            names.append((f"{block}_block_top{edge}", f"height of the {block} block's top {where} corner"))
+    return tuple(
+        Output(f"{name}{suffix}", f"{label} (as drawn{described})", "m", deps, decimals=3, effect=effect)
+        for name, label in names
+    )
+
+
+class Lever(Model):
+    """A rigid bar of length ℓ with masses m_L and m_R at its ends, on a pivot at x_p from the left end."""
+
+    name = "lever"
+    title = "Torque and the lever principle"
+    params = (
+        Param("x_p", "x<sub>p</sub>", "m", 1.0, lo=0.0, hi=LENGTH, description="pivot position, from the left end"),
+        Param("m_L", "m<sub>L</sub>", "kg", 2.0, lo=0.0, lo_open=True, description="mass at the left end"),
+        Param("m_R", "m<sub>R</sub>", "kg", 2.0, lo=0.0, lo_open=True, description="mass at the right end"),
+        Param(
+            "balance_tolerance", "Δx<sub>p</sub>/2", "m", 0.005, lo=0.0, hi=0.25 * LENGTH,
+            description="how far the pivot may sit from the balance point and still count as balanced: half the pivot slider's step",
+        ),
+        Param("m_b", "m<sub>b</sub>", "kg", 1.0, lo=0.0, description="mass of the bar (uniform)").with_effect("bar_mass"),
+        Param(
+            "theta_s", "θ<sub>s</sub>", "°", 15.0, lo=0.0, hi=90.0, lo_open=True,
+            description="angle at which the tipping bar hits its stop",
+        ).with_effect("rotation_dynamics"),
+    )
+    outputs = (
+        Output("tau_L", "τ<sub>L</sub>", "N·m", ("m_L", "x_p"), decimals=2),
+        Output("tau_R", "τ<sub>R</sub>", "N·m", ("m_R", "x_p"), decimals=2),
+        Output("tau_net", "net τ", "N·m", _POSITION, decimals=2),
+        Output("MA", "MA = L<sub>L</sub>/L<sub>R</sub>", "×", ("x_p",), decimals=2, special="∞ (pivot at the end)"),
+        Output("state", "the bar", "", _TILT, labels=STATES),
+        Output("x_star", "balance point x*", "m", ("m_L", "m_R"), decimals=3),
+        # Figure geometry: the fulcrum, the blocks' sides and the balance-point marker.
+        Output("fulcrum_x0", "left foot of the fulcrum (as drawn)", "m", ("x_p",), decimals=3),
+        Output("fulcrum_x1", "right foot of the fulcrum (as drawn)", "m", ("x_p",), decimals=3),
+        Output("left_block_x0", "left side of the left block (as drawn)", "m", ("m_L",), decimals=3),
+        Output("left_block_x1", "right side of the left block (as drawn)", "m", ("m_L",), decimals=3),
+        Output("right_block_x0", "left side of the right block (as drawn)", "m", ("m_R",), decimals=3),
+        Output("right_block_x1", "right side of the right block (as drawn)", "m", ("m_R",), decimals=3),
+        Output("marker_x0", "left foot of the balance-point marker (as drawn)", "m", ("m_L", "m_R"), decimals=3),
+        Output("marker_x1", "right foot of the balance-point marker (as drawn)", "m", ("m_L", "m_R"), decimals=3),
+        *_tilt_outputs("", _TILT),
+        # bar_mass: the same picture with the bar's own weight acting at its middle.
+        Output("tau_b", "τ<sub>b</sub> (bar)", "N·m", ("x_p", "m_b"), decimals=2, effect="bar_mass"),
+        Output("tau_net_bar", "net τ (with bar)", "N·m", _WITH_BAR, decimals=2, effect="bar_mass"),
+        Output("state_bar", "the bar (with its mass)", "", _TILT_WITH_BAR, labels=STATES, effect="bar_mass"),
+        Output("x_star_bar", "balance point x* (with bar)", "m", ("m_L", "m_R", "m_b"), decimals=3, effect="bar_mass"),
+        Output("marker_x0_bar", "left foot of the balance-point marker (as drawn, with the bar)", "m", ("m_L", "m_R", "m_b"), decimals=3, effect="bar_mass"),
+        Output("marker_x1_bar", "right foot of the balance-point marker (as drawn, with the bar)", "m", ("m_L", "m_R", "m_b"), decimals=3, effect="bar_mass"),
+        *_tilt_outputs("_bar", _TILT_WITH_BAR, "bar_mass"),
+        # rotation_dynamics: released from rest, horizontal, the bar turns until it hits the stop.
+        Output("inertia", "I (about the pivot)", "kg·m²", _POSITION, decimals=3, effect="rotation_dynamics"),
+        Output("t_stop", "time to hit the stop", "s", _ROTATION, decimals=3, special="∞ (no net torque)", effect="rotation_dynamics"),
+        Output("omega_stop", "ω at the stop", "rad/s", _ROTATION, decimals=3, effect="rotation_dynamics"),
+    )
+    effects = ("bar_mass", "rotation_dynamics")
+
+    def _evaluate(self, x, wanted, effects):
+        if "bar_mass" in effects and "rotation_dynamics" in effects and any(n in _ROTATION_OUTPUTS for n in wanted):
+            raise ValueError(
+                "effects bar_mass and rotation_dynamics cannot be combined yet: the rotation outputs "
+                "would need m_b among their deps only when bar_mass is on"
+            )
+        x_p, m_L, m_R = x["x_p"], x["m_L"], x["m_R"]
+        side_L, side_R = _block_side(m_L), _block_side(m_R)
+        formulas = {
+            "tau_L": lambda: m_L * G * x_p,
+            "tau_R": lambda: m_R * G * (LENGTH - x_p),
+            "tau_net": lambda: G * _torque_per_g(x),
+            "MA": lambda: _mechanical_advantage(x_p),
+            "state": lambda: _state(x, with_bar=False),
+            "x_star": lambda: _balance_point(x, with_bar=False),
+            "fulcrum_x0": lambda: x_p - FULCRUM_HALF_WIDTH,
+            "fulcrum_x1": lambda: x_p + FULCRUM_HALF_WIDTH,
+            "left_block_x0": lambda: -0.5 * side_L,
+            "left_block_x1": lambda: 0.5 * side_L,
+            "right_block_x0": lambda: LENGTH - 0.5 * side_R,
+            "right_block_x1": lambda: LENGTH + 0.5 * side_R,
+            "marker_x0": lambda: _balance_point(x, with_bar=False) - MARKER_HALF_WIDTH,
+            "marker_x1": lambda: _balance_point(x, with_bar=False) + MARKER_HALF_WIDTH,
+            "tau_b": lambda: x["m_b"] * G * (x_p - 0.5 * LENGTH),
+            "tau_net_bar": lambda: G * _torque_per_g(x, with_bar=True),
+            "state_bar": lambda: _state(x, with_bar=True),
+            "x_star_bar": lambda: _balance_point(x, with_bar=True),
+            "marker_x0_bar": lambda: _balance_point(x, with_bar=True) - MARKER_HALF_WIDTH,
+            "marker_x1_bar": lambda: _balance_point(x, with_bar=True) + MARKER_HALF_WIDTH,
+            "inertia": lambda: _inertia(x),
+            "t_stop": lambda: _time_to_stop(x),
+            "omega_stop": lambda: _angular_velocity_at_stop(x),
+        }
+        for suffix, with_bar in (("", False), ("_bar", True)):
+            formulas.update(_tilt_formulas(x, suffix, with_bar, side_L, side_R))
+        return {name: formulas[name]() for name in wanted}
+
+
+_ROTATION_OUTPUTS = {o.name for o in Lever.outputs if o.effect == "rotation_dynamics"}
+
+
+def _torque_per_g(x, with_bar: bool = False):
+    """Net torque over g, m_L x_p − m_R (ℓ − x_p) [+ m_b (x_p − ℓ/2)], computed directly (0.0 at balance)."""
+    x_p = x["x_p"]
+    masses = x["m_L"] * x_p - x["m_R"] * (LENGTH - x_p)
+    return masses + x["m_b"] * (x_p - 0.5 * LENGTH) if with_bar else masses
+
+
+def _total_mass(x, with_bar: bool):
+    return x["m_L"] + x["m_R"] + x["m_b"] if with_bar else x["m_L"] + x["m_R"]
+
+
+def _balance_point(x, with_bar: bool):
+    """x* = ℓ m_R / (m_L + m_R): the centre of mass; the bar adds m_b at ℓ/2."""
+    heavy_right = x["m_R"] + 0.5 * x["m_b"] if with_bar else x["m_R"]
+    return LENGTH * heavy_right / _total_mass(x, with_bar)
+
+
+def _state(x, with_bar: bool):
+    """Balanced iff |x_p − x*| ≤ tolerance; else the bar tips towards the side of the centre of mass."""
+    # |x_p − x*| = |τ/g| / M: compare torques, no subtraction of nearly equal positions.
+    torque = _torque_per_g(x, with_bar)
+    allowed = x["balance_tolerance"] * (1.0 + BALANCE_SLACK) * _total_mass(x, with_bar)
+    return np.where(np.abs(torque) <= allowed, BALANCED, np.where(torque > 0, TIPS_LEFT, TIPS_RIGHT))
+
+
+def _mechanical_advantage(x_p):
+    """MA = x_p / (ℓ − x_p): +∞ with the pivot at the right end, never NaN."""
+    right_arm = LENGTH - x_p  # exact for x_p in [ℓ/2, ℓ] (Sterbenz), so 0 only at x_p = ℓ
+    return np.divide(x_p, right_arm, out=np.full(np.shape(x_p), np.inf), where=right_arm > 0)
+
+
+def _block_side(mass):
+    return BLOCK_SIDE_PER_CUBE_ROOT_KG * np.cbrt(mass)
+
+
+def _tilt_formulas(x, suffix: str, with_bar: bool, side_L, side_R) -> dict:
+    """Heights of the drawn bar and of the blocks standing on its ends, leaning towards the side that wins."""
+
+    def slope():
+        state = _state(x, with_bar)
+        # Tipping left turns the bar counter-clockwise: it rises to the right.
+        return np.select([state == TIPS_LEFT, state == TIPS_RIGHT], [DRAWN_SLOPE, -DRAWN_SLOPE], 0.0)
+
+    # The tilt is drawn as a small-angle shear of the level picture about the pivot: the ends stay at
+    # x = 0 and ℓ and the blocks' sides stay vertical (a rotation by 5° would move the ends in by
+    # under 8 mm, about a pixel), so every block corner keeps its x and only its height changes.
+    def height(at):
+        return lambda: slope() * (at - x["x_p"])
+
+    def above(at, side):
+        return lambda: slope() * (at - x["x_p"]) + side
+
+    formulas = {f"y_left{suffix}": height(0.0), f"y_right{suffix}": height(LENGTH)}
+    for block, centre, side in (("left", 0.0, side_L), ("right", LENGTH, side_R)):
+        for edge, at in (("0", centre - 0.5 * side), ("1", centre + 0.5 * side)):
+            formulas[f"{block}_block_bottom{edge}{suffix}"] = height(at)
+            formulas[f"{block}_block_top{edge}{suffix}"] = above(at, side)
+    return formulas
+
+
+def _inertia(x):
+    """Moment of inertia of the two point masses about the pivot."""
+    return x["m_L"] * x["x_p"] ** 2 + x["m_R"] * (LENGTH - x["x_p"]) ** 2
+
+
+def _tipping_integral(theta):
+    """∫₀^θ dφ/√(sin φ) for 0 < θ ≤ π/2, in closed form: √2 (K(½) − F(arccos √(sin θ) | ½))."""
+    return math.sqrt(2.0) * (ellipk(0.5) - ellipkinc(np.arccos(np.sqrt(np.sin(theta))), 0.5))
+
+
+def _moving_torque(x):
+    """The net torque that sets the bar turning, with the roundoff of an exact balance set to 0.
+
+    m_L x_p − m_R (ℓ − x_p) carries at most about 3ε (m_L x_p + m_R (ℓ − x_p)) of rounding; a
+    residue that small is a balance (e.g. 0.3 kg · 0.5 m against 0.1 kg · 1.5 m), not a slow tip
+    that would take 10⁷ s. On the slider grids a true imbalance is at least 0.001 kg·m.
+    """
+    per_g = _torque_per_g(x)
+    roundoff = 4.0 * EPS * (x["m_L"] * x["x_p"] + x["m_R"] * (LENGTH - x["x_p"]))
+    return np.where(np.abs(per_g) <= roundoff, 0.0, G * per_g)
+
+
+def _time_to_stop(x):
+    """Time from rest to the stop: I θ'' = τ cos θ has the first integral ½ I θ'² = τ sin θ, so
+    t = √(I / 2|τ|) ∫₀^θs dφ/√(sin φ); ∞ when there is no net torque (the bar never moves)."""
+    torque = np.abs(_moving_torque(x))
+    scale = np.divide(_inertia(x), 2.0 * torque, out=np.full(np.shape(torque), np.inf), where=torque > 0)
+    # θ_s takes a handful of values over a whole grid: evaluate the elliptic integral once for each.
+    angles, where = np.unique(np.radians(x["theta_s"]), return_inverse=True)
+    return np.sqrt(scale) * _tipping_integral(angles)[where].reshape(scale.shape)
+
+
+def _angular_velocity_at_stop(x):
+    """ω at the stop from ½ I ω² = τ sin θs; positive when the bar turns counter-clockwise (left end down)."""
+    torque = _moving_torque(x)
+    speed = np.sqrt(2.0 * np.abs(torque) * np.sin(np.radians(x["theta_s"])) / _inertia(x))
+    return np.copysign(speed, torque) + 0.0  # + 0.0: no signed zero when the bar stays put

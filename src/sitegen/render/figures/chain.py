@@ -1,0 +1,89 @@
+"""I5: the chain's masses over the continuum string, and the chain's dispersion relation against ω = ck."""
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch, Rectangle
+
+from ...physics.chain import LENGTH, SPEED, continuum_grid
+from .. import style as s
+from ..layers import Layer
+from .base import table_range
+
+LOG_LO, LOG_HI = 0.3, 3.0  # the dispersion panel spans 2 … 1000 in k and ω: the modes of N = 1 … 256 all fit
+
+
+class ChainFigure:
+    """The masses u_j(t) as dots over the dashed string u_c(x, t); beside it ω(k) of the chain and ck."""
+
+    label = (
+        "Left: displacement of each mass of the chain (dots) and of the continuous string (dashed line) "
+        "between two fixed walls. Right: on log-log axes, the frequency of each normal mode of the chain "
+        "against its wavenumber, with the straight line ω = ck of the string and, shaded, the wavenumbers the pulse contains."
+    )
+
+    def layers(self, scene):
+        # Inline style: matplotlib's SVG sheet sets * {stroke-linecap: butt}, which would hide zero-length dots.
+        dots = {"stroke": s.BLUE, "stroke-width": "5", "fill": "none", "style": "stroke-linecap: round"}
+        return [
+            Layer("pulse-band", "polygon", 1, ((LOG_LO, LOG_LO), (LOG_LO, LOG_HI), ("out:log_k_pulse", LOG_HI), ("out:log_k_pulse", LOG_LO)),
+                  style={"fill": s.FILL_BLUE, "fill-opacity": "0.35", "stroke": "none"}),
+            Layer("chain", "dots", 0, xs="out:x_dots", ys="out:u_dots", style=dots),
+            Layer("string", "polyline", 0, xs=tuple(float(x) for x in continuum_grid()), ys="out:u_continuum",
+                  style={"stroke": s.ORANGE, "stroke-width": "1.8", "stroke-dasharray": "6 4", "fill": "none"}),
+            Layer("modes", "dots", 1, xs="out:log_k", ys="out:log_omega", style={**dots, "stroke-width": "4"}),
+        ]
+
+    def draw(self, scene, tables):
+        fig, (ax, ax_w) = s.new_figure(2.6, ncols=2, gridspec_kw={"width_ratios": [2.5, 1]})
+        _draw_string_axes(ax, tables)
+        _draw_dispersion_axes(ax_w)
+        fig.tight_layout(pad=0.4, w_pad=1.4)
+        return fig
+
+
+def _draw_string_axes(ax, tables) -> None:
+    """Fixed walls, the rest line, and u limits that fit the string and every resolved chain.
+
+    The limits leave 20 % above the string's range: a chain with σ/a ≥ 1 overshoots it by at most
+    10 %. An under-resolved chain launched moving can be kicked far higher (5.4 A at N = 2,
+    σ = 0.02); those masses leave the panel, and the status readout says why.
+    """
+    low, high = table_range(tables["u_continuum"])
+    top = 1.2 * max(1.0, -low, high)
+    wall = 0.025 * LENGTH
+    ax.set_xlim(-wall, LENGTH + wall)
+    ax.set_ylim(-top, top)
+    for x in (-wall, LENGTH):
+        ax.add_patch(Rectangle((x, -top), wall, 2 * top, facecolor=s.LOST, edgecolor=s.MUTED, hatch="////", linewidth=0.8, zorder=3))
+    ax.axhline(0.0, color=s.MUTED, lw=0.6)
+    ax.set_xlabel("position x (m)")
+    ax.set_ylabel("displacement u / A")
+    ax.legend(
+        handles=[
+            Line2D([], [], color=s.BLUE, marker="o", ls="none", ms=5, label="chain u$_j$(t)"),
+            Line2D([], [], color=s.ORANGE, lw=1.8, ls=(0, (6, 4)), label="string u$_c$(x, t)"),
+        ],
+        loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=2, frameon=False, fontsize=9,
+    )
+
+
+def _draw_dispersion_axes(ax) -> None:
+    """Log–log axes of ω against k with the string's line ω = ck; the chain's modes are a layer."""
+    ax.set_xlim(LOG_LO, LOG_HI)
+    ax.set_ylim(LOG_LO, LOG_HI)
+    ax.plot([LOG_LO, LOG_HI], np.log10(SPEED) + np.array([LOG_LO, LOG_HI]), color=s.INK, lw=1.2, zorder=1)
+    decades = [1, 2, 3]
+    labels = [f"10$^{d}$" for d in decades]
+    ax.set_xticks(decades, labels)
+    ax.set_yticks(decades, labels)
+    ax.set_xlabel("k (rad/m)")
+    ax.set_ylabel("ω (rad/s)")
+    ax.text(2.45, 2.75, "ck", color=s.INK, fontsize=9, ha="right", va="center")
+    ax.legend(
+        handles=[
+            Line2D([], [], color=s.BLUE, marker="o", ls="none", ms=4, label="modes"),
+            Patch(facecolor=s.FILL_BLUE, alpha=0.6, label="pulse"),
+        ],
+        loc="lower right", frameon=False, fontsize=8, handletextpad=0.3, borderaxespad=0.2,
+    )

@@ -9,7 +9,7 @@ PORT   ?= 8000
 export OPENBLAS_NUM_THREADS := 1
 export DEBIAN_FRONTEND := noninteractive
 
-.PHONY: site test serve bench clean tools-node tools-chromium
+.PHONY: site test serve bench clean tools-node tools-chromium review accept-figures
 
 site: $(VENV)/.site-installed node_modules/.installed
 	$(BIN)/sitegen build
@@ -23,8 +23,20 @@ serve: site
 bench: $(VENV)/.test-installed node_modules/.installed tools-chromium
 	$(BIN)/python bench/run.py
 
+# Build revision BASE (default HEAD) in a temporary git worktree, build the working tree, and write
+# build-review/index.html and build-review/summary.md. Exits 1 when anything changed (for CI).
+BASE ?= HEAD
+review: $(VENV)/.test-installed node_modules/.installed tools-chromium
+	$(BIN)/sitegen build
+	$(BIN)/sitegen review --base $(BASE)
+
+# Rewrite tests/goldens/ from a fresh build, deliberately (refused when CI=true).
+accept-figures: $(VENV)/.site-installed node_modules/.installed
+	$(BIN)/sitegen build
+	$(BIN)/sitegen accept-figures --build build --goldens tests/goldens
+
 clean:
-	rm -rf build .build.new-* .build.old build-bench .cache
+	rm -rf build .build.new-* .build.old build-bench .cache build-review
 
 $(VENV)/.site-installed: pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)

@@ -1,25 +1,38 @@
-"""Helpers for the browser tests: Chromium, a local web server, and scene readouts.
+"""Helpers for the browser tests: Chromium, a local web server, the book's scenes and their controls.
 
-Expected values are computed here independently of the page: from the model registry
-(`sitegen.physics.MODELS`) and the slider values read from the DOM, formatted with
-`sitegen.compute.quantize.fmt`. Nothing is read from the scene's inline tables.
+The scenes come from the build's own parse (`read_pages` + `resolve_scenes`): each is a
+`ResolvedScene` with its axes (range, listed or choice controls), default stops, fixed values,
+effects and readouts. Expected texts are computed here independently of the page: the scene's
+model is evaluated at the exact stops the DOM's controls stand on (choices as the model's codes),
+with the scene's fixed values and effects, and formatted with `sitegen.compute.quantize.fmt` and
+`sitegen.site.assemble.with_unit` (or the output's labels, or its `special` phrase for ±inf).
+Nothing is read from the scene's inline tables.
+
+Every DOM helper is one `page.evaluate()`: resolving a Playwright locator costs several
+milliseconds on the chapters' large DOMs, an evaluate about one.
 """
 from __future__ import annotations
 
 import functools
 import http.server
+import math
+import re
 import threading
 from dataclasses import dataclass
-from decimal import ROUND_HALF_EVEN, Decimal
+from decimal import Decimal
 from pathlib import Path
-from typing import Iterable, Mapping
+from typing import Mapping
 
 import numpy as np
 
-from sitegen.compute.quantize import fmt
+from sitegen.build import BuildConfig, read_pages, resolve_scenes
+from sitegen.compute.grid import CHOICE, LIST, RANGE
+from sitegen.compute.quantize import MINUS, fmt
+from sitegen.compute.scenes import ResolvedScene
+from sitegen.content.pages import Page
+from sitegen.errors import ErrorLog
+from sitegen.render.figures import FIGURES
 from sitegen.site.assemble import with_unit
-from sitegen.content.pages import Page, discover_pages, read_page
-from sitegen.physics import MODELS
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -34,23 +47,75 @@ LAUNCH_ARGS = [
     "--disable-sync",
 ]
 
+# What a readout or a control's text must never show: a number the script failed to look up.
+BROKEN_TEXT = re.compile(r"NaN|Infinity|undefined|null|\[object")
+
 
 def launch(playwright, **options):
     """Debian's Chromium, headless (Playwright cannot download its own browsers here)."""
     return playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS, **options)
 
 
-# --- the book's pages, from the sources (used to parametrize at collection time) ---------------
+# --- the book, as the build parses it (used to parametrize at collection time) -------------------
 
 
-def source_pages() -> list[Page]:
-    """Every page of the book as read from content/ (the built site is checked against these)."""
-    pages = []
-    for path in discover_pages(ROOT / "content"):
-        page, errors = read_page(path, ROOT)
-        assert page is not None and not errors, errors
-        pages.append(page)
-    return pages
+@dataclass(frozen=True)
+class BookScene:
+    """A resolved scene and the page it sits on."""
+
+    page: Page
+    scene: ResolvedScene
+
+    @property
+    def id(self) -> str:
+        return self.scene.id
+
+    @property
+    def dom_id(self) -> str:
+        return f"scene-{self.scene.id}"
+
+    @property
+    def key(self) -> str:
+        """Unique in the book: 'newtons-laws-lever' (page slug, scene id)."""
+        return f"{self.page.slug}-{self.scene.id}"
+
+    @property
+    def axes(self):
+        return self.scene.axes
+
+    @property
+    def params(self) -> list[str]:
+        return [a.param for a in self.scene.axes]
+
+    @property
+    def defaults(self) -> tuple[int, ...]:
+        return tuple(self.scene.default_stops)
+
+    @property
+    def readout_names(self) -> list[str]:
+        return [o.name for o in self.scene.readouts]
+
+    @property
+    def animate(self) -> str | None:
+        return self.scene.spec.animate
+
+    def axis(self, param: str):
+        return self.scene.axes[self.params.index(param)]
+
+    def __repr__(self) -> str:  # short, for assertion messages
+        return f"<scene {self.key}>"
+
+
+def book() -> tuple[list[Page], list[BookScene]]:
+    """Every page of the book and every scene on it, read and resolved as the build does."""
+    log = ErrorLog()
+    pages = read_pages(BuildConfig.at(ROOT), log)
+    resolved = resolve_scenes(pages, log)
+    log.raise_if_any()
+    scenes = [BookScene(item.page, item.scene) for item in resolved]
+    declared = sum(len(p.found.scenes) for p in pages)
+    assert len(scenes) == declared, f"{declared} scene blocks, {len(scenes)} resolved"
+    return pages, scenes
 
 
 # --- a local web server -------------------------------------------------------------------------
@@ -85,11 +150,7 @@ class SiteServer:
         return f"{self.origin}/{name}"
 
 
-# --- sliders ------------------------------------------------------------------------------------
-
-
-def _decimals(value: Decimal) -> int:
-    return max(0, -value.normalize().as_tuple().exponent)
+# --- numbers as text ------------------------------------------------------------------------------
 
 
 def plain(value: Decimal) -> str:
@@ -98,201 +159,368 @@ def plain(value: Decimal) -> str:
     return "0" if text == "-0" else text
 
 
-@dataclass(frozen=True)
-class Slider:
-    """A native range input of a scene, as found in the DOM."""
+def control_value(axis, index: int) -> str:
+    """What a slider's `value` holds at stop `index`: the physical value for an evenly spaced
+    slider, the index of the stop for a listed one (a choice's checked radio holds the index too)."""
+    return plain(axis.stop(index)) if axis.kind == RANGE else str(index)
 
-    scene_id: str  # the scene's id without the "scene-" prefix
+
+# --- controls, readouts and layers as found in the DOM --------------------------------------------
+
+
+@dataclass(frozen=True)
+class Control:
+    """One control of a scene as the DOM has it: a range input (evenly spaced or listed) or a
+    fieldset of radios (a choice)."""
+
     param: str
+    axis: object  # the scene's Axis for this control
+    tag: str  # "input" or "fieldset"
     dom_id: str
-    lo: Decimal
-    hi: Decimal
-    step: Decimal
-    value: str  # the input's current .value
-    valuetext: str  # aria-valuetext
+    attrs: Mapping[str, str | None]  # type, min, max, step, class, name of the radios
+    value: str | None  # an input's .value
+    valuetext: str | None  # aria-valuetext
     shown: str | None  # text of <output data-value-of=param>, if any
-    label: str | None  # text of <label for=dom_id>, if any
+    label: str | None  # text of <label for=dom_id> (slider) or the <legend> (choice)
+    radios: tuple[Mapping, ...]  # a choice's radios: value, checked, name, id, label text
 
     @property
-    def selector(self) -> str:
-        return f"#{self.dom_id}"
+    def kind(self) -> str:
+        return self.axis.kind
 
     @property
     def count(self) -> int:
-        return int((self.hi - self.lo) / self.step) + 1
+        return self.axis.count
 
     @property
-    def decimals(self) -> int:
-        """Digits needed to write every stop exactly (as the build writes the slider text)."""
-        return max(_decimals(self.lo), _decimals(self.step))
-
-    def stop(self, index: int) -> Decimal:
-        """The exact value of stop `index`."""
-        return self.lo + self.step * index
-
-    def index_of(self, value: str | Decimal) -> int:
-        """The stop nearest `value` (the value a range input holds is always on a stop)."""
-        k = ((Decimal(value) - self.lo) / self.step).to_integral_value(ROUND_HALF_EVEN)
-        return int(min(self.count - 1, max(0, k)))
-
-    @property
-    def index(self) -> int:
-        return self.index_of(self.value)
-
-    @property
-    def exact(self) -> Decimal:
-        """The current value, exactly (snapped to its stop)."""
-        return self.stop(self.index)
-
-    def on_grid(self) -> bool:
-        """Whether the input's value is (to float precision) one of the stops."""
-        return abs(Decimal(self.value) - self.exact) <= abs(self.step) * Decimal("1e-9")
-
-    def spread(self, n: int = 8) -> list[int]:
-        """Stop indices to visit: first, last, the default is added by callers, and `n` spread ones."""
-        last = self.count - 1
-        return sorted({0, last, *(round(i * last / (n + 1)) for i in range(1, n + 1))})
-
-
-# The helpers below run one page.evaluate() each: resolving a Playwright locator costs several
-# milliseconds on the chapter's large DOM, page.evaluate about one.
-_ROOT_JS = "const root = document.getElementById('scene-' + sceneId); if (!root) throw new Error('no scene ' + sceneId);"
-_SLIDERS_JS = """[...root.querySelectorAll('input[type="range"][data-param]')].map(el => {
-  const out = root.querySelector(`output[data-value-of="${el.dataset.param}"]`);
-  const label = el.id ? document.querySelector(`label[for="${el.id}"]`) : null;
-  return {
-    param: el.dataset.param, id: el.id, min: el.getAttribute('min'), max: el.getAttribute('max'),
-    step: el.getAttribute('step'), value: el.value, valuetext: el.getAttribute('aria-valuetext'),
-    shown: out ? out.textContent : null, label: label ? label.textContent : null,
-  };
-})"""
-_READOUTS_JS = "Object.fromEntries([...root.querySelectorAll('[data-out]')].map(el => [el.dataset.out, el.textContent]))"
-_LAYERS_JS = "Object.fromEntries([...root.querySelectorAll('svg [data-layer]')].map(el => [el.dataset.layer, el.getAttribute('points')]))"
-
-
-def _in_scene(page, scene_id: str, body: str, arg=None):
-    """Evaluate `body` (an expression over `root`, the scene element, and `arg`) in the page."""
-    return page.evaluate(f"([sceneId, arg]) => {{ {_ROOT_JS} return {body}; }}", [scene_id, arg])
-
-
-def scene_root(page, scene_id: str):
-    """The scene's <figure> as a Playwright locator."""
-    return page.locator(f"#scene-{scene_id}")
-
-
-def scene_sliders(page, scene_id: str) -> list[Slider]:
-    """The scene's sliders in DOM order, with their current values."""
-    return _sliders(scene_id, _in_scene(page, scene_id, _SLIDERS_JS))
-
-
-def _sliders(scene_id: str, rows: list[dict]) -> list[Slider]:
-    return [
-        Slider(
-            scene_id=scene_id,
-            param=r["param"],
-            dom_id=r["id"],
-            lo=Decimal(r["min"]),
-            hi=Decimal(r["max"]),
-            step=Decimal(r["step"]),
-            value=r["value"],
-            valuetext=r["valuetext"],
-            shown=r["shown"],
-            label=r["label"],
-        )
-        for r in rows
-    ]
-
-
-_SET_JS = "(el, v) => { el.value = v; el.dispatchEvent(new Event('input', {bubbles: true})); }"
-
-
-def _value_text(value) -> str:
-    return plain(value) if isinstance(value, Decimal) else str(value)
-
-
-def set_slider(page, target, value) -> None:
-    """Set a range input's value and fire `input` (as a user's move does).
-
-    `target` is a Locator, an ElementHandle or a CSS selector.
-    """
-    if isinstance(target, str):
-        page.evaluate(f"([sel, v]) => ({_SET_JS})(document.querySelector(sel), v)", [target, _value_text(value)])
-    else:
-        target.evaluate(_SET_JS, _value_text(value))
-
-
-def set_sliders(page, scene_id: str, values: Mapping[str, object]) -> None:
-    """set_slider() for several sliders of a scene ({param: value}, in that order), one round trip."""
-    pairs = [[param, _value_text(v)] for param, v in values.items()]
-    _in_scene(
-        page,
-        scene_id,
-        f"""arg.forEach(([param, v]) => ({_SET_JS})(root.querySelector(`input[type="range"][data-param="${{param}}"]`), v))""",
-        pairs,
-    )
-
-
-def readouts(page, scene_id: str) -> dict[str, str]:
-    """Every readout of the scene: data-out name -> its text."""
-    return _in_scene(page, scene_id, _READOUTS_JS)
-
-
-def scene_state(page, scene_id: str) -> tuple[list[Slider], dict[str, str]]:
-    """scene_sliders() and readouts() read together, in one round trip."""
-    rows, texts = _in_scene(page, scene_id, f"[{_SLIDERS_JS}, {_READOUTS_JS}]")
-    return _sliders(scene_id, rows), texts
-
-
-def layer_points(page, scene_id: str) -> dict[str, str]:
-    """The `points` attribute of every moving layer of the scene's figure."""
-    return _in_scene(page, scene_id, _LAYERS_JS)
-
-
-# --- expected values ----------------------------------------------------------------------------
-
-
-def expected_readouts(
-    scene_name: str,
-    slider_values: Mapping[str, Decimal | str | float],
-    names: Iterable[str] | None = None,
-    fixed: Mapping[str, Decimal | float] | None = None,
-) -> dict[str, str]:
-    """The readout texts the page must show, computed from the model itself.
-
-    `slider_values` maps every slider's parameter to its (exact) value. Parameters without a
-    slider take the scene's `fixed` values, else the model defaults. (The book fixes no
-    parameters today; callers pass the scene's `fix` lines from its source so that a future
-    `fix` line is honoured rather than silently tested against the defaults.)
-    """
-    model = MODELS[scene_name]()
-    inputs = {**{k: float(v) for k, v in (fixed or {}).items()}, **{k: float(Decimal(str(v))) for k, v in slider_values.items()}}
-    wanted = tuple(names) if names is not None else tuple(o.name for o in model.outputs)
-    values = model.evaluate(inputs, wanted=wanted)
-    texts = {}
-    for name in wanted:
-        output = model.output(name)
-        if getattr(output, "size", 0):
-            raise NotImplementedError(f"output {name!r} is a vector; these helpers know scalar readouts only")
-        value = float(np.asarray(values[name]))
-        if np.isinf(value) and getattr(output, "special", ""):
-            texts[name] = output.special  # an infinite value shown in words, without a unit
-            continue
-        if not np.isfinite(value):
-            raise ValueError(f"output {name!r} of {scene_name} is {value} at {dict(inputs)}")
-        if output.labels:
-            texts[name] = output.labels[int(value)]
+    def index(self) -> int | None:
+        """The stop the control stands on, or None if its value is no stop at all."""
+        if self.kind == CHOICE:
+            checked = [r for r in self.radios if r["checked"]]
+            if len(checked) != 1 or not re.fullmatch(r"\d+", checked[0]["value"] or ""):
+                return None
+            k = int(checked[0]["value"])
+        elif self.kind == LIST:
+            if not re.fullmatch(r"\d+", self.value or ""):
+                return None
+            k = int(self.value)
         else:
-            texts[name] = with_unit(fmt(value, output.decimals), output.unit)
+            try:
+                offset = (Decimal(self.value) - self.axis.lo) / self.axis.step
+            except Exception:  # noqa: BLE001 - any unparsable value is "no stop"
+                return None
+            k = int(offset.to_integral_value())
+            # a range input's value is always on its step (to float precision)
+            if abs(offset - k) > Decimal("1e-9"):
+                return None
+        return k if 0 <= k < self.count else None
+
+    @property
+    def radio_labels(self) -> list[str]:
+        return [(r["label"] or "").strip() for r in self.radios]
+
+
+@dataclass(frozen=True)
+class SceneState:
+    """Everything a scene shows at one moment, read in one round trip."""
+
+    controls: tuple[Control, ...]
+    readouts: Mapping[str, str]  # data-out name -> text, in DOM order
+    layers: Mapping[str, tuple[str, str | None]]  # data-layer name -> (attribute name, its value)
+    button: Mapping | None  # the play button: data-animate, aria-pressed, text
+
+    @property
+    def stops(self) -> tuple[int | None, ...]:
+        return tuple(c.index for c in self.controls)
+
+    def control(self, param: str) -> Control:
+        return next(c for c in self.controls if c.param == param)
+
+
+_ROOT_JS = "const root = document.getElementById(sceneId); if (!root) throw new Error('no scene ' + sceneId);"
+_STATE_JS = """(() => {
+  const text = el => el ? el.textContent : null;
+  const controls = [...root.querySelectorAll('[data-param]')].map(el => {
+    const param = el.dataset.param;
+    const label = el.id ? document.querySelector(`label[for="${el.id}"]`) : null;
+    return {
+      param, tag: el.tagName.toLowerCase(), id: el.id,
+      attrs: {type: el.getAttribute('type'), min: el.getAttribute('min'), max: el.getAttribute('max'),
+              step: el.getAttribute('step'), class: el.getAttribute('class'), value: el.getAttribute('value')},
+      value: el.tagName === 'INPUT' ? el.value : null,
+      valuetext: el.getAttribute('aria-valuetext'),
+      shown: text(root.querySelector(`output[data-value-of="${param}"]`)),
+      label: el.tagName === 'FIELDSET' ? text(el.querySelector('legend')) : text(label),
+      radios: [...el.querySelectorAll('input[type="radio"]')].map(r => ({
+        value: r.value, checked: r.checked, name: r.name, id: r.id, label: text(r.closest('label')),
+        focused: document.activeElement === r,
+      })),
+    };
+  });
+  const readouts = Object.fromEntries([...root.querySelectorAll('[data-out]')].map(el => [el.dataset.out, el.textContent]));
+  const layers = Object.fromEntries([...root.querySelectorAll('svg [data-layer]')].map(el => {
+    const attr = el.tagName.toLowerCase() === 'path' ? 'd' : 'points';
+    return [el.dataset.layer, [attr, el.getAttribute(attr)]];
+  }));
+  const b = root.querySelector('button[data-animate]');
+  const button = b ? {animate: b.dataset.animate, pressed: b.getAttribute('aria-pressed'), text: b.textContent.trim()} : null;
+  return {controls, readouts, layers, button};
+})()"""
+
+# Move controls: [param, value] pairs. A slider gets its value and an `input` event (as a user's
+# drag does); a choice's radio with that value is checked and gets `input` and `change` (as a click).
+_MOVE_JS = """arg.forEach(([param, v]) => {
+  const el = root.querySelector(`[data-param="${param}"]`);
+  if (!el) throw new Error('no control ' + param);
+  if (el.tagName === 'FIELDSET') {
+    const radio = el.querySelector(`input[type="radio"][value="${v}"]`);
+    if (!radio) throw new Error('no option ' + v + ' of ' + param);
+    radio.checked = true;
+    radio.dispatchEvent(new Event('input', {bubbles: true}));
+    radio.dispatchEvent(new Event('change', {bubbles: true}));
+  } else {
+    el.value = v;
+    el.dispatchEvent(new Event('input', {bubbles: true}));
+  }
+})"""
+
+
+def _in_scene(page, scene: BookScene, body: str, arg=None):
+    """Evaluate `body` (statements over `root`, the scene element, and `arg`) in the page."""
+    return page.evaluate(f"([sceneId, arg]) => {{ {_ROOT_JS} {body} }}", [scene.dom_id, arg])
+
+
+def _state(scene: BookScene, raw: dict) -> SceneState:
+    axes = {a.param: a for a in scene.axes}
+    controls = []
+    for r in raw["controls"]:
+        if r["param"] not in axes:  # a control the scene does not declare: reported by the caller
+            axes[r["param"]] = _UnknownAxis()
+        controls.append(
+            Control(
+                param=r["param"], axis=axes[r["param"]], tag=r["tag"], dom_id=r["id"], attrs=r["attrs"],
+                value=r["value"], valuetext=r["valuetext"], shown=r["shown"], label=r["label"],
+                radios=tuple(r["radios"]),
+            )
+        )
+    layers = {k: tuple(v) for k, v in raw["layers"].items()}
+    return SceneState(tuple(controls), raw["readouts"], layers, raw["button"])
+
+
+class _UnknownAxis:
+    kind, count, lo, step = "unknown", 0, Decimal(0), Decimal(1)
+
+
+def read_state(page, scene: BookScene) -> SceneState:
+    """The scene's controls, readouts, layers and play button, read together."""
+    return _state(scene, _in_scene(page, scene, f"return {_STATE_JS};"))
+
+
+def move(page, scene: BookScene, stops: Mapping[str, int]) -> SceneState:
+    """Put controls on stops ({param: stop index}, in that order) and read the scene back."""
+    pairs = [[param, control_value(scene.axis(param), k)] for param, k in stops.items()]
+    return _state(scene, _in_scene(page, scene, f"{_MOVE_JS}; return {_STATE_JS};", pairs))
+
+
+def move_value(page, scene: BookScene, param: str, value: str) -> SceneState:
+    """Write a raw value into one control (e.g. an off-grid number) and read the scene back."""
+    return _state(scene, _in_scene(page, scene, f"{_MOVE_JS}; return {_STATE_JS};", [[param, value]]))
+
+
+def reset(page, scene: BookScene) -> SceneState:
+    """Pause the scene's animation if it plays and put every control back on its default."""
+    _in_scene(
+        page, scene,
+        "const b = root.querySelector('button[data-animate]'); if (b && b.getAttribute('aria-pressed') === 'true') b.click();",
+    )
+    return move(page, scene, dict(zip(scene.params, scene.defaults)))
+
+
+# --- expected texts -------------------------------------------------------------------------------
+
+
+def stop_inputs(scene: ResolvedScene, stops) -> dict[str, float]:
+    """Every model parameter at a slider position: the scene's fixed values, the model defaults,
+    and each control's exact stop (a choice's stop is the model's code of the option)."""
+    values = {**scene.model.defaults(), **dict(scene.fixed)}
+    for axis, k in zip(scene.axes, stops):
+        values[axis.param] = float(axis.stop(k))
+    return values
+
+
+_EXPECTED: dict[tuple[int, tuple[int, ...]], dict[str, str]] = {}
+
+
+def _expected(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, str]:
+    """The readout texts at a full slider position (memoised: the http run repeats the file run's states)."""
+    key = (id(scene), stops)
+    if key not in _EXPECTED:
+        _EXPECTED[key] = _evaluate_texts(scene, stops)
+    return _EXPECTED[key]
+
+
+def _evaluate_texts(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, str]:
+    names = [o.name for o in scene.readouts]
+    values = scene.model.evaluate(stop_inputs(scene, stops), wanted=names, effects=scene.effects)
+    texts = {}
+    for output in scene.readouts:
+        value = float(np.asarray(values[output.name]))
+        if math.isinf(value) and output.special:
+            texts[output.name] = output.special  # shown in words, without a unit
+            continue
+        if not math.isfinite(value):
+            raise ValueError(f"output {output.name!r} of scene {scene.id} is {value} at {stops}")
+        if output.labels:
+            texts[output.name] = output.labels[int(value)]
+        else:
+            texts[output.name] = with_unit(fmt(value, output.decimals), output.unit)
     return texts
 
 
-def expected_slider_text(scene_name: str, slider: Slider, index: int | None = None) -> str:
-    """A slider's value as the page must announce it (aria-valuetext) and show it beside it."""
-    index = slider.index if index is None else index
-    unit = MODELS[scene_name].param(slider.param).unit
-    value = slider.stop(index)
-    digits = slider.decimals
-    text = fmt(float(value), digits)
-    # fmt goes through a float; make sure that cannot have changed the exact decimal written.
-    assert Decimal(text.replace("\u2212", "-")) == value, (text, value)
+def expected_readouts(scene: BookScene, stops) -> dict[str, str]:
+    """The readout texts the page must show at these stops, computed from the model itself."""
+    return dict(_expected(scene.scene, tuple(stops)))
+
+
+def expected_control_text(scene: BookScene, param: str, index: int) -> str:
+    """A control's value as the page must announce it (aria-valuetext) and show it beside it:
+    an evenly spaced slider's stop with the decimals every stop needs, a listed stop as the author
+    wrote it, a choice's option name; numbers with the parameter's unit."""
+    axis = scene.axis(param)
+    if axis.kind == CHOICE:
+        return axis.labels[index]
+    unit = scene.scene.model.param(param).unit
+    value = axis.stop(index)
+    if axis.kind == RANGE:
+        text = fmt(float(value), axis.decimals)
+        # fmt goes through a float; make sure that cannot have changed the exact decimal written.
+        assert Decimal(text.replace(MINUS, "-")) == value, (text, value)
+    else:
+        text = plain(value).replace("-", MINUS)
     return with_unit(text, unit)
+
+
+def scene_problems(scene: BookScene, state: SceneState) -> list[str]:
+    """Every way the scene's controls or readouts differ from the model at the controls' stops."""
+    problems = []
+    params = [c.param for c in state.controls]
+    if params != scene.params:
+        return [f"controls {params} != declared {scene.params}"]
+    stops = state.stops
+    for c, k in zip(state.controls, stops):
+        if k is None:
+            problems.append(f"control {c.param}: value {c.value!r} / radios {[r['checked'] for r in c.radios]} is no stop")
+            continue
+        want = expected_control_text(scene, c.param, k)
+        if c.kind == CHOICE:
+            shown = c.radio_labels[k] if k < len(c.radios) else None
+            if shown != want:
+                problems.append(f"choice {c.param}: checked option {shown!r}, expected {want!r}")
+            continue
+        if c.valuetext != want:
+            problems.append(f"slider {c.param}: aria-valuetext {c.valuetext!r}, expected {want!r}")
+        if c.shown is not None and c.shown != want:
+            problems.append(f"slider {c.param}: shown value {c.shown!r}, expected {want!r}")
+    if list(state.readouts) != scene.readout_names:
+        problems.append(f"readouts {list(state.readouts)} != declared {scene.readout_names}")
+    for name, text in state.readouts.items():
+        if BROKEN_TEXT.search(text or ""):
+            problems.append(f"readout {name} shows {text!r}")
+    if all(k is not None for k in stops):
+        for name, text in expected_readouts(scene, stops).items():
+            if state.readouts.get(name) != text:
+                problems.append(f"readout {name}: page {state.readouts.get(name)!r}, model {text!r}")
+    if problems:
+        where = ", ".join(f"{c.param}={describe_stop(scene, c.param, k)}" for c, k in zip(state.controls, stops))
+        problems = [f"[{where}] {p}" for p in problems]
+    return problems
+
+
+def describe_stop(scene: BookScene, param: str, k: int | None) -> str:
+    if k is None:
+        return "?"
+    axis = scene.axis(param)
+    return axis.labels[k] if axis.kind == CHOICE else plain(axis.stop(k))
+
+
+# --- layers -----------------------------------------------------------------------------------------
+
+_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:e[-+]?\d+)?"
+_PAIR = re.compile(rf"^({_NUMBER}),({_NUMBER})$", re.I)
+_DOT = re.compile(rf"^M({_NUMBER}),({_NUMBER})h0$", re.I)
+
+
+def parse_layer(attr: str, text: str | None) -> list[tuple[float, float]]:
+    """A layer's vertices: SVG `points` ("x,y x,y") or, for dots, a path `d` ("Mx,yh0 Mx,yh0");
+    fails on anything that is not a finite number."""
+    assert text and text.strip(), f"empty {attr} {text!r}"
+    pattern = _DOT if attr == "d" else _PAIR
+    points = []
+    for item in text.split():
+        match = pattern.match(item)
+        assert match, f"bad vertex {item!r} in {attr}={text[:200]!r}"
+        x, y = float(match[1]), float(match[2])
+        assert math.isfinite(x) and math.isfinite(y), text
+        points.append((x, y))
+    return points
+
+
+def layer_problems(state: SceneState) -> list[str]:
+    """Layers whose vertices are not all finite numbers."""
+    problems = []
+    for name, (attr, text) in state.layers.items():
+        try:
+            parse_layer(attr, text)
+        except AssertionError as error:
+            problems.append(f"layer {name}: {error}")
+    return problems
+
+
+def layer_deps(scene: BookScene) -> dict[str, set[str]]:
+    """For each moving layer, the scene's controls it may depend on (from its references: an
+    `in:` parameter, or the declared deps of an `out:` output)."""
+    model = scene.scene.model
+    deps = {}
+    for layer in FIGURES[scene.scene.spec.figure or model.name].layers(scene.scene):
+        params = set()
+        for ref in layer.refs():
+            if isinstance(ref, str) and ref.startswith("in:"):
+                params.add(ref[3:])
+            elif isinstance(ref, str) and ref.startswith("out:"):
+                params |= set(model.output(ref[4:]).deps)
+        deps[layer.name] = params & set(scene.params)
+    return deps
+
+
+# --- stops to visit ---------------------------------------------------------------------------------
+
+
+def spread(count: int, n: int = 8) -> list[int]:
+    """Stop indices to visit: first, last and `n` spread between them."""
+    last = count - 1
+    return sorted({0, last, *(round(i * last / (n + 1)) for i in range(1, n + 1))})
+
+
+def singular_stops(scene: BookScene, output_name: str) -> list[tuple[int, ...]]:
+    """Full slider positions (the other controls at their defaults) where `output_name` is ±inf:
+    the output's dependencies are searched over their whole grid in one vectorised evaluation."""
+    sc = scene.scene
+    output = sc.model.output(output_name)
+    dep_axes = [i for i, a in enumerate(sc.axes) if a.param in output.deps]
+    if not dep_axes:
+        return []
+    shape = tuple(sc.axes[i].count for i in dep_axes)
+    if math.prod(shape) > 2_000_000:
+        raise NotImplementedError(f"{output_name}: {math.prod(shape)} points is too many to search")
+    grids = np.meshgrid(*(sc.axes[i].values() for i in dep_axes), indexing="ij")
+    inputs = {k: np.full(shape, v) for k, v in stop_inputs(sc, sc.default_stops).items()}
+    for i, grid in zip(dep_axes, grids):
+        inputs[sc.axes[i].param] = grid
+    values = np.asarray(sc.model.evaluate(inputs, wanted=[output_name], effects=sc.effects)[output_name], float)
+    found = []
+    for where in zip(*np.nonzero(np.isinf(np.broadcast_to(values, shape)))):
+        stops = list(sc.default_stops)
+        for i, k in zip(dep_axes, where):
+            stops[i] = int(k)
+        found.append(tuple(stops))
+    return found

@@ -15,6 +15,6 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 @pytest.fixture(scope="session")
 def built_site(tmp_path_factory) -> Path:
     """The book under content/, built into a temporary folder (build/ is left alone)."""
-    out = tmp_path_factory.mktemp("site") / "build"
-    build(BuildConfig.at(ROOT, out), progress=None)
-    return out
+    folder = tmp_path_factory.mktemp("site")
+    build(BuildConfig.at(ROOT, folder / "build", cache=folder / ".cache"), progress=None)
+    return folder / "build"

@@ -1,19 +1,25 @@
 """The built site in a real browser (Debian's headless Chromium through Playwright).
 
-Pages, scenes and sliders are parametrized from the book's sources (content/*.md) so that test
-ids are precise ("collision-m1-http"); `test_built_site_matches_sources` checks that the built
-DOM has exactly those pages, scenes, sliders and readouts, so the parametrization cannot drift
-away from what was built. Expected readouts come from the physics models (see tests/browser.py),
-never from the tables the page carries.
+Pages, scenes and controls are parametrized from the build's own parse of the book (content/*.md
+through `read_pages` + `resolve_scenes`), so test ids are precise: page-scene-control-transport,
+e.g. "newtons-laws-examples-kinetic-species-http". `test_built_site_matches_sources` checks that
+the built DOM has exactly those pages, scenes, controls, readouts and play buttons, so the
+parametrization cannot drift away from what was built. Expected readouts come from the physics
+models at the exact stops the controls stand on (see tests/browser.py), never from the tables
+the page carries.
 
-Only evenly spaced range sliders (`slider NAME: MIN..MAX step STEP`) are moved; listed sliders
-and choices would be held at their defaults (the book has none yet).
+Every kind of control is exercised as users meet it: evenly spaced and listed range sliders by
+keyboard and by value, choices (radio groups) by clicking and by arrow keys; the play buttons of
+animated scenes; and the singular stops whose readouts are words rather than numbers.
+
+Speed: one browser for the session and one loaded page per (page, transport, javascript) shared
+by the tests (each test first puts its scene back on its defaults); a test that navigates or
+needs its own browser settings opens a fresh page. DOM reads are batched in one page.evaluate().
+Keyboard tests run over file:// only.
 """
 from __future__ import annotations
 
-import math
 import random
-import re
 from dataclasses import dataclass, field
 from decimal import Decimal
 from pathlib import Path
@@ -23,87 +29,47 @@ import pytest
 from playwright.sync_api import sync_playwright
 
 from browser import (
+    BROKEN_TEXT,
+    BookScene,
     SiteServer,
+    book,
+    describe_stop,
     expected_readouts,
-    expected_slider_text,
     launch,
-    layer_points,
+    layer_deps,
+    layer_problems,
+    move,
+    move_value,
+    parse_layer,
     plain,
-    readouts,
-    scene_sliders,
-    scene_state,
-    set_slider,
-    set_sliders,
-    source_pages,
+    read_state,
+    reset,
+    scene_problems,
+    singular_stops,
+    spread,
+    stop_inputs,
 )
-from sitegen.physics import MODELS
+from sitegen.compute.grid import CHOICE, RANGE
+from sitegen.compute.quantize import fmt
 
-PAGES = source_pages()
+PAGES, SCENES = book()
 PAGE_NAMES = [p.output_name for p in PAGES]
 TRANSPORTS = ("file", "http")
-SCENES = [(page, spec) for page in PAGES for spec in page.found.scenes]
+CONTROLS = [(scene, axis.param) for scene in SCENES for axis in scene.axes]
+ANIMATED = [scene for scene in SCENES if scene.animate]
+SPECIALS = [(scene, o.name) for scene in SCENES for o in scene.scene.readouts if o.special]
 
 
-def is_range_slider(control) -> bool:
-    """A `slider NAME: MIN..MAX step STEP` line (not a listed slider or a choice)."""
-    return hasattr(control, "step") and not getattr(control, "listed", ())
+def _page_params(transports=TRANSPORTS):
+    return [pytest.param(p.output_name, t, id=f"{p.slug}-{t}") for p in PAGES for t in transports]
 
 
-def _scene_id(page, spec) -> str:
-    """'collision', or 'newtons-laws-collision' if another page has a scene with the same id."""
-    clash = sum(s.id == spec.id for _, s in SCENES) > 1
-    return f"{page.slug}-{spec.id}" if clash else spec.id
+def _scene_params(scenes=SCENES, transports=TRANSPORTS):
+    return [pytest.param(s, t, id=f"{s.key}-{t}") for s in scenes for t in transports]
 
 
-# Evenly spaced range sliders only: the DOM contract these tests know. Listed sliders and choices
-# (none in the book yet) are checked to exist and are held at their defaults, not exercised.
-SLIDERS = [(page, spec, c.param) for page, spec in SCENES for c in spec.sliders if is_range_slider(c)]
-
-
-def _page_params():
-    return [pytest.param(p.output_name, t, id=f"{p.slug}-{t}") for p in PAGES for t in TRANSPORTS]
-
-
-def _scene_params(transports=TRANSPORTS):
-    # (scenes with no range slider have nothing to move here)
-    return [
-        pytest.param(page, spec, t, id=f"{_scene_id(page, spec)}-{t}")
-        for page, spec in SCENES
-        for t in transports
-        if any(is_range_slider(c) for c in spec.sliders)
-    ]
-
-
-def _slider_params(transports=TRANSPORTS):
-    return [
-        pytest.param(page, spec, param, t, id=f"{_scene_id(page, spec)}-{param}" + (f"-{t}" if len(transports) > 1 else ""))
-        for page, spec, param in SLIDERS
-        for t in transports
-    ]
-
-
-def readout_names(spec) -> list[str]:
-    """The outputs a scene shows: its `readouts:` line, or every output of its model."""
-    return list(spec.readouts) if spec.readouts else [o.name for o in MODELS[spec.model].outputs]
-
-
-def range_params(spec) -> list[str]:
-    return [c.param for c in spec.sliders if is_range_slider(c)]
-
-
-def fixed_values(spec) -> dict[str, Decimal]:
-    """Parameter values that these tests never move: the scene's `fix` lines (none in the book
-    today) and the defaults of its other controls (listed sliders, choices: none today either)."""
-    values = {f.param: f.value for f in spec.fixed}
-    model = MODELS[spec.model]
-    for control in spec.sliders:
-        if is_range_slider(control):
-            continue
-        if hasattr(control, "options"):  # a choice: the model's code of the default option
-            values[control.param] = Decimal(model.param(control.param).choices.index(control.default))
-        else:
-            values[control.param] = control.default
-    return values
+def _control_params(transports=TRANSPORTS):
+    return [pytest.param(s, param, t, id=f"{s.key}-{param}-{t}") for s, param in CONTROLS for t in transports]
 
 
 # --- fixtures -----------------------------------------------------------------------------------
@@ -123,12 +89,10 @@ def site_server(built_site):
         yield server
 
 
-@pytest.fixture
-def site_url(built_site, request):
+@pytest.fixture(scope="session")
+def site_url(built_site, site_server):
     def url(name: str, transport: str) -> str:
-        if transport == "file":
-            return (built_site / name).as_uri()
-        return request.getfixturevalue("site_server").url(name)
+        return (built_site / name).as_uri() if transport == "file" else site_server.url(name)
 
     return url
 
@@ -143,24 +107,58 @@ class PageLog:
     console: list[tuple[str, str, dict]] = field(default_factory=list)
     errors: list[str] = field(default_factory=list)
 
+    def mark(self) -> tuple[int, int]:
+        return len(self.errors), len(self.console)
+
+    def trouble_since(self, mark: tuple[int, int]) -> list:
+        """Page errors and console errors/warnings logged after `mark`."""
+        console = [(t, text) for t, text, loc in self.console[mark[1]:] if t in ("error", "warning")
+                   and not loc.get("url", "").endswith("/favicon.ico")]
+        return self.errors[mark[0]:] + console
+
+
+def _new_page(chromium, url: str, javascript: bool = True, **context_options):
+    context = chromium.new_context(java_script_enabled=javascript, **context_options)
+    log = PageLog()
+    context.on("request", lambda r: log.requests.append(r.url))
+    context.on("requestfailed", lambda r: log.failed.append(f"{r.url}: {r.failure}"))
+    context.on("response", lambda r: log.responses.append((r.url, r.status)))
+    page = context.new_page()
+    page.on("console", lambda m: log.console.append((m.type, m.text, m.location)))
+    page.on("pageerror", lambda e: log.errors.append(str(e)))
+    page.goto(url, wait_until="load")
+    page.evaluate("document.fonts.ready.then(() => true)")
+    return context, page, log
+
+
+@pytest.fixture(scope="session")
+def loaded(chromium, site_url):
+    """loaded(name, transport, javascript=True) -> (page, log): one shared, loaded page per
+    (name, transport, javascript) for the whole session. Tests must not navigate it away."""
+    cache, contexts = {}, []
+
+    def _get(name: str, transport: str, javascript: bool = True):
+        key = (name, transport, javascript)
+        if key not in cache:
+            context, page, log = _new_page(chromium, site_url(name, transport), javascript)
+            contexts.append(context)
+            cache[key] = (page, log)
+        return cache[key]
+
+    yield _get
+    for context in contexts:
+        context.close()
+
 
 @pytest.fixture
 def open_page(chromium, site_url):
-    """open_page(name, transport, javascript=True) -> (page, log), loaded, fonts settled."""
+    """open_page(name, transport, javascript=True, **context options) -> (page, log): a fresh
+    page in its own context, closed after the test (for tests that navigate or emulate)."""
     contexts = []
 
-    def _open(name: str, transport: str, javascript: bool = True):
-        context = chromium.new_context(java_script_enabled=javascript)
+    def _open(name: str, transport: str, javascript: bool = True, **options):
+        context, page, log = _new_page(chromium, site_url(name, transport), javascript, **options)
         contexts.append(context)
-        log = PageLog()
-        context.on("request", lambda r: log.requests.append(r.url))
-        context.on("requestfailed", lambda r: log.failed.append(f"{r.url}: {r.failure}"))
-        context.on("response", lambda r: log.responses.append((r.url, r.status)))
-        page = context.new_page()
-        page.on("console", lambda m: log.console.append((m.type, m.text, m.location)))
-        page.on("pageerror", lambda e: log.errors.append(str(e)))
-        page.goto(site_url(name, transport), wait_until="load")
-        page.evaluate("document.fonts.ready.then(() => true)")
         return page, log
 
     yield _open
@@ -168,72 +166,68 @@ def open_page(chromium, site_url):
         context.close()
 
 
-# --- checking a scene against the model ----------------------------------------------------------
+@pytest.fixture
+def scene_page(loaded):
+    """scene_page(scene, transport) -> (page, log, mark): the shared page with the scene back on
+    its defaults (checked), and a mark to find errors logged during the test."""
+
+    def _get(scene: BookScene, transport: str):
+        page, log = loaded(scene.page.output_name, transport)
+        state = reset(page, scene)
+        assert state.stops == scene.defaults, f"reset to the defaults left {state.stops}"
+        return page, log, log.mark()
+
+    return _get
 
 
-def scene_problems(page, spec) -> list[str]:
-    """Every way the scene's readouts or slider texts differ from the model's values."""
-    sliders, got = scene_state(page, spec.id)
-    sliders = [s for s in sliders if s.param in range_params(spec)]
-    values = {s.param: s.exact for s in sliders}
-    problems = []
-    if sorted(got) != sorted(readout_names(spec)):
-        problems.append(f"readouts {sorted(got)} != declared {sorted(readout_names(spec))}")
-    want = expected_readouts(spec.model, values, names=[n for n in got if n in readout_names(spec)], fixed=fixed_values(spec))
-    for name, text in want.items():
-        if got[name] != text:
-            problems.append(f"readout {name}: page {got[name]!r}, model {text!r}")
-    for s in sliders:
-        if not s.on_grid():
-            problems.append(f"slider {s.param}: value {s.value!r} is not a stop")
-        text = expected_slider_text(spec.model, s)
-        if s.valuetext != text:
-            problems.append(f"slider {s.param}: aria-valuetext {s.valuetext!r}, expected {text!r}")
-        if s.shown is not None and s.shown != text:
-            problems.append(f"slider {s.param}: shown value {s.shown!r}, expected {text!r}")
-    if problems:
-        state = ", ".join(f"{p}={plain(v)}" for p, v in values.items())
-        problems = [f"[{state}] {p}" for p in problems]
-    return problems
-
-
-def range_sliders(page, spec):
-    return [s for s in scene_sliders(page, spec.id) if s.param in range_params(spec)]
-
-
-def slider_of(page, spec, param):
-    return next(s for s in scene_sliders(page, spec.id) if s.param == param)
-
-
-def default_index(spec, slider) -> int:
-    source = next(s for s in spec.sliders if s.param == slider.param)
-    return slider.index_of(source.default)
+def _where(scene: BookScene, stops) -> str:
+    return ", ".join(f"{p}={describe_stop(scene, p, k)}" for p, k in zip(scene.params, stops))
 
 
 # --- the site as built ---------------------------------------------------------------------------
 
 
+def _range_attrs(axis) -> dict:
+    if axis.kind == RANGE:
+        return {"type": "range", "min": plain(axis.lo), "max": plain(axis.hi), "step": plain(axis.step)}
+    return {"type": "range", "min": "0", "max": str(axis.count - 1), "step": "1"}
+
+
 @pytest.mark.parametrize("name", PAGE_NAMES, ids=[p.slug for p in PAGES])
-def test_built_site_matches_sources(built_site, open_page, name):
-    """The built page has exactly the scenes, sliders and readouts its source declares."""
+def test_built_site_matches_sources(built_site, loaded, name):
+    """The built page (as served, before any script) has exactly the scenes, controls, readouts and
+    play buttons its source declares, each control of the right kind with its stops."""
     assert sorted(p.name for p in built_site.glob("*.html")) == sorted(PAGE_NAMES)
-    page, _ = open_page(name, "file")
+    page, _ = loaded(name, "file", javascript=False)
+    scenes = [s for s in SCENES if s.page.output_name == name]
     source = next(p for p in PAGES if p.output_name == name)
-    scenes = page.eval_on_selector_all("figure.scene", "els => els.map(e => [e.id, e.dataset.scene])")
-    assert scenes == [[f"scene-{s.id}", s.model] for s in source.found.scenes]
-    for spec in source.found.scenes:
-        # Listed sliders and choices are only checked to exist; the tests hold them at their defaults.
-        for control in spec.sliders:
-            assert page.locator(f'#scene-{spec.id} [data-param="{control.param}"]').count() == 1, control.param
-        sliders = range_sliders(page, spec)
-        declared_sliders = [c for c in spec.sliders if is_range_slider(c)]
-        assert [s.param for s in sliders] == [c.param for c in declared_sliders]
-        for slider, declared in zip(sliders, declared_sliders):
-            assert (slider.lo, slider.hi, slider.step) == (declared.lo, declared.hi, declared.step)
-            assert slider.exact == declared.default and slider.on_grid()
-            assert slider.label and slider.label.strip(), f"slider {slider.param} has no <label for>"
-        assert list(readouts(page, spec.id)) == readout_names(spec)
-        assert page.locator(f"#scene-{spec.id} script.scene-data[type='application/json']").count() == 1
+    assert len(scenes) == len(source.found.scenes)
+    found = page.eval_on_selector_all("figure.scene", "els => els.map(e => [e.id, e.dataset.scene])")
+    assert found == [[s.dom_id, s.scene.model.name] for s in scenes]
+    for scene in scenes:
+        state = read_state(page, scene)
+        assert [c.param for c in state.controls] == scene.params, scene
+        for control, axis, default in zip(state.controls, scene.axes, scene.defaults):
+            where = f"{scene.key} {axis.param}"
+            if axis.kind == CHOICE:
+                assert control.tag == "fieldset" and "choice" in (control.attrs["class"] or "").split(), where
+                assert control.label and control.label.strip(), f"{where}: choice without a <legend>"
+                assert [r["value"] for r in control.radios] == [str(k) for k in range(axis.count)], where
+                assert control.radio_labels == list(axis.labels), where
+                assert {r["name"] for r in control.radios} == {f"{scene.dom_id}-{axis.param}"}, where
+                assert [r["checked"] for r in control.radios] == [k == default for k in range(axis.count)], where
+            else:
+                assert control.tag == "input", where
+                assert {k: control.attrs[k] for k in ("type", "min", "max", "step")} == _range_attrs(axis), where
+                assert control.dom_id == f"{scene.dom_id}-{axis.param}", where
+                assert control.label and control.label.strip(), f"{where}: slider without a <label for>"
+                assert control.index == default, where
+        assert list(state.readouts) == scene.readout_names, scene
+        if scene.animate:
+            assert state.button == {"animate": scene.animate, "pressed": "false", "text": "Play"}, scene
+        else:
+            assert state.button is None, scene
+        assert page.locator(f"#{scene.dom_id} script.scene-data[type='application/json']").count() == 1
 
 
 # --- a) loading ------------------------------------------------------------------------------------
@@ -249,8 +243,8 @@ def _inside_site(url: str, transport: str, built_site: Path, origin: str | None)
 
 
 @pytest.mark.parametrize("name,transport", _page_params())
-def test_page_loads_cleanly(built_site, open_page, site_server, name, transport):
-    page, log = open_page(name, transport)
+def test_page_loads_cleanly(built_site, loaded, site_server, name, transport):
+    page, log = loaded(name, transport)
     page.wait_for_load_state("networkidle")
     # Over http Chromium probes /favicon.ico on its own (sometimes after "networkidle"); that is
     # the browser, not the page, and is covered deterministically by test_pages_declare_an_icon.
@@ -284,13 +278,13 @@ def test_page_loads_cleanly(built_site, open_page, site_server, name, transport)
         assert maths == 0
 
 
-def test_pages_declare_an_icon(open_page):
+def test_pages_declare_an_icon(loaded):
     """Every page names its icon (e.g. <link rel="icon" href="data:,">), else browsers request
     /favicon.ico from the server, which the site does not have: a 404 and a console error on
     every page view over http."""
     missing = []
     for name in PAGE_NAMES:
-        page, _ = open_page(name, "file", javascript=False)
+        page, _ = loaded(name, "file", javascript=False)
         if not page.locator('head link[rel~="icon"]').count():
             missing.append(name)
     assert not missing, f"pages without <link rel=icon>: {missing}"
@@ -300,198 +294,471 @@ def test_pages_declare_an_icon(open_page):
 
 
 @pytest.mark.parametrize("name,transport", _page_params())
-def test_readouts_without_javascript(open_page, name, transport):
-    """The page as built already shows the model's values at the default slider positions."""
-    page, log = open_page(name, transport, javascript=False)
+def test_readouts_without_javascript(loaded, name, transport):
+    """The page as built already shows every scene complete at its defaults: controls on their
+    default stops with their texts, every readout the model's value there, finite layers."""
+    page, log = loaded(name, transport, javascript=False)
     assert not log.errors
-    source = next(p for p in PAGES if p.output_name == name)
-    assert page.locator("figure.scene").count() == len(source.found.scenes)
-    for spec in source.found.scenes:
-        sliders = range_sliders(page, spec)
-        assert all(s.index == default_index(spec, s) for s in sliders)
-        assert scene_problems(page, spec) == []
+    scenes = [s for s in SCENES if s.page.output_name == name]
+    assert page.locator("figure.scene").count() == len(scenes)
+    for scene in scenes:
+        state = read_state(page, scene)
+        assert state.stops == scene.defaults, scene
+        assert scene_problems(scene, state) == [], scene
+        assert state.layers and layer_problems(state) == [], scene
 
 
-# --- c) each slider, by keyboard and by value ----------------------------------------------------
+# --- c) each control, by keyboard and by value / click ---------------------------------------------
 
 
-def _keyboard_moves(count: int):
-    """(key, check(before, after)) pairs: Home, End, ArrowLeft x3, PageDown."""
-    moves = [("Home", lambda b, a: a == 0), ("End", lambda b, a: a == count - 1)]
-    moves += [("ArrowLeft", lambda b, a: a == max(0, b - 1))] * 3
-    moves += [("PageDown", lambda b, a: a < b if b > 0 else a == 0)]
-    return moves
+def _slider_keys(count: int, default: int):
+    """(key, expected stop after it | check(before, after)) for a range input of `count` stops."""
+    last = count - 1
+    return [
+        ("Home", lambda b, a: a == 0),
+        ("ArrowRight", lambda b, a: a == min(last, b + 1)),
+        ("ArrowRight", lambda b, a: a == min(last, b + 1)),
+        ("ArrowLeft", lambda b, a: a == max(0, b - 1)),
+        ("PageUp", lambda b, a: a > b if b < last else a == last),
+        ("End", lambda b, a: a == last),
+        ("ArrowRight", lambda b, a: a == last),  # at the end: stays
+        ("ArrowLeft", lambda b, a: a == max(0, b - 1)),
+        ("ArrowLeft", lambda b, a: a == max(0, b - 1)),
+        ("PageDown", lambda b, a: a < b if b > 0 else a == 0),
+        ("PageUp", lambda b, a: a > b if b < last else a == last),
+        ("Home", lambda b, a: a == 0),
+        ("ArrowLeft", lambda b, a: a == 0),  # at the start: stays
+        ("PageDown", lambda b, a: a == 0),
+    ]
 
 
-@pytest.mark.parametrize("page_source,spec,param,transport", _slider_params(("file",)))
-def test_slider_by_keyboard(open_page, page_source, spec, param, transport):
-    page, log = open_page(page_source.output_name, transport)
-    slider = slider_of(page, spec, param)
-    control = page.locator(slider.selector)
-    control.focus()
-    assert page.evaluate("document.activeElement.id") == slider.dom_id
-    for key, moved_right in _keyboard_moves(slider.count):
-        before = slider_of(page, spec, param).index
+def _choice_keys(count: int):
+    """Arrow keys within a radio group: next/previous option, wrapping around the ends."""
+    right = lambda b, a: a == (b + 1) % count  # noqa: E731
+    left = lambda b, a: a == (b - 1) % count  # noqa: E731
+    return [("ArrowRight", right)] * count + [("ArrowDown", right), ("ArrowLeft", left), ("ArrowUp", left), ("ArrowLeft", left)]
+
+
+@pytest.mark.parametrize("scene,param,transport", _control_params(("file",)))
+def test_control_by_keyboard(scene_page, scene, param, transport):
+    """Sliders: Home/End, arrows and PageUp/PageDown move by stops; choices: arrow keys move the
+    checked option round the group. After every key the whole scene agrees with the model."""
+    page, log, mark = scene_page(scene, transport)
+    axis = scene.axis(param)
+    i = scene.params.index(param)
+    default = scene.defaults[i]
+    if axis.kind == CHOICE:
+        selector = f'#{scene.dom_id} fieldset[data-param="{param}"] input[type="radio"][value="{default}"]'
+        keys = _choice_keys(axis.count)
+    else:
+        selector = f"#{scene.dom_id}-{param}"
+        keys = _slider_keys(axis.count, default)
+    page.focus(selector)
+    problems, before = [], default
+    for n, (key, moved_right) in enumerate(keys):
         page.keyboard.press(key)
-        after = slider_of(page, spec, param).index
-        assert moved_right(before, after), f"{key}: stop {before} -> {after} of {slider.count}"
-        assert scene_problems(page, spec) == [], f"after {key}"
-    assert not log.errors
+        state = read_state(page, scene)
+        after = state.stops[i]
+        assert after is not None and moved_right(before, after), f"key {n} {key}: stop {before} -> {after} of {axis.count}"
+        others = state.stops[:i] + state.stops[i + 1:]
+        assert others == scene.defaults[:i] + scene.defaults[i + 1:], f"{key} moved another control: {state.stops}"
+        if axis.kind == CHOICE:  # focus moves with the checked radio
+            assert [r["focused"] for r in state.control(param).radios] == [k == after for k in range(axis.count)], key
+        problems += [f"after {key}: {p}" for p in scene_problems(scene, state)]
+        before = after
+    assert not problems, "\n".join(problems[:10])
+    assert not log.trouble_since(mark)
 
 
-@pytest.mark.parametrize("page_source,spec,param,transport", _slider_params())
-def test_slider_by_value(open_page, page_source, spec, param, transport):
-    page, log = open_page(page_source.output_name, transport)
-    slider = slider_of(page, spec, param)
-    control = page.locator(slider.selector).element_handle()
-    last = slider.count - 1
-    stops = [0, last, default_index(spec, slider)] + [i for i in slider.spread(8) if i not in (0, last)]
-    for index in stops:
-        set_slider(page, control, slider.stop(index))
-        assert slider_of(page, spec, param).index == index
-        assert scene_problems(page, spec) == [], f"{param} at stop {index}"
-    assert not log.errors
+@pytest.mark.parametrize("scene,param,transport", _control_params())
+def test_control_by_value(scene_page, scene, param, transport):
+    """Sliders: value + `input` at the ends, the default and a spread of stops between (and an
+    off-grid value, which the browser snaps to a stop); choices: a click on each option's label.
+    After every move the whole scene agrees with the model."""
+    page, log, mark = scene_page(scene, transport)
+    axis = scene.axis(param)
+    i = scene.params.index(param)
+    default = scene.defaults[i]
+    problems = []
+    if axis.kind == CHOICE:
+        labels = page.locator(f'#{scene.dom_id} fieldset[data-param="{param}"] label')
+        assert labels.count() == axis.count
+        for k in [*range(axis.count - 1, -1, -1), default]:
+            labels.nth(k).click()
+            state = read_state(page, scene)
+            assert state.stops[i] == k, f"clicked option {k} ({axis.labels[k]}), stop is {state.stops[i]}"
+            problems += scene_problems(scene, state)
+    else:
+        last = axis.count - 1
+        for k in [0, last, default, *(k for k in spread(axis.count) if k not in (0, last)), default]:
+            state = move(page, scene, {param: k})
+            assert state.stops[i] == k, f"set stop {k}, control reads {state.control(param).value!r}"
+            problems += scene_problems(scene, state)
+        if axis.kind == RANGE and axis.count > 2:
+            # a value 30 % of a step above a middle stop: the input snaps it to that stop
+            k = axis.count // 2
+            state = move_value(page, scene, param, plain(axis.stop(k) + axis.step * 3 / 10))
+            assert state.stops[i] == k, f"off-grid value snapped to {state.control(param).value!r}, not stop {k}"
+            problems += scene_problems(scene, state)
+    assert not problems, "\n".join(problems[:10])
+    assert not log.trouble_since(mark)
 
 
-@pytest.mark.parametrize("page_source,spec,transport", _scene_params(("file",)))
-def test_scene_after_history_navigation(open_page, site_url, page_source, spec, transport):
-    """Leave a page with moved sliders and come back: whatever the browser restores (the whole
-    page from the back/forward cache, or just the sliders' values into a fresh page, before the
-    script runs), the readouts agree with the sliders."""
-    page, log = open_page(page_source.output_name, transport)
-    sliders = range_sliders(page, spec)
-    moved = {s.param: s.stop(0 if default_index(spec, s) else s.count - 1) for s in sliders}
-    set_sliders(page, spec.id, moved)
-    assert scene_problems(page, spec) == []
-    page.goto(site_url("index.html", transport), wait_until="load")
-    page.go_back(wait_until="load")
-    assert page.url == site_url(page_source.output_name, transport)
-    now = {s.param: s.exact for s in range_sliders(page, spec)}
-    defaults = {s.param: s.stop(default_index(spec, s)) for s in sliders}
-    assert now in (moved, defaults), now
-    assert scene_problems(page, spec) == []
-    assert not log.errors
+# --- d) singular stops read as words -------------------------------------------------------------------
 
 
-# --- d) random states of whole scenes -------------------------------------------------------------
+@pytest.mark.parametrize(
+    "scene,output,transport",
+    [pytest.param(s, o, t, id=f"{s.key}-{o}-{t}") for s, o in SPECIALS for t in TRANSPORTS],
+)
+def test_singular_stops_show_words(scene_page, scene, output, transport):
+    """Where the model is singular (±inf) an output with a `special` shows that phrase, e.g. the
+    lever's mechanical advantage with the pivot at the end, or a level of zero intensity."""
+    stops_found = singular_stops(scene, output)
+    if not stops_found:
+        pytest.skip(f"no stop of {scene.key} makes {output} infinite")
+    page, log, mark = scene_page(scene, transport)
+    phrase = scene.scene.model.output(output).special
+    rng = random.Random(f"{scene.key}/{output}")
+    picks = {stops_found[0], stops_found[-1], *rng.sample(stops_found, min(4, len(stops_found)))}
+    problems = []
+    for stops in sorted(picks):
+        state = move(page, scene, dict(zip(scene.params, stops)))
+        assert state.stops == stops
+        where = _where(scene, stops)
+        if state.readouts[output] != phrase:
+            problems.append(f"[{where}] {output} shows {state.readouts[output]!r}, not {phrase!r}")
+        problems += scene_problems(scene, state)
+    assert not problems, "\n".join(problems[:10])
+    assert not log.trouble_since(mark)
 
-RANDOM_STATES = 200
+
+def test_known_singular_stops():
+    """The book's singular stops are where the physics says: the lever's pivot at the end
+    (x_p = 2: MA is infinite) and a perfect reflector (R_r = 1: no net intensity, L_I is -inf)."""
+    expected = {("newtons-laws-lever", "MA"): ("x_p", "2"), ("newtons-laws-examples-acoustic-energy", "L_I"): ("R_r", "1")}
+    for (key, output), (param, value) in expected.items():
+        scene = next((s for s in SCENES if s.key == key), None)
+        if scene is None:
+            continue  # the scene left the book
+        found = singular_stops(scene, output)
+        i = scene.params.index(param)
+        assert found and all(plain(scene.axis(param).stop(s[i])) == value for s in found), (key, output, found[:3])
 
 
-@pytest.mark.parametrize("page_source,spec,transport", _scene_params())
-def test_random_scene_states(open_page, page_source, spec, transport):
-    """Random positions of all sliders at once: catches table indexing mistakes across axes."""
-    page, log = open_page(page_source.output_name, transport)
-    sliders = range_sliders(page, spec)
-    rng = random.Random(f"{page_source.slug}/{spec.id}/1")
+# --- e) random states of whole scenes --------------------------------------------------------------
+
+RANDOM_STATES = 150
+
+
+@pytest.mark.parametrize("scene,transport", _scene_params())
+def test_random_scene_states(scene_page, scene, transport):
+    """Random positions of all controls at once (sliders by value + `input`, choices by checking a
+    radio + `input`/`change`): catches table indexing mistakes across axes. No readout, control
+    text or layer ever shows NaN, Infinity or undefined."""
+    page, log, mark = scene_page(scene, transport)
+    rng = random.Random(f"{scene.key}/1")
     failures = []
     for _ in range(RANDOM_STATES):
-        state = [rng.randrange(s.count) for s in sliders]
-        # one round trip per state; each slider still gets its own value + `input` event
-        set_sliders(page, spec.id, {s.param: s.stop(index) for s, index in zip(sliders, state)})
-        problems = scene_problems(page, spec)
-        assert [s.index for s in range_sliders(page, spec)] == state
-        failures += problems
+        state_wanted = tuple(rng.randrange(a.count) for a in scene.axes)
+        # one round trip per state; each control still gets its own events
+        state = move(page, scene, dict(zip(scene.params, state_wanted)))
+        assert state.stops == state_wanted, f"set {state_wanted}, controls read {state.stops}"
+        failures += scene_problems(scene, state)
+        texts = [c.valuetext or "" for c in state.controls] + [c.shown or "" for c in state.controls]
+        failures += [f"[{_where(scene, state_wanted)}] control text {t!r}" for t in texts if BROKEN_TEXT.search(t)]
+        failures += [f"[{_where(scene, state_wanted)}] {p}" for p in layer_problems(state)]
     assert not failures, f"{len(failures)} mismatches, e.g.:\n" + "\n".join(failures[:10])
+    assert not log.trouble_since(mark)
+
+
+# --- f) after going back in history ------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "name,transport",
+    [pytest.param(p.output_name, "file", id=f"{p.slug}-file") for p in PAGES if any(s.page is p for s in SCENES)],
+)
+def test_scenes_after_history_navigation(open_page, site_url, name, transport):
+    """Leave a page with moved controls and come back: whatever the browser restores (the whole
+    page from the back/forward cache, or just the controls' values into a fresh page, before the
+    script runs), the readouts agree with the controls."""
+    scenes = [s for s in SCENES if s.page.output_name == name]
+    page, log = open_page(name, transport)
+    moved = {}
+    for scene in scenes:  # every control to its far end from the default
+        moved[scene.key] = tuple(0 if d else a.count - 1 for a, d in zip(scene.axes, scene.defaults))
+        state = move(page, scene, dict(zip(scene.params, moved[scene.key])))
+        assert scene_problems(scene, state) == []
+    page.goto(site_url("index.html", transport), wait_until="load")
+    page.go_back(wait_until="load")
+    assert page.url == site_url(name, transport)
+    for scene in scenes:
+        state = read_state(page, scene)
+        assert all(k in (m, d) for k, m, d in zip(state.stops, moved[scene.key], scene.defaults)), (scene, state.stops)
+        assert scene_problems(scene, state) == [], scene
     assert not log.errors
 
 
-# --- e) the figure's moving layers ---------------------------------------------------------------
+# --- g) the figure's moving layers ---------------------------------------------------------------
 
-# Which layers must move (and which must not) when a slider moves from the scene's defaults.
+# Layers that must move when a control moves from the scene's defaults (beyond what layer_deps
+# derives: a layer must never move for a control outside its dependencies).
 LAYER_RESPONSES = {
-    "impulse": {
-        "F_pk": ({"area", "pulse"}, set()),
-        "tau": ({"area", "pulse"}, set()),
-        "m": (set(), {"area", "pulse"}),  # the force pulse does not depend on the mass
-    },
+    "impulse": {"F_pk": {"area", "pulse"}, "tau": {"area", "pulse"}},
     "collision": {
-        "m1": ({"centre-of-mass", "body-1", "body-2"}, set()),
-        "m2": ({"centre-of-mass", "body-1", "body-2"}, set()),
-        "v1i": ({"centre-of-mass", "body-1", "body-2"}, set()),
-        "v2i": ({"centre-of-mass", "body-1", "body-2"}, set()),
-        "e": ({"body-1", "body-2", "K-after", "K-lost"}, {"centre-of-mass"}),  # V does not depend on e
+        "m1": {"centre-of-mass", "body-1", "body-2"},
+        "m2": {"centre-of-mass", "body-1", "body-2"},
+        "v1i": {"centre-of-mass", "body-1", "body-2"},
+        "v2i": {"centre-of-mass", "body-1", "body-2"},
+        "e": {"body-1", "body-2", "K-after", "K-lost"},
     },
+    "lever": {"x_p": {"fulcrum", "pivot", "arm-left", "arm-right", "bar"}, "m_L": {"balance-line", "bar"}},
+    "ossicles": {"ell": {"pivot", "gain"}, "A_TM": {"eardrum", "gain"}, "A_FP": {"footplate"}, "load": {"T-without", "T-with"}},
+    "euler_slab": {"phi": {"wave", "faces", "a-point"}, "dx_l": {"slab", "faces", "a-slab"}},
+    "acoustic_energy": {"wt": {"ep", "ek"}, "R_r": {"ek-average", "ep-average", "I-average"}, "x_probe": {"probe"}},
+    "kinetic": {"N": {"impulse-train", "velocity-histogram"}, "t_w": {"impulse-train", "running-mean"},
+                "sampling": {"velocity-histogram"}},
 }
-_NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)(e[-+]?\d+)?$", re.I)
 
 
-def parse_points(text: str | None) -> list[tuple[float, float]]:
-    """SVG points as numbers; fails on anything that is not a finite number."""
-    assert text and text.strip(), f"empty points {text!r}"
-    points = []
-    for pair in text.split():
-        xy = pair.split(",")
-        assert len(xy) == 2 and all(_NUMBER.match(v) for v in xy), f"bad point {pair!r} in {text!r}"
-        x, y = map(float, xy)
-        assert math.isfinite(x) and math.isfinite(y), text
-        points.append((x, y))
-    return points
-
-
-def _number(readout: str) -> float:
-    return float(readout.split()[0].replace("\u2212", "-"))
+def _number(text: str) -> float:
+    return float(text.replace("\u2212", "-"))
 
 
 def _shoelace(points) -> float:
     return abs(sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(points, points[1:] + points[:1]))) / 2
 
 
-def geometry_problems(spec, layers: dict[str, list], values: dict[str, Decimal]) -> list[str]:
-    """Where the figure contradicts the readouts: the shaded area is J, the lines end at v_f."""
+def _rounded(scene: BookScene, stops, names) -> dict[str, float]:
+    """Outputs of the model at these stops, rounded to their displayed digits (as tabulated)."""
+    model = scene.scene.model
+    values = model.evaluate(stop_inputs(scene.scene, stops), wanted=names, effects=scene.scene.effects)
+    return {n: _number(fmt(float(values[n]), model.output(n).decimals)) for n in names}
+
+
+def geometry_problems(scene: BookScene, layers: dict[str, list], stops) -> list[str]:
+    """Where the figure contradicts the model: the shaded impulse area is J, collision lines start
+    at the initial and end at the final velocities."""
     problems = []
-    model = spec.model
-    if model == "impulse" and "area" in layers:
-        j = expected_readouts(model, values, names=["J"], fixed=fixed_values(spec))["J"]
-        if abs(_shoelace(layers["area"]) - _number(j)) > 5e-4 + 1e-9:
+    name = scene.scene.model.name
+    values = {a.param: float(a.stop(k)) for a, k in zip(scene.axes, stops)}
+    if name == "impulse" and "area" in layers:
+        j = _rounded(scene, stops, ["J"])["J"]
+        if abs(_shoelace(layers["area"]) - j) > 5e-4 + 1e-9:
             problems.append(f"area polygon {layers['area']} has area {_shoelace(layers['area'])}, J is {j}")
-    if model == "collision":
-        want = expected_readouts(model, values, names=["v1f", "v2f", "v_cm"], fixed=fixed_values(spec))
+    if name == "collision":
+        want = _rounded(scene, stops, ["v1f", "v2f", "v_cm"])
         for layer, out in (("body-1", "v1f"), ("body-2", "v2f"), ("centre-of-mass", "v_cm")):
-            if layer in layers and abs(layers[layer][-1][1] - _number(want[out])) > 1e-9:
+            if layer in layers and abs(layers[layer][-1][1] - want[out]) > 1e-9:
                 problems.append(f"{layer} ends at {layers[layer][-1]}, {out} is {want[out]}")
         for layer, param in (("body-1", "v1i"), ("body-2", "v2i")):
-            if layer in layers and abs(layers[layer][0][1] - float(values[param])) > 1e-9:
+            if layer in layers and abs(layers[layer][0][1] - values[param]) > 1e-9:
                 problems.append(f"{layer} starts at {layers[layer][0]}, {param} is {values[param]}")
     return problems
 
 
-@pytest.mark.parametrize("page_source,spec,transport", _scene_params(("file",)))
-def test_layers_follow_sliders(open_page, page_source, spec, transport):
-    static_page, _ = open_page(page_source.output_name, transport, javascript=False)
-    built = {k: parse_points(v) for k, v in layer_points(static_page, spec.id).items()}
-    page, log = open_page(page_source.output_name, transport)
-    scripted = {k: parse_points(v) for k, v in layer_points(page, spec.id).items()}
-    assert built, "the figure has no moving layers"
-    assert built.keys() == scripted.keys()
-    for name in built:  # the script redraws the defaults exactly where the build drew them
-        assert len(built[name]) == len(scripted[name])
-        for (x0, y0), (x1, y1) in zip(built[name], scripted[name]):
-            assert math.isclose(x0, x1, rel_tol=1e-5, abs_tol=1e-6) and math.isclose(y0, y1, rel_tol=1e-5, abs_tol=1e-6), name
+def _parsed(state):
+    return {name: parse_layer(attr, text) for name, (attr, text) in state.layers.items()}
 
-    responses = LAYER_RESPONSES.get(spec.model, {})
+
+@pytest.mark.parametrize("scene,transport", _scene_params(transports=("file",)))
+def test_layers_follow_controls(loaded, scene_page, scene, transport):
+    """The script draws the defaults where the build drew them; every control moves the layers
+    that depend on it (and no other), each vertex a finite number; back at the default the
+    figure is as it was."""
+    static_page, _ = loaded(scene.page.output_name, transport, javascript=False)
+    built = _parsed(read_state(static_page, scene))
+    page, log, mark = scene_page(scene, transport)
+    start_state = read_state(page, scene)
+    scripted = _parsed(start_state)
+    assert built, "the figure has no moving layers"
+    assert built.keys() == scripted.keys() == layer_deps(scene).keys()
+    for name in built:  # the script redraws the defaults exactly where the build drew them
+        assert len(built[name]) == len(scripted[name]), name
+        for (x0, y0), (x1, y1) in zip(built[name], scripted[name]):
+            assert abs(x0 - x1) <= 1e-5 * max(1, abs(x0)) and abs(y0 - y1) <= 1e-5 * max(1, abs(y0)), name
+
+    deps = layer_deps(scene)
+    responses = LAYER_RESPONSES.get(scene.scene.model.name, {})
     problems = []
-    for slider in range_sliders(page, spec):
-        control = page.locator(slider.selector).element_handle()
-        start = layer_points(page, spec.id)
+    for i, axis in enumerate(scene.axes):
         changed = set()
-        for index in slider.spread(8):
-            set_slider(page, control, slider.stop(index))
-            now = layer_points(page, spec.id)
-            layers = {k: parse_points(v) for k, v in now.items()}
-            values = {s.param: s.exact for s in range_sliders(page, spec)}
-            problems += [f"{slider.param}={plain(values[slider.param])}: {p}" for p in geometry_problems(spec, layers, values)]
-            changed |= {k for k in now if now[k] != start[k]}
-        set_slider(page, control, slider.stop(default_index(spec, slider)))
-        assert layer_points(page, spec.id) == start, f"layers not restored after moving {slider.param} back"
-        must, must_not = responses.get(slider.param, (set(), set()))
-        assert must <= changed, f"moving {slider.param} left {sorted(must - changed)} still"
-        assert not (must_not & changed), f"moving {slider.param} moved {sorted(must_not & changed)}"
+        stops = range(axis.count) if axis.kind == CHOICE else spread(axis.count)
+        for k in stops:
+            state = move(page, scene, {axis.param: k})
+            layers = _parsed(state)
+            where = f"{axis.param}={describe_stop(scene, axis.param, k)}"
+            problems += [f"{where}: {p}" for p in geometry_problems(scene, layers, state.stops)]
+            changed |= {n for n in layers if state.layers[n] != start_state.layers[n]}
+        state = move(page, scene, {axis.param: scene.defaults[i]})
+        assert state.layers == start_state.layers, f"layers not restored after moving {axis.param} back"
+        must = responses.get(axis.param, set())
+        assert must <= changed, f"moving {axis.param} left {sorted(must - changed)} still"
+        wrong = {n for n in changed if axis.param not in deps[n]}
+        assert not wrong, f"moving {axis.param} moved {sorted(wrong)}, which do not depend on it"
     assert not problems, "\n".join(problems[:10])
+    assert not log.trouble_since(mark)
+
+
+# --- h) animation ------------------------------------------------------------------------------------
+
+# Records, in the page, every frame the animated control shows: the stops of all controls and the
+# readouts, taken right after the script's update (a MutationObserver on the control's text).
+_RECORD_JS = """
+  const slider = root.querySelector(`[data-param="${arg}"]`);
+  const out = root.querySelector(`output[data-value-of="${arg}"]`) || slider;
+  const frames = [];
+  const snap = () => ({
+    values: [...root.querySelectorAll('[data-param]')].map(el => el.tagName === 'FIELDSET'
+      ? (el.querySelector('input:checked') || {}).value : el.value),
+    readouts: Object.fromEntries([...root.querySelectorAll('[data-out]')].map(el => [el.dataset.out, el.textContent])),
+    t: performance.now(),
+  });
+  if (window.__frames && window.__frames.observer) window.__frames.observer.disconnect();
+  const observer = new MutationObserver(() => frames.push(snap()));
+  observer.observe(out, {attributes: true, characterData: true, childList: true, subtree: true});
+  window.__frames = {frames, observer};
+"""
+
+
+def _frames(page) -> list[dict]:
+    return page.evaluate("window.__frames.frames.splice(0)")
+
+
+def _frame_stops(scene: BookScene, frame: dict) -> tuple[int, ...]:
+    stops = []
+    for axis, value in zip(scene.axes, frame["values"]):
+        if axis.kind == RANGE:
+            stops.append(int(((Decimal(value) - axis.lo) / axis.step).to_integral_value()))
+        else:
+            stops.append(int(value))
+    return tuple(stops)
+
+
+def _button(page, scene):
+    return page.locator(f'#{scene.dom_id} button[data-animate="{scene.animate}"]')
+
+
+def _pressed(page, scene) -> str | None:
+    return read_state(page, scene).button["pressed"]
+
+
+@pytest.mark.parametrize("scene,transport", _scene_params(ANIMATED, ("file",)))
+def test_animation_plays_and_pauses(scene_page, scene, transport):
+    """Play steps the animated slider one stop per frame, wrapping round its range; the readouts
+    follow at every frame; Pause stops it where it is. aria-pressed and the label say which."""
+    page, log, mark = scene_page(scene, transport)
+    param, i = scene.animate, scene.params.index(scene.animate)
+    axis = scene.axis(param)
+    page.locator(f"#{scene.dom_id}").scroll_into_view_if_needed()
+    page.evaluate(f"([sceneId, arg]) => {{ const root = document.getElementById(sceneId); {_RECORD_JS} }}", [scene.dom_id, param])
+    button = _button(page, scene)
+    button.click()
+    assert read_state(page, scene).button == {"animate": param, "pressed": "true", "text": "Pause"}
+    # a whole cycle and a bit: every stop is shown, then it starts over
+    page.wait_for_function(
+        "([n]) => window.__frames.frames.length >= n", arg=[axis.count + 3], timeout=max(15_000, axis.count * 500)
+    )
+    button.click()
+    state = read_state(page, scene)
+    assert state.button == {"animate": param, "pressed": "false", "text": "Play"}
+    frames = _frames(page)
+    stops = [_frame_stops(scene, f) for f in frames]
+    path = [s[i] for s in stops]
+    steps = [(b - a) % axis.count for a, b in zip([scene.defaults[i]] + path, path)]
+    assert set(steps) == {1}, f"the animated slider went {path}"
+    assert set(path) == set(range(axis.count)), "the animation skipped stops"
+    assert all(s[:i] + s[i + 1:] == scene.defaults[:i] + scene.defaults[i + 1:] for s in stops), "other controls moved"
+    problems = []
+    for frame, s in zip(frames, stops):
+        want = expected_readouts(scene, s)
+        if frame["readouts"] != want:
+            problems.append(f"[{_where(scene, s)}] page {frame['readouts']}, model {want}")
+    assert not problems, f"{len(problems)} frames disagree with the model:\n" + "\n".join(problems[:5])
+    assert scene_problems(scene, state) == []
+    # paused: nothing moves any more
+    paused_at = state.stops
+    page.wait_for_timeout(400)
+    assert read_state(page, scene).stops == paused_at and _frames(page) == [], "the animation went on after Pause"
+    # Play again resumes from where it stopped
+    button.click()
+    page.wait_for_function("() => window.__frames.frames.length >= 2", timeout=10_000)
+    button.click()
+    frames = _frames(page)
+    assert _frame_stops(scene, frames[0])[i] == (paused_at[i] + 1) % axis.count, "Play did not resume where it paused"
+    assert _pressed(page, scene) == "false"
+    page.evaluate("window.__frames.observer.disconnect()")
+    assert not log.trouble_since(mark)
+
+
+@pytest.mark.parametrize("scene,transport", _scene_params(ANIMATED, ("file",)))
+def test_animation_never_autoplays(open_page, scene, transport):
+    """With reduced motion asked for, the page loads still: the animated slider stays on its
+    default, in view or not, until the reader presses Play."""
+    page, log = open_page(scene.page.output_name, transport, reduced_motion="reduce")
+    assert page.evaluate("matchMedia('(prefers-reduced-motion: reduce)').matches")
+    i = scene.params.index(scene.animate)
+    page.wait_for_timeout(300)
+    assert read_state(page, scene).stops[i] == scene.defaults[i]
+    page.locator(f"#{scene.dom_id}").scroll_into_view_if_needed()
+    page.wait_for_timeout(600)  # more than ten frames of an animation
+    state = read_state(page, scene)
+    assert state.button["pressed"] == "false" and state.button["text"] == "Play"
+    assert state.stops == scene.defaults, "the animation started by itself"
+    assert scene_problems(scene, state) == []
     assert not log.errors
 
 
-# --- f) links --------------------------------------------------------------------------------------
+def _visible_fraction(page, scene) -> float:
+    return page.evaluate(
+        """(id) => { const r = document.getElementById(id).getBoundingClientRect();
+          const h = Math.min(r.bottom, innerHeight) - Math.max(r.top, 0); return Math.max(0, h) / r.height; }""",
+        scene.dom_id,
+    )
+
+
+@pytest.mark.parametrize("scene,transport", _scene_params(ANIMATED, ("file",)))
+def test_animation_pauses_out_of_view(scene_page, scene, transport):
+    """A playing scene that scrolls out of view pauses (and stays paused when it comes back)."""
+    page, log, mark = scene_page(scene, transport)
+    root = page.locator(f"#{scene.dom_id}")
+    root.scroll_into_view_if_needed()
+    _button(page, scene).click()
+    assert _pressed(page, scene) == "true"
+    page.wait_for_function(
+        "([id, param, v]) => document.querySelector(`#${id} [data-param=\"${param}\"]`).value !== v",
+        arg=[scene.dom_id, scene.animate, read_state(page, scene).control(scene.animate).value],
+        timeout=10_000,
+    )
+    # scroll the scene right out of the viewport: to whichever end of the page is further from it
+    page.evaluate(
+        """(id) => { const r = document.getElementById(id).getBoundingClientRect();
+          const top = r.top + scrollY, bottom = r.bottom + scrollY;
+          const below = document.documentElement.scrollHeight - bottom;
+          scrollTo(0, below > top ? document.documentElement.scrollHeight : 0); }""",
+        scene.dom_id,
+    )
+    assert _visible_fraction(page, scene) == 0, "could not scroll the scene out of view"
+    page.wait_for_function(
+        "(id) => document.querySelector(`#${id} button[data-animate]`).getAttribute('aria-pressed') === 'false'",
+        arg=scene.dom_id,
+        timeout=5_000,
+    )
+    state = read_state(page, scene)
+    assert state.button["text"] == "Play"
+    page.wait_for_timeout(300)
+    later = read_state(page, scene)
+    assert later.stops == state.stops, "the animation went on out of view"
+    assert scene_problems(scene, later) == []
+    root.scroll_into_view_if_needed()
+    page.wait_for_timeout(300)
+    back = read_state(page, scene)
+    assert back.button["pressed"] == "false" and back.stops == state.stops, "the animation restarted by itself"
+    assert not log.trouble_since(mark)
+
+
+# --- i) links --------------------------------------------------------------------------------------
 
 
 def test_home_links_to_chapters(built_site, open_page):
@@ -510,9 +777,9 @@ def test_home_links_to_chapters(built_site, open_page):
 
 
 @pytest.mark.parametrize("name,transport", _page_params())
-def test_links_resolve_to_files(built_site, open_page, name, transport):
+def test_links_resolve_to_files(built_site, loaded, name, transport):
     """No link points to a bare directory (index.html is not implied on disk); all reach a file."""
-    page, _ = open_page(name, transport)
+    page, _ = loaded(name, transport, javascript=False)
     links = page.eval_on_selector_all("a[href]", "els => els.map(e => [e.getAttribute('href'), e.href])")
     assert links
     for href, absolute in links:

@@ -101,8 +101,9 @@ def test_dop853_collapse_matches_the_analytic_curve():
 
 @pytest.mark.parametrize(
     "output, shown",
-    [("t_c", "91.853"), ("R_mach", "0.0311"), ("t_mach", "0.99991"), ("mach_max", "1.0000"), ("R_min", "—"),
-     ("flag", "incompressible model invalid: the wall reaches |Ṙ| = c, where the curve ends"), ("solver", "analytic (betaincinv)")],
+    [("t_c", "91.853"), ("R_mach", "0.0311"), ("t_mach", "0.99991"), ("collapse_mach", "1.0000"), ("collapse_R_min", "—"),
+     ("collapse_flag", "incompressible model invalid: the wall reaches |Ṙ| = c, where the curve ends"),
+     ("collapse_solver", "analytic (betaincinv)")],
     ids=["t_c", "R_mach", "t_mach", "mach_max", "R_min", "flag", "solver"],
 )
 def test_preset_A_defaults_show_the_reference_readouts(output, shown):
@@ -184,11 +185,6 @@ def test_keller_miksis_small_oscillation_decays_at_the_linear_rate():
     assert fitted == pytest.approx(b / (2 * a), rel=1e-4)
 
 
-def test_linear_frequency_with_surface_tension_and_core_at_preset_B():
-    """Preset B: f0 = sqrt(3κp_g0 R0³/(R0³ − h³) − 2σ/R0)/(2π R0 sqrt ρ) shows 893.5 kHz."""
-    assert _shown("B", "f0") == "893.5"
-
-
 # --- reference 4: the Blake threshold --------------------------------------------------------------------------
 
 
@@ -204,8 +200,8 @@ def test_blake_threshold_is_the_minimum_of_the_quasi_static_pressure():
 
 @pytest.mark.parametrize(
     "output, shown",
-    [("two_sigma_R0", "145.6"), ("R_B", "2.2449"), ("p_blake", "\u221240.9"), ("blake", "bounded: R stayed below the Blake radius"),
-     ("solver", "LSODA (stiff: 4µT/ρR₀² > 10³), rtol 1e−6")],
+    [("two_sigma_R0", "145.6"), ("R_B", "2.2449"), ("p_blake", "\u221240.9"), ("ramp_growth", "bounded: R stayed below the Blake radius"),
+     ("ramp_solver", "LSODA (stiff: 4µT/ρR₀² > 10³), rtol 1e−6")],
     ids=["2sigma/R0", "R_B", "p_Blake", "bounded", "solver"],
 )
 def test_preset_C_defaults_show_the_reference_readouts(output, shown):
@@ -227,13 +223,13 @@ def test_ramp_across_the_blake_threshold(ratio, status):
 
 @pytest.mark.parametrize(
     "output, shown",
-    [("R_max", "6.8115"), ("t_Rmax", "0.42824"), ("R_min", "0.17624"), ("t_Rmin", "0.51661"), ("mach_max", "0.4578"),
-     ("pg_peak", "1.30"), ("Tg_peak", "11553"), ("Rmin_h", "1.56"), ("R_max2", "6.8389"), ("R_min2", "0.17587"),
-     ("flag", "valid"), ("solver", "DOP853, rtol 1e−6")],
-    ids=["R_max", "t_Rmax", "R_min", "t_Rmin", "mach", "p_g", "T_g", "R_min/h", "R_max2", "R_min2", "flag", "solver"],
+    [("driven_R_max", "6.8115"), ("driven_t_Rmax", "0.42824"), ("driven_R_min", "0.17624"), ("driven_t_Rmin", "0.51661"),
+     ("driven_mach", "0.4578"), ("driven_pg_peak", "1.30"), ("driven_Tg_peak", "11553"), ("driven_Rmin_h", "1.56"),
+     ("driven_R_max2", "6.8389"), ("driven_R_min2", "0.17587"), ("driven_flag", "valid"), ("driven_solver", "DOP853, rtol 1e−6"), ("f0", "893.5")],
+    ids=["R_max", "t_Rmax", "R_min", "t_Rmin", "mach", "p_g", "T_g", "R_min/h", "R_max2", "R_min2", "flag", "solver", "f0"],
 )
 def test_preset_B_defaults_show_the_reference_readouts(output, shown):
-    """Preset B (4.5 µm, p_a = 1.30 p0, 26.5 kHz, KM, argon): the reference digits of physics.md (T_g 1.16e4 K)."""
+    """Preset B (4.5 µm, p_a = 1.30 p0, 26.5 kHz, KM, argon): the reference digits of physics.md (T_g 1.16e4 K, f0 893.5 kHz)."""
     assert _shown("B", output) == shown
 
 
@@ -261,7 +257,7 @@ def test_equilibrium_gas_pressure_includes_only_enabled_terms(effects, gas):
 )
 def test_parameters_of_disabled_effects_are_never_used(param, value):
     """Preset A (vapour, step only): changing a parameter of an effect it does not name leaves every output bitwise equal."""
-    names = ["t_c", "R_mach", "R_max", "R_min", "mach_max", "flag", "curve_y"]
+    names = ["t_c", "R_mach", "collapse_R_min", "collapse_mach", "collapse_flag", "collapse_curve_y"]
     base = Bubble().evaluate(PRESETS["A"][1], wanted=names, effects=PRESETS["A"][0])
     moved = Bubble().evaluate({**PRESETS["A"][1], param: value}, wanted=names, effects=PRESETS["A"][0])
     for name in names:
@@ -284,14 +280,15 @@ def test_solver_follows_from_the_composed_terms(preset, changes, effects, method
 
 @pytest.mark.parametrize(
     "effects, message",
-    [(("ramp", "gas"), "needs `surface_tension`"), (("gas", "radiation", "keller_miksis"), "exclude each other"),
-     (("gas", "surface_tension", "step", "ramp"), "exclude each other"), (("vdw_hard_core",), "needs `gas`")],
-    ids=["ramp-without-sigma", "radiation+KM", "step+ramp", "core-without-gas"],
+    [(("step", "drive"), "one pressure history"), (("gas", "radiation", "keller_miksis"), "exclude each other"),
+     (("gas", "surface_tension", "step", "ramp"), "one pressure history"), (("vdw_hard_core",), "needs `gas`"),
+     (("thermal_damping",), "needs `gas`")],
+    ids=["step+drive", "radiation+KM", "step+ramp", "core-without-gas", "thermal-without-gas"],
 )
 def test_incompatible_effect_sets_raise(effects, message):
-    """An effect without its companion, or two rival effects, raise ValueError naming them."""
+    """An effect without its companion, or two rival effects (two pressure histories), raise ValueError naming them."""
     with pytest.raises(ValueError, match=message):
-        Bubble().evaluate({}, wanted=["R_max"], effects=effects)
+        Bubble().evaluate({}, wanted=["t_c"], effects=effects)
 
 
 @pytest.mark.parametrize("inputs", [{"R0": 0.0}, {"kappa": 0.9}, {"h_frac": 1.0}, {"f": 0.0}, {"R0": float("nan")}],

@@ -3,11 +3,14 @@ assemble, write. Everything is read and computed before anything is written."""
 from __future__ import annotations
 
 import time
+from math import prod
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from .compute.scenes import ResolvedScene, resolve_scene
-from .compute.tabulate import Table, tabulate_scene
+from .compute.cache import TableCache, compute_now, digest, forget_sources, library_version, scene_key, source_digest
+from .compute.executors import executor_for
+from .compute.tabulate import Table, assemble_tables, evaluate_unit, plan_scene
 from .content.markdown_ext import fill_slots, markdown_to_html
 from .content.math import convert_math
 from .content.pages import Page, discover_pages, read_page
@@ -17,24 +20,28 @@ from .render.svg import figure_svg
 from .render.figures import FIGURES
 from .render.layers import layer_points
 from .site import assets
-from .site.assemble import RenderedScene, dom_id, page_html, scene_html
+from .site.assemble import RenderedScene, dom_id, page_html, scene_html, scene_payload
 from .site.writer import write_tree
 
 
 @dataclass(frozen=True)
 class BuildConfig:
-    """Where the sources are and where the site goes."""
+    """Where the sources are, where the site goes, the cache, and where the work runs."""
 
     root: Path
     content: Path
     out: Path
     node_modules: Path
+    cache: Path | None = None  # None: compute everything, remember nothing
+    jobs: int = 1
+    scheduler: str | None = None  # address of a Dask scheduler, e.g. tcp://127.0.0.1:8786
 
     @classmethod
-    def at(cls, root: Path, out: Path | None = None) -> "BuildConfig":
-        """The conventional layout of a project rooted at `root`."""
+    def at(cls, root: Path, out: Path | None = None, **options) -> "BuildConfig":
+        """The conventional layout of a project rooted at `root` (cache in ROOT/.cache)."""
         root = root.resolve()
-        return cls(root, root / "content", (out or root / "build").resolve(), root / "node_modules")
+        options.setdefault("cache", root / ".cache")
+        return cls(root, root / "content", (out or root / "build").resolve(), root / "node_modules", **options)
 
 
 @dataclass
@@ -44,8 +51,12 @@ class BuildReport:
     pages: int = 0
     scenes: int = 0
     stored_values: int = 0
+    computed: int = 0  # scenes evaluated by their models in this build
+    cached: int = 0  # scenes taken from the cache
+    evaluations: int = 0  # work units run (model evaluations over blocks of stops)
     phases: dict[str, float] = field(default_factory=dict)
     files: dict[str, int] = field(default_factory=dict)
+    scene_lines: list[str] = field(default_factory=list)  # one line per scene: cached or computed and why
 
 
 @dataclass(frozen=True)
@@ -62,14 +73,19 @@ def build(config: BuildConfig, progress=print) -> BuildReport:
     """Build the whole site into `config.out`, or raise BuildFailed with every author error."""
     report, log = BuildReport(), ErrorLog()
     clock = _Clock(report, progress)
+    forget_sources()  # a long-lived process (tests, a watcher) must see edited model code
+    cache = TableCache(config.cache) if config.cache else None
+    remember = cache.remember if cache else compute_now
     pages = clock.phase("read", read_pages, config, log)
     scenes = clock.phase("resolve", resolve_scenes, pages, log)
-    mathml = clock.phase("math", convert_page_math, pages, config, log)
+    mathml = clock.phase("math", convert_page_math, pages, config, log, remember)
     log.raise_if_any()
-    tables = clock.phase("tabulate", tabulate_scenes, scenes, log)
+    tables = clock.phase("tabulate", tabulate_scenes, scenes, cache, config, report, log, progress)
     log.raise_if_any()
-    figures = clock.phase("render", render_figures, scenes, tables)
-    files = clock.phase("assemble", assemble_site, pages, scenes, tables, figures, mathml, config)
+    figures = clock.phase("render", render_figures, scenes, tables, remember)
+    files = clock.phase("assemble", assemble_site, pages, scenes, tables, figures, mathml, config, remember)
+    if cache:
+        report.scene_lines += cache.problems
     clock.phase("write", write_tree, files, config.out)
     report.pages, report.scenes = len(pages), len(scenes)
     report.stored_values = sum(t.quanta.size for ts in tables.values() for t in ts.values())
@@ -117,10 +133,10 @@ def resolve_scenes(pages: list[Page], log: ErrorLog) -> list[PageScene]:
     return resolved
 
 
-def convert_page_math(pages: list[Page], config: BuildConfig, log: ErrorLog) -> dict[str, list[str]]:
-    """MathML for every formula of every page (one Temml run for the whole book)."""
+def convert_page_math(pages: list[Page], config: BuildConfig, log: ErrorLog, remember=compute_now) -> dict[str, list[str]]:
+    """MathML for every formula of every page (one Temml run for the whole book, or none if cached)."""
     items = [m for page in pages for m in page.found.maths]
-    mathml, errors = convert_math(items, config.node_modules)
+    mathml, errors = convert_math(items, config.node_modules, remember)
     for error in errors:
         log.add(error)
     by_page, start = {}, 0
@@ -130,16 +146,57 @@ def convert_page_math(pages: list[Page], config: BuildConfig, log: ErrorLog) -> 
     return by_page
 
 
-def tabulate_scenes(scenes: list[PageScene], log: ErrorLog) -> dict[str, dict[str, Table]]:
-    """Evaluate each scene's readouts and figure outputs over their slider grids."""
-    tables = {}
+def tabulate_scenes(scenes, cache: TableCache | None, config: BuildConfig, report: BuildReport, log: ErrorLog,
+                    progress=None) -> dict[str, dict[str, Table]]:
+    """Each scene's tables: from the cache when its key matches, else computed by the executor."""
+    tables, pending = {}, []
     for item in scenes:
         names = needed_outputs(item.scene)
-        try:
-            tables[_key(item)] = tabulate_scene(item.scene, names)
-        except AuthorError as error:
-            log.add(error)
+        key = scene_key(item.scene, names)
+        found = cache.load(key) if cache else None
+        if found is not None:
+            tables[_key(item)] = {name: found[name] for name in names}
+            _note_scene(report, item, cache, key, cached=True, seconds=0.0, progress=progress, total=len(scenes))
+        else:
+            pending.append((item, names, key, plan_scene(item.scene, names, item.scene.model.chunk_stops)))
+    with executor_for(config.jobs, config.scheduler) as executor:
+        submitted = [[executor.submit(_timed, evaluate_unit, unit) for unit in units] for *_, units in pending]
+        for (item, names, key, units), futures in zip(pending, submitted):
+            try:
+                results, seconds = _collect(futures)
+                computed = assemble_tables(item.scene, units, results)
+            except AuthorError as error:
+                log.add(error)
+                continue
+            tables[_key(item)] = {name: computed[name] for name in names}
+            report.evaluations += len(units)
+            if cache:
+                cache.store(key, tables[_key(item)])
+            _note_scene(report, item, cache, key, cached=False, seconds=seconds, progress=progress, total=len(scenes))
     return tables
+
+
+def _timed(function, *args):
+    start = time.perf_counter()
+    return function(*args), time.perf_counter() - start
+
+
+def _collect(futures) -> tuple[list, float]:
+    """Results of a scene's units in plan order, and the seconds they took in all."""
+    pairs = [future.result() for future in futures]
+    return [result for result, _ in pairs], sum(seconds for _, seconds in pairs)
+
+
+def _note_scene(report: BuildReport, item: PageScene, cache, key, cached: bool, seconds: float, progress, total: int) -> None:
+    """Count the scene and log one line: name, stops, seconds, cached or computed and why."""
+    stops = prod(axis.count for axis in item.scene.axes)
+    status = cache.explain(_key(item), key, cached) if cache else "computed: no cache"
+    report.cached += cached
+    report.computed += not cached
+    line = f"[{report.cached + report.computed}/{total}] {_key(item):<36} {stops:>14,} stops {seconds:7.2f} s  {status}"
+    report.scene_lines.append(line)
+    if progress:
+        progress(line)
 
 
 def needed_outputs(scene: ResolvedScene) -> list[str]:
@@ -150,7 +207,7 @@ def needed_outputs(scene: ResolvedScene) -> list[str]:
     return names
 
 
-def render_figures(scenes: list[PageScene], tables) -> dict[str, RenderedScene]:
+def render_figures(scenes: list[PageScene], tables, remember=compute_now) -> dict[str, RenderedScene]:
     """Each scene's static SVG with its moving layers drawn at the default slider values."""
     figures = {}
     for item in scenes:
@@ -158,27 +215,42 @@ def render_figures(scenes: list[PageScene], tables) -> dict[str, RenderedScene]:
         view = FIGURES[scene.spec.figure or scene.spec.model]
         layers = view.layers(scene)
         points = layer_points(layers, scene, scene_tables, scene.default_stops)
-        svg = figure_svg(view.draw(scene, scene_tables), layers, points, dom_id(scene), view.label)
-        figures[_key(item)] = RenderedScene(svg, tuple(layers))
+
+        def draw(view=view, scene=scene, scene_tables=scene_tables, layers=layers, points=points) -> bytes:
+            return figure_svg(view.draw(scene, scene_tables), layers, points, dom_id(scene), view.label).encode()
+
+        key = digest(_scene_digest(item), source_digest(FIGURE_MODULES | {type(view).__module__}), "figure")
+        figures[_key(item)] = RenderedScene(remember("figures", key, draw).decode(), tuple(layers))
     return figures
 
 
-def assemble_site(pages, scenes, tables, figures, mathml, config: BuildConfig) -> dict[str, bytes]:
+def assemble_site(pages, scenes, tables, figures, mathml, config: BuildConfig, remember=compute_now) -> dict[str, bytes]:
     """Every output file, in memory: pages, the script, the stylesheet and the math font."""
     book_title = next((p.title for p in pages if p.slug == "index"), "Book")
     files: dict[str, bytes] = {}
+    payload_code = source_digest(frozenset({"sitegen.site.assemble"}))
     for page in pages:
-        html = [
-            scene_html(s.scene, tables[_key(s)], figures[_key(s)], fill_slots(s.caption, page.found, mathml[page.slug], []))
-            for s in scenes
-            if s.page is page
-        ]
+        html = []
+        for s in (s for s in scenes if s.page is page):
+            figure = figures[_key(s)]
+            payload = remember("payloads", digest(_scene_digest(s), payload_code),
+                               lambda s=s, figure=figure: scene_payload(s.scene, tables[_key(s)], figure.layers).encode())
+            caption = fill_slots(s.caption, page.found, mathml[page.slug], [])
+            html.append(scene_html(s.scene, tables[_key(s)], figure, caption, payload.decode()))
         body = fill_slots(page.html, page.found, mathml[page.slug], html)
         files[page.output_name] = page_html(page, body, pages, book_title).encode()
     files["assets/sitegen.js"] = assets.script()
     files["assets/sitegen.css"] = assets.stylesheet(config.node_modules)
-    files[f"assets/{assets.FONT_FILE}"] = assets.math_font([f.decode() for n, f in files.items() if n.endswith(".html")])
+    files[f"assets/{assets.FONT_FILE}"] = assets.math_font([f.decode() for n, f in files.items() if n.endswith(".html")], remember)
     return files
+
+
+FIGURE_MODULES = frozenset({"sitegen.render.svg", "sitegen.render.style", "sitegen.render.layers", "sitegen.render.figures.base"})
+
+
+def _scene_digest(item: PageScene) -> str:
+    """What a scene's figure and data depend on: its tables' key, its place and the matplotlib version."""
+    return digest(scene_key(item.scene, needed_outputs(item.scene)).digest, _key(item), f"matplotlib {library_version('matplotlib')}")
 
 
 def _key(item: PageScene) -> str:

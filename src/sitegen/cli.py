@@ -1,4 +1,4 @@
-"""The `sitegen` command: build, serve."""
+"""The `sitegen` command: build, serve, review (and accept-figures for the figure goldens)."""
 from __future__ import annotations
 
 import argparse
@@ -19,13 +19,34 @@ def main(argv: list[str] | None = None) -> int:
     build_cmd.add_argument("--root", type=Path, default=Path.cwd(), help="project folder (holds content/)")
     build_cmd.add_argument("--out", type=Path, default=None, help="output folder (default ROOT/build)")
     build_cmd.add_argument("--debug", action="store_true", help="show Python tracebacks")
+    build_cmd.add_argument("--explain", action="store_true", help="say for each scene why it was computed or that it was cached")
+    build_cmd.add_argument("--jobs", type=int, default=1, help="tabulate in N local processes (default 1: serial)")
+    build_cmd.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT", help="tabulate on a Dask cluster")
+    build_cmd.add_argument("--no-cache", action="store_true", help="compute every scene; neither read nor write .cache/")
     serve_cmd = commands.add_parser("serve", help="serve build/ on 127.0.0.1")
     serve_cmd.add_argument("--dir", type=Path, default=Path("build"))
     serve_cmd.add_argument("--port", type=int, default=8000)
     serve_cmd.add_argument("--bind", default="127.0.0.1")
+    review_cmd = commands.add_parser("review", help="compare two builds: the figures, tables and text that changed")
+    review_cmd.add_argument("trees", nargs="*", type=Path, metavar="BUILD", help="OLD NEW, or with --base only NEW")
+    review_cmd.add_argument("--base", metavar="REV", help="build git revision REV in a temporary worktree as OLD; NEW defaults to ROOT/build")
+    review_cmd.add_argument("--root", type=Path, default=Path.cwd(), help="project folder (for --base)")
+    review_cmd.add_argument("--out", type=Path, default=None, help="report folder (default ./build-review)")
+    review_cmd.add_argument("--no-render", action="store_true", help="do not render figures to PNG (no Chromium needed)")
+    accept_cmd = commands.add_parser("accept-figures", help="rewrite the figure goldens from a build (refused in CI)")
+    accept_cmd.add_argument("--build", type=Path, default=Path("build"))
+    accept_cmd.add_argument("--goldens", type=Path, default=Path("tests/goldens"))
     args = parser.parse_args(argv)
     if args.command == "build":
         return _build(args)
+    if args.command == "review":
+        from .review.command import run_review
+
+        return run_review(args.trees, args.base, args.root, args.out, render=not args.no_render)
+    if args.command == "accept-figures":
+        from .review.command import run_accept
+
+        return run_accept(args.build, args.goldens)
     return _serve(args)
 
 
@@ -34,9 +55,12 @@ def _build(args) -> int:
     from .build import BuildConfig, build
     from .content.math import MathToolMissing
 
-    config = BuildConfig.at(args.root, args.out)
+    options = {"jobs": args.jobs, "scheduler": args.scheduler}
+    if args.no_cache:
+        options["cache"] = None
+    config = BuildConfig.at(args.root, args.out, **options)
     try:
-        report = build(config)
+        report = build(config, progress=_Progress(sys.stdout, args.explain))
     except BuildFailed as failure:
         for error in failure.errors:
             print(error, file=sys.stderr)
@@ -47,9 +71,38 @@ def _build(args) -> int:
         return 2
     total = sum(report.phases.values())
     size = sum(report.files.values())
-    print(f"built {report.pages} pages, {report.scenes} scenes, {report.stored_values} stored values, "
-          f"{size / 1024:.0f} KiB in {total:.2f} s -> {config.out}")
+    print(f"built {report.pages} pages, {report.scenes} scenes ({report.computed} computed, {report.cached} cached), "
+          f"{report.stored_values} stored values, {size / 1024:.0f} KiB in {total:.2f} s -> {config.out}")
     return 0
+
+
+class _Progress:
+    """Build progress: one line per phase and per scene; on a terminal also a live bar of scenes."""
+
+    def __init__(self, stream, explain: bool):
+        self.stream, self.explain, self.tty = stream, explain, stream.isatty()
+        self.bar_shown = False
+
+    def __call__(self, line: str) -> None:
+        if not self.explain:
+            line = line.split(": ", 1)[0] if line.startswith("[") else line  # "computed: new" -> "computed"
+        if self.bar_shown:
+            self.stream.write("\r\x1b[2K")
+        self.stream.write(line + "\n")
+        done, total = _counter(line)
+        if self.tty and total and done < total:
+            filled = 30 * done // total
+            self.stream.write(f"[{'#' * filled}{'.' * (30 - filled)}] {done}/{total} scenes")
+        self.bar_shown = bool(self.tty and total and done < total)
+        self.stream.flush()
+
+
+def _counter(line: str) -> tuple[int, int]:
+    """(3, 7) from a scene line "[3/7] ..."; (0, 0) for any other line."""
+    if not line.startswith("["):
+        return 0, 0
+    done, _, total = line[1 : line.index("]")].partition("/")
+    return int(done), int(total)
 
 
 def _serve(args) -> int:

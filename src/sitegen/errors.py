@@ -15,7 +15,7 @@ class SourceLoc:
         return f"{self.path}:{self.line}"
 
 
-@dataclass(frozen=True)
+@dataclass(eq=False)  # not frozen: the exception machinery sets attributes such as __cause__
 class AuthorError(Exception):
     """One mistake in the sources, reported as `path:line: scene 'id': message`."""
 
@@ -26,6 +26,9 @@ class AuthorError(Exception):
     def __str__(self) -> str:
         where = f"scene '{self.scene}': " if self.scene else ""
         return f"{self.loc}: {where}{self.message}"
+
+    def __reduce__(self):  # errors raised in worker processes travel back by pickling
+        return (AuthorError, (self.loc, self.message, self.scene))
 
 
 class BuildFailed(Exception):

@@ -47,48 +47,106 @@ class Table:
         return [row[:n] for row, n in zip(matrix, self.lengths.tolist())]
 
 
-def tabulate_scene(scene: ResolvedScene, names: list[str]) -> dict[str, Table]:
-    """Evaluate the named outputs over their slider grids; fail on any non-finite value."""
+@dataclass(frozen=True)
+class WorkUnit:
+    """One piece of a scene's tabulation: some outputs over a block of rows of their grid."""
+
+    scene: ResolvedScene
+    axes: tuple[int, ...]  # the sliders the outputs depend on
+    names: tuple[str, ...]
+    rows: tuple[int, int] | None = None  # a block of stops of the first axis; None for all
+
+    def stops(self) -> int:
+        """How many parameter points this unit evaluates."""
+        counts = [self.scene.axes[a].count for a in self.axes]
+        if self.rows and counts:
+            counts[0] = self.rows[1] - self.rows[0]
+        return int(np.prod(counts)) if counts else 1
+
+
+def plan_scene(scene: ResolvedScene, names: list[str], max_stops: int | None = None) -> list[WorkUnit]:
+    """The units of work for a scene: one per group of outputs sharing their sliders, split into
+    blocks of rows of at most `max_stops` points when given (for models costly per point)."""
     groups: dict[tuple[int, ...], list[str]] = defaultdict(list)
     for name in names:
         deps = scene.model.output(name).deps
         groups[tuple(i for i, a in enumerate(scene.axes) if a.param in deps)].append(name)
-    tables: dict[str, Table] = {}
+    units = []
     for axes, group in sorted(groups.items()):
-        tables.update(_tabulate_group(scene, axes, group))
+        whole = WorkUnit(scene, axes, tuple(group))
+        if not max_stops or not axes or whole.stops() <= max_stops:
+            units.append(whole)
+            continue
+        rows = scene.axes[axes[0]].count
+        per_row = whole.stops() // rows
+        step = max(1, max_stops // per_row)
+        units += [WorkUnit(scene, axes, tuple(group), (r, min(r + step, rows))) for r in range(0, rows, step)]
+    return units
+
+
+def evaluate_unit(unit: WorkUnit) -> dict[str, np.ndarray]:
+    """The raw values of a unit's outputs over its block of the grid (run anywhere: pure)."""
+    scene = unit.scene
+    inputs = scene.base_values()
+    values = [scene.axes[i].values() for i in unit.axes]
+    if unit.rows and values:
+        values[0] = values[0][unit.rows[0] : unit.rows[1]]
+    grids = np.meshgrid(*values, indexing="ij")
+    for i, grid in zip(unit.axes, grids):
+        inputs[scene.axes[i].param] = grid
+    shape = tuple(len(v) for v in values)
+    try:
+        results = scene.model.evaluate(inputs, unit.names, scene.effects)
+    except (ValueError, ArithmeticError) as error:
+        raise AuthorError(scene.spec.loc, f"model '{scene.model.name}' failed: {error}", scene.id) from None
+    out = {}
+    for name in unit.names:
+        size = scene.model.output(name).size
+        out[name] = np.array(np.broadcast_to(np.asarray(results[name], dtype=float), shape + ((size,) if size else ())))
+    return out
+
+
+def assemble_tables(scene: ResolvedScene, units: list[WorkUnit], results: list[dict[str, np.ndarray]]) -> dict[str, Table]:
+    """Join the units' blocks (in plan order) and turn each output into its table."""
+    blocks: dict[tuple[int, ...], list[dict[str, np.ndarray]]] = defaultdict(list)
+    for unit, result in zip(units, results):
+        blocks[unit.axes].append(result)
+    tables = {}
+    for unit in units:
+        if unit.names[0] in tables:
+            continue
+        parts = blocks[unit.axes]
+        for name in unit.names:
+            array = np.concatenate([p[name] for p in parts], axis=0) if unit.axes else parts[0][name]
+            tables[name] = _finish_table(scene, unit.axes, name, array)
+    return tables
+
+
+def tabulate_scene(scene: ResolvedScene, names: list[str]) -> dict[str, Table]:
+    """Evaluate the named outputs over their slider grids here and now; fail on any non-finite value."""
+    units = plan_scene(scene, names)
+    tables = assemble_tables(scene, units, [evaluate_unit(u) for u in units])
     return {name: tables[name] for name in names}
 
 
-def _tabulate_group(scene: ResolvedScene, axes: tuple[int, ...], names: list[str]) -> dict[str, Table]:
-    inputs = scene.base_values()
-    grids = np.meshgrid(*(scene.axes[i].values() for i in axes), indexing="ij")
-    for i, grid in zip(axes, grids):
-        inputs[scene.axes[i].param] = grid
-    shape = tuple(scene.axes[i].count for i in axes)
-    try:
-        values = scene.model.evaluate(inputs, names, scene.effects)
-    except (ValueError, ArithmeticError) as error:
-        raise AuthorError(scene.spec.loc, f"model '{scene.model.name}' failed: {error}", scene.id) from None
-    tables = {}
-    for name in names:
-        output = scene.model.output(name)
-        array = np.broadcast_to(np.asarray(values[name], dtype=float), shape + ((output.size,) if output.size else ()))
-        lengths = _ragged_lengths(scene, axes, output, array) if output.ragged else None
-        if lengths is not None:
-            array = np.nan_to_num(array, nan=0.0)  # the padding; the lengths say where rows end
-        _require_finite(scene, axes, output, array)
-        quanta = array.astype(np.int64) if output.is_text else quantize(array, output.decimals, special=bool(output.special))
-        if lengths is not None:  # drop axes only where the lengths are constant too
-            quanta = np.concatenate([quanta, lengths[..., None]], axis=-1)
-        kept, quanta = _drop_constant_axes(axes, quanta)
-        if lengths is not None:
-            quanta, lengths = quanta[..., :-1], quanta[..., -1]
-        grid = quanta.shape[: len(kept)]
-        tables[name] = Table(
-            name, kept, grid, quanta.reshape(-1), output.decimals, output.labels, output.size,
-            None if lengths is None else lengths.reshape(-1), output.special,
-        )
-    return tables
+def _finish_table(scene: ResolvedScene, axes: tuple[int, ...], name: str, array: np.ndarray) -> Table:
+    """Check, quantise and compact one output's raw values into its table."""
+    output = scene.model.output(name)
+    lengths = _ragged_lengths(scene, axes, output, array) if output.ragged else None
+    if lengths is not None:
+        array = np.nan_to_num(array, nan=0.0)  # the padding; the lengths say where rows end
+    _require_finite(scene, axes, output, array)
+    quanta = array.astype(np.int64) if output.is_text else quantize(array, output.decimals, special=bool(output.special))
+    if lengths is not None:  # drop axes only where the lengths are constant too
+        quanta = np.concatenate([quanta, lengths[..., None]], axis=-1)
+    kept, quanta = _drop_constant_axes(axes, quanta)
+    if lengths is not None:
+        quanta, lengths = quanta[..., :-1], quanta[..., -1]
+    grid = quanta.shape[: len(kept)]
+    return Table(
+        name, kept, grid, quanta.reshape(-1), output.decimals, output.labels, output.size,
+        None if lengths is None else lengths.reshape(-1), output.special,
+    )
 
 
 def _ragged_lengths(scene: ResolvedScene, axes, output, array: np.ndarray) -> np.ndarray:

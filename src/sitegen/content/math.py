@@ -1,6 +1,7 @@
 """TeX to MathML at build time, with Temml run once per build by node."""
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import subprocess
@@ -16,12 +17,18 @@ class MathToolMissing(RuntimeError):
     """node or the Temml package is not installed (a set-up problem, not an author error)."""
 
 
-def convert_math(items: list[MathItem], node_modules: Path) -> tuple[list[str], list[AuthorError]]:
-    """MathML for each formula (in order), and an author error for each formula Temml rejects."""
+def convert_math(items: list[MathItem], node_modules: Path, remember=None) -> tuple[list[str], list[AuthorError]]:
+    """MathML for each formula (in order), and an author error for each formula Temml rejects.
+
+    `remember(kind, key, compute)` may serve a previous run's conversion of the same formulas.
+    """
     unique = sorted({(m.tex, m.display) for m in items})
     if not unique:
         return [], []
-    results = dict(zip(unique, _run_temml(unique, node_modules)))
+    key = hashlib.sha256(json.dumps([unique, _converter_version(node_modules)]).encode()).hexdigest()
+    converted = remember("math", key, lambda: json.dumps(_run_temml(unique, node_modules)).encode()) if remember \
+        else json.dumps(_run_temml(unique, node_modules)).encode()
+    results = dict(zip(unique, json.loads(converted)))
     mathml, errors = [], []
     for item in items:
         result = results[(item.tex, item.display)]
@@ -29,6 +36,15 @@ def convert_math(items: list[MathItem], node_modules: Path) -> tuple[list[str], 
             errors.append(AuthorError(item.loc, f"TeX cannot be converted: {_first_line(result['error'])} (in '{item.tex}')"))
         mathml.append(result.get("mathml", ""))
     return mathml, errors
+
+
+def _converter_version(node_modules: Path) -> str:
+    """What the MathML depends on besides the TeX: Temml's version and our script."""
+    try:
+        version = json.loads((node_modules / "temml" / "package.json").read_text())["version"]
+    except (FileNotFoundError, KeyError, ValueError):
+        version = "missing"
+    return f"temml {version}; {hashlib.sha256(SCRIPT.read_bytes()).hexdigest()}"
 
 
 def _run_temml(formulas: list[tuple[str, bool]], node_modules: Path) -> list[dict]:

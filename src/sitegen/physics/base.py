@@ -85,6 +85,9 @@ class Model:
     params: ClassVar[tuple[Param, ...]]
     outputs: ClassVar[tuple[Output, ...]]
     effects: ClassVar[tuple[str, ...]] = ()
+    # Models that are costly per point (an ODE solve each) set this: their grids are split into
+    # blocks of at most this many points, so that parallel builds can spread one scene's work.
+    chunk_stops: ClassVar[int | None] = None
 
     @classmethod
     def param(cls, name: str) -> Param:

@@ -21,8 +21,8 @@ DRIVE_PERIODS = 2  # the driven bubble runs two acoustic periods from rest at R0
 CURVE_EXTREMA = 200  # event-detected extrema merged into the drawn curve (the deepest, if more)
 CURVE_SIZE = CURVE_POINTS + CURVE_EXTREMA + 1  # samples, extrema and the stop
 
-NEEDS = {"vdw_hard_core": ("gas",), "thermal_damping": ("gas",), "radiation": ("gas",), "ramp": ("gas", "surface_tension")}
-EXCLUSIVE = (("radiation", "keller_miksis"), ("step", "ramp"))
+NEEDS = {"vdw_hard_core": "gas", "thermal_damping": "gas", "radiation": "gas"}
+PROTOCOLS = ("step", "drive", "ramp")  # what is done to the liquid pressure: one per scene
 
 FLAGS = (
     "valid",
@@ -47,12 +47,18 @@ ABANDONED = (CAP_NFEV, CAP_WALL, FAILED)
 def check_effects(effects) -> None:
     """Raise ValueError for an effect set that is not a model: a missing companion or two rivals."""
     for effect, needed in NEEDS.items():
-        missing = [n for n in needed if n not in effects]
-        if effect in effects and missing:
-            raise ValueError(f"effect `{effect}` needs {', '.join(f'`{m}`' for m in missing)}")
-    for a, b in EXCLUSIVE:
-        if a in effects and b in effects:
-            raise ValueError(f"effects `{a}` and `{b}` exclude each other; enable one")
+        if effect in effects and needed not in effects:
+            raise ValueError(f"effect `{effect}` needs `{needed}`")
+    if "radiation" in effects and "keller_miksis" in effects:
+        raise ValueError("effects `radiation` and `keller_miksis` exclude each other (Keller–Miksis includes radiation)")
+    protocols = [p for p in PROTOCOLS if p in effects]
+    if len(protocols) > 1:
+        raise ValueError(f"effects {' and '.join(f'`{p}`' for p in protocols)} exclude each other: one pressure history per scene")
+
+
+def protocol(effects) -> str:
+    """The scene's pressure history: "step", "drive", "ramp", or "" (the liquid stays at p0)."""
+    return next((p for p in PROTOCOLS if p in effects), "")
 
 
 class Scales:
@@ -99,7 +105,7 @@ def compose(point: dict, effects) -> tuple[Problem, Scales]:
     if "keller_miksis" in on or "radiation" in on:
         fields["compressible"] = terms.KELLER_MIKSIS if "keller_miksis" in on else terms.RADIATION
     if "ramp" in on:
-        r_b, p_blake = terms.blake(fields["gas"], sigma, vapour)
+        r_b, p_blake = terms.blake_nucleus(sigma, vapour)
         fields.update(ramp_to=point["p_target"] * float(p_blake), ramp_time=point["t_ramp"] * 1e-6 / t_ref,
                       r_unbounded=terms.UNBOUNDED * float(r_b))
     pb = Problem(**fields, tau_end=_window(point, on, Problem(**fields), t_ref))
@@ -123,6 +129,8 @@ def _thermal(point: dict, fields: dict, radius: float, rho: float) -> dict:
         omega = fields["omega"]
     else:
         omega = terms.natural_omega(Problem(gas=fields["gas"], kappa=gamma, eta=fields["eta"], sigma=fields["sigma"]))
+    if omega <= 0.0:  # no gas, or no restoring force: nothing oscillates, the gas law is left as it is
+        return {}
     omega_si = omega * math.sqrt(P0 / rho) / radius
     phi = terms.thermal_phi(gamma, point["D_g"] * 1e-6 / (omega_si * radius**2))
     mu_thermal = fields["gas"] * P0 * phi.imag / (4.0 * omega_si)
@@ -139,10 +147,10 @@ def read_run(run: Run, pb: Problem, scales: Scales, effects) -> dict:
     to_y = _y_transform(pb, effects)
     out = {
         "R_max": first["r_max"][1], "t_Rmax": scales.x(first["r_max"][0]),
-        "R_min": first["r_min"][1], "t_Rmin": scales.x(first["r_min"][0]), "t_collapse": scales.x(first["r_min"][0]),
-        "mach_max": first["speed"] / pb.sound,
+        "R_min": first["r_min"][1], "t_Rmin": scales.x(first["r_min"][0]),
+        "mach": first["speed"] / pb.sound,
         "R_max2": second["r_max"][1], "R_min2": second["r_min"][1],
-        "flag": _flag(run, pb), "solver": _solver_label(run), "blake": _blake_state(run, pb),
+        "flag": _flag(run, pb), "solver": _solver_label(run), "growth": _blake_state(run, pb),
     }
     out.update(_gas_peaks(pb, first["r_min"][1]))
     out.update(_figure_marks(run, scales, to_y, first))

@@ -188,6 +188,17 @@ def blake(gas0, sigma, vapour):
     return r_b, vapour - 4.0 * sigma / (3.0 * r_b)
 
 
+def blake_nucleus(sigma, vapour):
+    """Blake's (r_B, p_Blake) for the nucleus in equilibrium at p0: p_g0 = 1 − P_v + 2Σ.
+
+    Without surface tension r_B is infinite and p_Blake = P_v (the limit σ → 0).
+    """
+    sigma, vapour = np.asarray(sigma, float), np.asarray(vapour, float)
+    safe = np.where(sigma > 0, sigma, 1.0)
+    r_b, p_blake = blake(1.0 - vapour + 2.0 * safe, safe, vapour)
+    return np.where(sigma > 0, r_b, np.inf), np.where(sigma > 0, p_blake, vapour)
+
+
 def energy(pb: Problem, r, v):
     """E/ρR0³U² = 2πr³ṙ² + (4π/3)(P∞ − P_v)r³ + 4πΣr² + U_g: conserved without µ and drive."""
     r, v = np.asarray(r, float), np.asarray(v, float)

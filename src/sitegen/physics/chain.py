@@ -194,10 +194,13 @@ def continuum(x, t, sigma, launch, ends: str = "fixed", amplitude: float = AMPLI
     period = LENGTH if ends == "periodic" else 2 * LENGTH
     sign = {"fixed": -1.0, "free": 1.0, "periodic": 0.0}[ends]
 
-    def reflected(s):  # the extension of u0 beyond [0, L] that the ends impose
-        return _pulse_images(s, sigma, period, amplitude) + sign * _pulse_images(-s, sigma, period, amplitude)
+    def images(s):
+        return _pulse_images(s, sigma, period, amplitude)
 
-    right = _pulse_images(x - SPEED * t, sigma, period, amplitude) + sign * _pulse_images(-x - SPEED * t, sigma, period, amplitude)
+    def reflected(s):  # the extension of u0 beyond [0, L] that the ends impose (a ring needs none)
+        return images(s) + sign * images(-s) if sign else images(s)
+
+    right = images(x - SPEED * t) + sign * images(-x - SPEED * t) if sign else images(x - SPEED * t)
     split = 0.5 * (reflected(x - SPEED * t) + reflected(x + SPEED * t))
     return np.where(launch == RIGHT_MOVING, right, split)
 
@@ -286,7 +289,7 @@ class Chain(Model):
         N, sigma, t, launch = (x[k] for k in self._motion[:4])
         groups = _groups(x, effects)
         ends = groups[1][..., 0]
-        a = np.where(ends == ENDS.index("fixed"), LENGTH / (np.rint(N) + 1), LENGTH / np.rint(N))
+        a = np.where(ends == ENDS.index("fixed"), spacing(np.rint(N), "fixed"), spacing(np.rint(N), "free"))
 
         def motion(n, terms, w):
             return chain_motion(n, sigma[w], t[w], launch[w], terms, 1.0)

@@ -58,12 +58,16 @@ def _layers_svg(layers: list[Layer], points: list[list[tuple[float, float]]], fr
         parts.append(f'<clipPath id="layers-clip-{index}"><rect x="{x}" y="{y}" width="{w}" height="{h}"/></clipPath>')
         parts.append(f'<g clip-path="url(#layers-clip-{index})"><g transform="matrix({a} 0 0 {d} {e} {f})">')
         for layer, pts in members:
-            style = " ".join(f'{k}="{v}"' for k, v in sorted(layer.style.items()))
+            attributes = dict(layer.style)
             if layer.kind == "dots":  # a zero-length stroke with round caps is a dot
                 # inline style: matplotlib's stylesheet sets stroke-linecap: butt on every element
-                shape = f'path data-layer="{layer.name}" d="{format_dots(pts)}" style="stroke-linecap: round"'
+                # (merged into the layer's own style: an element may carry one style attribute)
+                own = attributes.get("style", "")
+                attributes["style"] = own if "stroke-linecap" in own else "; ".join(filter(None, ["stroke-linecap: round", own]))
+                shape = f'path data-layer="{layer.name}" d="{format_dots(pts)}"'
             else:
                 shape = f'{layer.kind} data-layer="{layer.name}" points="{format_points(pts)}" stroke-linejoin="round"'
+            style = " ".join(f'{k}="{v}"' for k, v in sorted(attributes.items()))
             parts.append(f'<{shape} {style} vector-effect="non-scaling-stroke"/>')
         parts.append("</g></g>")
     parts.append("</g>")

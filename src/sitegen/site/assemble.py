@@ -23,6 +23,9 @@ _ENV = jinja2.Environment(
 )
 
 
+_BIG_SVG, _BIG_DATA, _BIG_BODY = (f"\x00sitegen-{name}\x00" for name in ("svg", "data", "body"))
+
+
 @dataclass(frozen=True)
 class RenderedScene:
     """A scene's finished figure: the SVG with layers at the defaults, and the layer specs."""
@@ -31,24 +34,26 @@ class RenderedScene:
     layers: tuple[Layer, ...]
 
 
-def scene_html(scene: ResolvedScene, tables: dict[str, Table], figure: RenderedScene, caption: str) -> str:
-    """The scene element: figure, labelled sliders, readouts at the defaults, and its data."""
+def scene_html(scene: ResolvedScene, tables: dict[str, Table], figure: RenderedScene, caption: str, payload: str) -> str:
+    """The scene element: figure, labelled controls, readouts at the defaults, and its data (`payload`)."""
     stops = scene.default_stops
     sliders = [_slider_view(scene, i, stops[i]) for i in range(len(scene.axes))]
     readouts = [
         {"name": o.name, "label": o.label, "is_text": o.is_text, "text": readout_text(tables[o.name], o.unit, stops)}
         for o in scene.readouts
     ]
-    return _ENV.get_template("scene.html").render(
+    html = _ENV.get_template("scene.html").render(
         id=dom_id(scene),
         model=scene.model.name,
-        svg=figure.svg,
+        svg=_BIG_SVG,
         sliders=sliders,
         readouts=readouts,
         caption=caption,
         animate=scene.spec.animate,
-        data=scene_payload(scene, tables, figure.layers),
+        data=_BIG_DATA,
     )
+    # Large trusted fragments go in after rendering: passing megabytes through jinja2's Markup is slow.
+    return html.replace(_BIG_SVG, figure.svg, 1).replace(_BIG_DATA, payload, 1)
 
 
 def dom_id(scene: ResolvedScene) -> str:
@@ -67,10 +72,10 @@ def readout_text(table: Table, unit: str, stops: tuple[int, ...]) -> str:
 
 
 def with_unit(text: str, unit: str) -> str:
-    """A value and its unit; a multiplier sign hugs the number ("1.00×"), other units are spaced."""
+    """A value and its unit; "×" and "°" hug the number ("1.00×", "90°"), other units are spaced."""
     if not unit:
         return text
-    return f"{text}{unit}" if unit.startswith("×") else f"{text} {unit}"
+    return f"{text}{unit}" if unit in ("×", "°") else f"{text} {unit}"
 
 
 def slider_text(scene: ResolvedScene, index: int, stop: int) -> str:
@@ -208,9 +213,10 @@ def page_html(page: Page, body: str, pages: list[Page], book_title: str) -> str:
         crumbs.insert(0, by_slug[parent])
         parent = by_slug[parent].parent
     contents = _contents(pages) if page.slug == "index" else []
-    return _ENV.get_template("base.html").render(
-        page=page, body=body, crumbs=crumbs, contents=contents, book_title=book_title
+    html = _ENV.get_template("base.html").render(
+        page=page, body=_BIG_BODY, crumbs=crumbs, contents=contents, book_title=book_title
     )
+    return html.replace(_BIG_BODY, body, 1)
 
 
 def _contents(pages: list[Page]) -> list[TocEntry]:

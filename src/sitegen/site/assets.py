@@ -1,6 +1,7 @@
 """Static assets: the page script, the stylesheet (ours plus Temml's), and a subset math font."""
 from __future__ import annotations
 
+import hashlib
 import io
 import re
 from html import unescape
@@ -8,6 +9,7 @@ from pathlib import Path
 
 import logging
 
+import fontTools
 from fontTools import subset
 from fontTools.ttLib import TTFont
 
@@ -34,19 +36,28 @@ def stylesheet(node_modules: Path) -> bytes:
     return (ours + "\n/* Rules for Temml's MathML (MIT licence), from temml/dist/Temml-Latin-Modern.css */\n" + temml_css).encode()
 
 
-def math_font(pages_html: list[str]) -> bytes:
+def math_font(pages_html: list[str], remember=None) -> bytes:
     """Latin Modern Math cut down to the characters the pages' formulas use (with their variants)."""
-    characters = set()
+    characters = set("()[]{}|=+−0123456789")
     for html in pages_html:
         for element in _MATH_ELEMENT.findall(html):
             characters.update(unescape(_TAG.sub("", element)))
+    text = "".join(sorted(characters))
+    if remember is None:
+        return _subset_font(text)
+    font_hash = hashlib.sha256((STATIC / FONT_FILE).read_bytes()).hexdigest()
+    key = hashlib.sha256(f"{text}\x00{font_hash}\x00fonttools {fontTools.version}".encode()).hexdigest()
+    return remember("fonts", key, lambda: _subset_font(text))
+
+
+def _subset_font(text: str) -> bytes:
     font = TTFont(STATIC / FONT_FILE, recalcTimestamp=False)  # keep head.modified: byte-stable output
     options = subset.Options()
     options.layout_features = ["*"]
     options.flavor = "woff2"
     options.name_IDs = ["*"]
     subsetter = subset.Subsetter(options)
-    subsetter.populate(text="".join(sorted(characters | set("()[]{}|=+−0123456789"))))
+    subsetter.populate(text=text)
     subsetter.subset(font)
     buffer = io.BytesIO()
     font.save(buffer)

@@ -19,15 +19,15 @@ _LINE = {"fill": "none", "stroke": s.BLUE, "stroke-width": "2.2"}
 
 
 def _view(scene) -> str:
-    """Which of the three views the scene's effects call for (the model's time unit follows the same rule)."""
+    """The scene's pressure history, which names its outputs: "collapse", "driven" or "ramp"."""
     if "drive" in scene.effects:
         return "driven"
-    return "blake" if "ramp" in scene.effects else "collapse"
+    return "ramp" if "ramp" in scene.effects else "collapse"
 
 
 def _x_end(scene) -> float:
     """The right end of the time axis in the view's unit: 2 T, t_ramp + t_hold (µs), or 2 t_c."""
-    if _view(scene) == "blake":
+    if _view(scene) == "ramp":
         values = scene.base_values()
         return values["t_ramp"] + values["t_hold"]
     return float(DRIVE_PERIODS) if _view(scene) == "driven" else 2.0
@@ -43,14 +43,15 @@ class BubbleFigure:
     )
 
     def layers(self, scene):
+        out = f"out:{_view(scene)}_"
         layers = [
-            Layer("radius", "polyline", 0, xs="out:curve_x", ys="out:curve_y", style=_LINE),
-            Layer("extrema", "dots", 0, xs="out:mark_x", ys="out:mark_y", style={**_DOT, "stroke": s.INK, "stroke-width": "6"}),
-            Layer("stop", "dots", 0, xs="out:stop_x", ys="out:stop_y", style={**_DOT, "stroke": s.ORANGE, "stroke-width": "8"}),
+            Layer("radius", "polyline", 0, xs=out + "curve_x", ys=out + "curve_y", style=_LINE),
+            Layer("extrema", "dots", 0, xs=out + "mark_x", ys=out + "mark_y", style={**_DOT, "stroke": s.INK, "stroke-width": "6"}),
+            Layer("stop", "dots", 0, xs=out + "stop_x", ys=out + "stop_y", style={**_DOT, "stroke": s.ORANGE, "stroke-width": "8"}),
         ]
         if _view(scene) == "driven":
             xs = tuple(float(v) for v in np.round(np.linspace(0.0, _x_end(scene), CURVE_POINTS), 6))
-            layers.append(Layer("drive", "polyline", 1, xs=xs, ys="out:p_far", style={**_LINE, "stroke": s.ORANGE, "stroke-width": "1.8"}))
+            layers.append(Layer("drive", "polyline", 1, xs=xs, ys="out:driven_p_far", style={**_LINE, "stroke": s.ORANGE, "stroke-width": "1.8"}))
         return layers
 
     def draw(self, scene, tables):
@@ -60,7 +61,7 @@ class BubbleFigure:
             _draw_driven(ax, ax_p, scene, tables)
         else:
             fig, (ax,) = s.new_figure(2.7)
-            (_draw_blake if view == "blake" else _draw_collapse)(ax, scene, tables)
+            (_draw_ramp if view == "ramp" else _draw_collapse)(ax, scene, tables)
         fig.tight_layout(pad=0.4, h_pad=0.6)
         return fig
 
@@ -99,7 +100,7 @@ def _draw_collapse(ax, scene, tables) -> None:
 
 def _draw_driven(ax, ax_p, scene, tables) -> None:
     """log10(R/R0) against t/T above the drive p∞(t)/p0."""
-    low, high = table_range(tables["curve_y"])
+    low, high = _y_range(tables, "driven")
     ax.set_xlim(0.0, float(DRIVE_PERIODS))
     ax.set_ylim(min(low, -0.1) - 0.06, max(high, 0.1) + 0.08)
     _log_ticks(ax)
@@ -124,9 +125,15 @@ def _log_ticks(ax) -> None:
     ax.set_yticks(np.log10(ticks), [f"{t:g}" for t in ticks])
 
 
-def _draw_blake(ax, scene, tables) -> None:
+def _y_range(tables, view: str) -> tuple[float, float]:
+    """The smallest and largest radius coordinate of the curve and its event dots over every stop."""
+    ranges = [table_range(tables[f"{view}_{name}"]) for name in ("curve_y", "mark_y")]
+    return min(r[0] for r in ranges), max(r[1] for r in ranges)
+
+
+def _draw_ramp(ax, scene, tables) -> None:
     """log10(R/R_B) against time, with the Blake radius and the 10 R_B stop as reference lines."""
-    low, high = table_range(tables["curve_y"])
+    low, high = _y_range(tables, "ramp")
     ax.set_xlim(0.0, _x_end(scene))
     ax.set_ylim(min(low, -0.2) - 0.08, max(high, 1.0) + 0.1)
     _log_ticks(ax)
@@ -134,9 +141,9 @@ def _draw_blake(ax, scene, tables) -> None:
     ax.axhline(1.0, color=s.MUTED, lw=0.8, ls=(0, (2, 3)))
     ramp = scene.base_values()["t_ramp"]
     ax.axvline(ramp, color=s.MUTED, lw=0.8, ls=(0, (2, 3)))
-    ax.text(ramp, ax.get_ylim()[1], " ramp ends", color=s.MUTED, fontsize=8, va="top")
+    ax.text(ramp, ax.get_ylim()[0] + 0.03, " ramp ends", color=s.MUTED, fontsize=8, va="bottom")
     ax.text(0.01 * _x_end(scene), 0.03, "Blake radius R$_B$", color=s.INK, fontsize=8, va="bottom")
     ax.text(0.01 * _x_end(scene), 1.03, "10 R$_B$: unbounded", color=s.MUTED, fontsize=8, va="bottom")
     ax.set_xlabel("time t (µs)")
     ax.set_ylabel("radius R / R$_B$ (log scale)")
-    _legend(ax, _model_handles("reached 10 R$_B$"), loc="lower right")
+    _legend(ax, _model_handles("reached 10 R$_B$", "R$_{max}$ (event)"), loc="lower right")

@@ -85,5 +85,5 @@ def _draw_dispersion_axes(ax) -> None:
             Line2D([], [], color=s.BLUE, marker="o", ls="none", ms=4, label="modes"),
             Patch(facecolor=s.FILL_BLUE, alpha=0.6, label="pulse"),
         ],
-        loc="lower right", frameon=False, fontsize=8, handletextpad=0.3, borderaxespad=0.2,
+        loc="lower right", frameon=False, fontsize=9, handletextpad=0.3, borderaxespad=0.2,
     )

@@ -15,9 +15,9 @@
     return (q < 0 ? MINUS : "") + body;
   }
 
-  /* A value and its unit; a multiplier sign hugs the number ("1.00×"), other units are spaced. */
+  /* A value and its unit; "×" and "°" hug the number ("1.00×", "90°"), other units are spaced. */
   function withUnit(text, unit) {
-    return unit ? text + (unit.charAt(0) === "\u00d7" ? "" : " ") + unit : text;
+    return unit ? text + (unit === "\u00d7" || unit === "\u00b0" ? "" : " ") + unit : text;
   }
 
   /* The entry of a table at the current stops (row-major over the table's own axes). */

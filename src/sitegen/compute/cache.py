@@ -1,0 +1,232 @@
+"""A content-addressed cache of tabulated scenes, under .cache/ (one checksummed file per entry).
+
+The key covers everything that can change a scene's tables — the scene's request (sliders, fixed
+values, effects, outputs), the source of its model and of every sitegen module the model and the
+tabulator import, and the numpy/scipy/matplotlib versions — and nothing that cannot (prose,
+other scenes, file times). Freshness is never judged by modification time.
+"""
+from __future__ import annotations
+
+import ast
+import functools
+import hashlib
+import io
+import json
+import os
+import sys
+import tempfile
+from dataclasses import asdict, dataclass
+from importlib import metadata
+from pathlib import Path
+
+import numpy as np
+
+from .scenes import ResolvedScene
+from .tabulate import Table
+
+PACKAGE_ROOT = Path(__file__).resolve().parents[1]  # src/sitegen
+TABULATOR_MODULES = ("sitegen.compute.tabulate", "sitegen.compute.quantize", "sitegen.compute.grid", "sitegen.compute.scenes")
+LIBRARIES = ("numpy", "scipy", "matplotlib")
+
+
+@dataclass(frozen=True)
+class CacheKey:
+    """The three parts of a scene's key, kept apart so a rebuild can say which one changed."""
+
+    spec: str
+    code: str
+    libraries: str
+
+    @property
+    def digest(self) -> str:
+        """The entry's name in the cache."""
+        return _sha(f"{self.spec}:{self.code}:{self.libraries}")
+
+
+def scene_key(scene: ResolvedScene, outputs: list[str]) -> CacheKey:
+    """The key of a scene's tables."""
+    request = {
+        "model": scene.model.name,
+        "axes": [[a.param, a.kind, [str(s) for s in a.stops], list(a.labels)] for a in scene.axes],
+        "fixed": sorted([name, repr(value)] for name, value in scene.fixed),
+        "effects": sorted(scene.effects),
+        "outputs": sorted(outputs),
+    }
+    modules = frozenset({type(scene.model).__module__, *TABULATOR_MODULES})
+    return CacheKey(_sha(json.dumps(request, sort_keys=True)), source_digest(modules), library_digest())
+
+
+def source_digest(modules: frozenset[str]) -> str:
+    """Hash of the source of `modules` and every sitegen module they import, transitively."""
+    seen: dict[str, str] = {}
+    pending = sorted(modules)
+    while pending:
+        name = pending.pop()
+        if name in seen or not name.startswith("sitegen"):
+            continue
+        seen[name], imports = _module_record(name)
+        pending.extend(imports)
+    return _sha("".join(f"{n}:{seen[n]}\n" for n in sorted(seen)))
+
+
+def forget_sources() -> None:
+    """Drop the remembered source hashes, so the next key reads the files again."""
+    _module_record.cache_clear()
+
+
+@functools.lru_cache(maxsize=None)
+def _module_record(name: str) -> tuple[str, tuple[str, ...]]:
+    """A module's source hash and the sitegen modules it imports (read once per process)."""
+    path = _module_path(name)
+    source = path.read_bytes()
+    return hashlib.sha256(source).hexdigest(), tuple(_sitegen_imports(name, source, path.name == "__init__.py"))
+
+
+def digest(*parts: str) -> str:
+    """One hash of several strings."""
+    return _sha("\x00".join(parts))
+
+
+@functools.lru_cache(maxsize=None)
+def library_digest() -> str:
+    """Hash of the versions of the numerical and plotting libraries."""
+    return _sha(",".join(f"{lib}=={library_version(lib)}" for lib in LIBRARIES))
+
+
+@functools.lru_cache(maxsize=None)
+def library_version(name: str) -> str:
+    """An installed package's version (looked up once per process)."""
+    return metadata.version(name)
+
+
+class TableCache:
+    """Tables by key on disk, written atomically and checked on every read."""
+
+    def __init__(self, root: Path):
+        self.root = root
+        self.problems: list[str] = []  # corrupt entries found (and recomputed)
+
+    def load(self, key: CacheKey) -> dict[str, Table] | None:
+        """The cached tables, or None when absent or damaged (a damaged entry is noted and removed)."""
+        path = self._entry(key)
+        try:
+            data = path.read_bytes()
+        except FileNotFoundError:
+            return None
+        checksum, _, payload = data.partition(b"\n")
+        try:
+            if checksum.decode() != hashlib.sha256(payload).hexdigest():
+                raise ValueError("checksum mismatch")
+            return _decode(payload)
+        except (ValueError, KeyError, OSError, UnicodeDecodeError) as problem:
+            self.problems.append(f"cache entry {path.name} is damaged ({problem}); recomputed")
+            path.unlink(missing_ok=True)
+            return None
+
+    def store(self, key: CacheKey, tables: dict[str, Table]) -> None:
+        """Write an entry: a temporary file renamed into place, so readers never see half of one."""
+        payload = _encode(tables)
+        self._write(self._entry(key), hashlib.sha256(payload).hexdigest().encode() + b"\n" + payload)
+
+    def remember(self, kind: str, key: str, compute) -> bytes:
+        """Bytes derived from inputs summed up by `key` (e.g. a figure's SVG): cached, or computed once."""
+        path = self.root / kind / key[:2] / f"{key}.bin"
+        try:
+            checksum, _, payload = path.read_bytes().partition(b"\n")
+            if checksum.decode() == hashlib.sha256(payload).hexdigest():
+                return payload
+            self.problems.append(f"cache entry {kind}/{path.name} is damaged (checksum mismatch); recomputed")
+        except (FileNotFoundError, UnicodeDecodeError):
+            pass
+        payload = compute()
+        self._write(path, hashlib.sha256(payload).hexdigest().encode() + b"\n" + payload)
+        return payload
+
+    def explain(self, scene_name: str, key: CacheKey, cached: bool) -> str:
+        """Why a scene was computed (or that it was cached), remembering its key for next time."""
+        index = self.root / "index" / f"{_sha(scene_name)[:24]}.json"
+        try:
+            before = json.loads(index.read_text())
+        except (FileNotFoundError, ValueError):
+            before = None
+        self._write(index, json.dumps(asdict(key), sort_keys=True).encode())
+        if cached:
+            return "cached"
+        if before is None:
+            return "computed: new"
+        changed = [what for field, what in (("spec", "spec changed"), ("code", "model code changed"),
+                                             ("libraries", "library version changed")) if before.get(field) != getattr(key, field)]
+        return "computed: " + (", ".join(changed) if changed else "not in the cache")
+
+    def _entry(self, key: CacheKey) -> Path:
+        return self.root / "tables" / key.digest[:2] / f"{key.digest}.bin"
+
+    @staticmethod
+    def _write(path: Path, data: bytes) -> None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
+        try:
+            with os.fdopen(handle, "wb") as out:
+                out.write(data)
+            os.replace(temporary, path)
+        except BaseException:
+            Path(temporary).unlink(missing_ok=True)
+            raise
+
+
+def _encode(tables: dict[str, Table]) -> bytes:
+    meta, arrays = [], {}
+    for i, (name, t) in enumerate(sorted(tables.items())):
+        meta.append({"name": name, "axes": list(t.axes), "shape": list(t.shape), "decimals": t.decimals,
+                     "labels": list(t.labels), "width": t.width, "special": t.special, "ragged": t.lengths is not None})
+        arrays[f"q{i}"] = t.quanta
+        if t.lengths is not None:
+            arrays[f"n{i}"] = t.lengths
+    buffer = io.BytesIO()
+    np.savez(buffer, meta=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8), **arrays)
+    return buffer.getvalue()
+
+
+def _decode(payload: bytes) -> dict[str, Table]:
+    with np.load(io.BytesIO(payload), allow_pickle=False) as archive:
+        meta = json.loads(archive["meta"].tobytes().decode())
+        return {
+            m["name"]: Table(m["name"], tuple(m["axes"]), tuple(m["shape"]), archive[f"q{i}"], m["decimals"],
+                             tuple(m["labels"]), m["width"], archive[f"n{i}"] if m["ragged"] else None, m["special"])
+            for i, m in enumerate(meta)
+        }
+
+
+def _module_path(name: str) -> Path:
+    module = sys.modules.get(name)
+    if module is not None and getattr(module, "__file__", None):
+        return Path(module.__file__)
+    relative = Path(*name.split(".")[1:])
+    package = PACKAGE_ROOT / relative / "__init__.py"
+    return package if package.exists() else PACKAGE_ROOT / relative.with_suffix(".py")
+
+
+def _sitegen_imports(name: str, source: bytes, is_package: bool) -> list[str]:
+    """Absolute names of the sitegen modules a module imports (relative imports resolved)."""
+    package = name if is_package else name.rpartition(".")[0]
+    found = []
+    for node in ast.parse(source).body:  # our modules import at the top level only
+        if isinstance(node, ast.ImportFrom):
+            base = package
+            for _ in range(max(node.level - 1, 0)):
+                base = base.rpartition(".")[0]
+            target = f"{base}.{node.module}" if node.level and node.module else (base if node.level else node.module or "")
+            found.append(target)
+            found.extend(f"{target}.{alias.name}" for alias in node.names)  # `from . import x` imports a module
+        elif isinstance(node, ast.Import):
+            found.extend(alias.name for alias in node.names)
+    return [f for f in found if f.startswith("sitegen") and _module_path(f).exists()]
+
+
+def _sha(text: str) -> str:
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def compute_now(kind: str, key: str, compute) -> bytes:
+    """What `TableCache.remember` does when there is no cache: compute."""
+    return compute()

@@ -1,0 +1,48 @@
+"""Where tabulation work runs: here (serial), in local processes, or on a Dask cluster.
+
+All three are `concurrent.futures.Executor`s; the build submits work units and collects their
+results in plan order, so the output is the same byte for byte whichever runs it.
+"""
+from __future__ import annotations
+
+import os
+from concurrent.futures import Executor, Future, ProcessPoolExecutor
+from contextlib import contextmanager
+from typing import Iterator
+
+
+class SerialExecutor(Executor):
+    """Runs each task at once, in this process."""
+
+    def submit(self, fn, /, *args, **kwargs) -> Future:
+        """Run `fn` now and return its finished future."""
+        future: Future = Future()
+        try:
+            future.set_result(fn(*args, **kwargs))
+        except BaseException as error:  # handed to whoever reads the result, as a pool would
+            future.set_exception(error)
+        return future
+
+
+def _pin_blas_threads() -> None:
+    # Small linear algebra is ~10x faster single-threaded, and workers must not oversubscribe cores.
+    os.environ["OPENBLAS_NUM_THREADS"] = "1"
+    os.environ["OMP_NUM_THREADS"] = "1"
+
+
+@contextmanager
+def executor_for(jobs: int = 1, scheduler: str | None = None) -> Iterator[Executor]:
+    """A serial executor, a pool of `jobs` local processes, or a Dask cluster's executor; closed after."""
+    if scheduler:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise RuntimeError("--scheduler needs Dask: pip install -e '.[dask]'") from None
+        with Client(scheduler) as client:
+            client.run(_pin_blas_threads)
+            yield client.get_executor()
+    elif jobs > 1:
+        with ProcessPoolExecutor(max_workers=jobs, initializer=_pin_blas_threads) as pool:
+            yield pool
+    else:
+        yield SerialExecutor()

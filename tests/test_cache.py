@@ -1,0 +1,153 @@
+"""The content-addressed cache: what it reuses, what it recomputes, and why it says so."""
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from sitegen.build import BuildConfig, build
+from sitegen.compute import cache as cache_module
+
+ROOT = Path(__file__).resolve().parents[1]
+CHAPTER = "newtons-laws.md"
+
+
+PAGE = """+++
+title = "Two scenes"
++++
+
+The first law is best read as a definition; here are two scenes.
+
+```scene
+model: impulse
+slider F_pk: 0..50 step 2 default 12
+slider tau: 0.05..1 step 0.05 default 0.2
+slider m: 0.5..10 step 0.5 default 2
+```
+
+```scene
+model: collision
+slider m1: 0.5..5 step 0.5 default 1
+slider v1i: -5..5 step 1 default 3
+slider e: 0..1 step 0.25 default 1
+```
+"""
+
+
+@pytest.fixture
+def book(tmp_path) -> BuildConfig:
+    """A small book (home page and a page with two scenes) with its own cache."""
+    content = tmp_path / "content"
+    content.mkdir()
+    shutil.copy(ROOT / "content" / "index.md", content / "index.md")
+    (content / CHAPTER).write_text(PAGE)
+    return BuildConfig(tmp_path, content, tmp_path / "build", ROOT / "node_modules", cache=tmp_path / ".cache")
+
+
+def _edit(config: BuildConfig, old: str, new: str) -> None:
+    page = config.content / CHAPTER
+    text = page.read_text()
+    assert old in text
+    page.write_text(text.replace(old, new, 1))
+
+
+def _statuses(report) -> dict[str, str]:
+    """Scene name -> status, from the build's per-scene lines."""
+    return {line.split()[1]: line.rsplit("s  ", 1)[1] for line in report.scene_lines if line.startswith("[")}
+
+
+def test_first_build_computes_every_scene_as_new(book):
+    """An empty cache: every scene is computed, and --explain says it is new."""
+    report = build(book, progress=None)
+    assert report.computed == report.scenes > 0 and report.cached == 0
+    assert set(_statuses(report).values()) == {"computed: new"}
+
+
+def test_rebuild_with_nothing_changed_evaluates_nothing(book):
+    """The second build takes every scene from the cache: zero model evaluations."""
+    build(book, progress=None)
+    report = build(book, progress=None)
+    assert (report.computed, report.evaluations, report.cached) == (0, 0, report.scenes)
+
+
+def test_prose_edit_evaluates_nothing(book):
+    """Editing a sentence changes the page but no scene's key."""
+    build(book, progress=None)
+    _edit(book, "The first law is best read as a definition;", "The first law is really a definition;")
+    report = build(book, progress=None)
+    assert report.computed == 0 and report.evaluations == 0
+    assert "really a definition" in (book.out / "newtons-laws.html").read_text()
+
+
+def test_one_scene_edited_only_that_scene_is_computed(book):
+    """Changing one scene's slider grid recomputes that scene alone, and says why."""
+    build(book, progress=None)
+    _edit(book, "slider F_pk: 0..50 step 2 default 12", "slider F_pk: 0..50 step 1 default 12")
+    report = build(book, progress=None)
+    statuses = _statuses(report)
+    assert report.computed == 1
+    assert statuses.pop("newtons-laws#impulse") == "computed: spec changed"
+    assert set(statuses.values()) == {"cached"}
+
+
+def test_model_code_change_is_named(book, monkeypatch):
+    """When the model's source hash changes, every scene of the rebuild says 'model code changed'."""
+    build(book, progress=None)
+    real = cache_module.source_digest
+    monkeypatch.setattr(cache_module, "source_digest", lambda modules: "edited-" + real(modules))
+    report = build(book, progress=None)
+    assert set(_statuses(report).values()) == {"computed: model code changed"}
+
+
+def test_source_digest_follows_the_bytes_of_the_model_file(tmp_path, monkeypatch):
+    """The code part of a key is a hash of the model module's bytes (and what it imports)."""
+    import sitegen.physics.impulse as impulse
+
+    copy = tmp_path / "impulse.py"
+    copy.write_bytes(Path(impulse.__file__).read_bytes())
+    monkeypatch.setattr(impulse, "__file__", str(copy))
+    cache_module.forget_sources()
+    before = cache_module.source_digest(frozenset({"sitegen.physics.impulse"}))
+    copy.write_text(copy.read_text() + "\n# a comment changes the bytes\n")
+    cache_module.forget_sources()
+    assert cache_module.source_digest(frozenset({"sitegen.physics.impulse"})) != before
+    cache_module.forget_sources()
+
+
+def test_library_version_change_is_named(book, monkeypatch):
+    """A different numpy/scipy/matplotlib makes every scene recompute, saying so."""
+    build(book, progress=None)
+    monkeypatch.setattr(cache_module, "library_digest", lambda: "numpy==0.0")
+    report = build(book, progress=None)
+    assert set(_statuses(report).values()) == {"computed: library version changed"}
+
+
+def test_damaged_entry_is_reported_and_recomputed(book):
+    """A truncated cache entry fails its checksum: the build says so, recomputes it, and is correct."""
+    build(book, progress=None)
+    expected = (book.out / "newtons-laws.html").read_bytes()
+    entry = sorted((book.cache / "tables").rglob("*.bin"))[0]
+    entry.write_bytes(entry.read_bytes()[: len(entry.read_bytes()) // 2])
+    report = build(book, progress=None)
+    assert report.computed == 1
+    assert any("damaged" in line for line in report.scene_lines)
+    assert (book.out / "newtons-laws.html").read_bytes() == expected
+
+
+def test_cached_and_uncached_builds_are_byte_identical(book, tmp_path):
+    """Warm cache, cold cache and no cache give the same bytes."""
+    build(book, progress=None)
+    warm = BuildConfig(book.root, book.content, tmp_path / "warm", book.node_modules, cache=book.cache)
+    none = BuildConfig(book.root, book.content, tmp_path / "none", book.node_modules, cache=None)
+    build(warm, progress=None)
+    build(none, progress=None)
+    for path in sorted(p for p in book.out.rglob("*") if p.is_file()):
+        relative = path.relative_to(book.out)
+        assert (warm.out / relative).read_bytes() == path.read_bytes() == (none.out / relative).read_bytes(), relative
+
+
+def test_cache_writes_leave_no_temporary_files(book):
+    """Entries are written to a temporary file and renamed; none is left behind."""
+    build(book, progress=None)
+    assert not [p for p in book.cache.rglob(".tmp-*")]

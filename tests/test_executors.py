@@ -1,0 +1,137 @@
+"""Tabulation through an Executor: serial, local processes, a Dask cluster — the same bytes from each."""
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sitegen.build import BuildConfig, build
+from sitegen.compute.tabulate import plan_scene
+from sitegen.errors import BuildFailed
+from sitegen.physics import MODELS, Model, Output, Param
+from sitegen.physics.collision import Collision
+
+ROOT = Path(__file__).resolve().parents[1]
+PAGE = """+++
+title = "Scenes"
++++
+
+```scene
+model: impulse
+slider F_pk: 0..50 step 2 default 12
+slider tau: 0.05..1 step 0.05 default 0.2
+slider m: 0.5..10 step 0.5 default 2
+```
+
+```scene
+model: collision
+slider m1: 0.5..5 step 0.5 default 1
+slider m2: 0.5..5 step 0.5 default 2
+slider v1i: -5..5 step 1 default 3
+slider v2i: -5..5 step 1 default -1
+slider e: 0..1 step 0.25 default 1
+```
+"""
+
+
+def _book(tmp_path: Path, name: str, page: str = PAGE, **options) -> BuildConfig:
+    content = tmp_path / "content"
+    if not content.exists():
+        content.mkdir()
+        shutil.copy(ROOT / "content" / "index.md", content / "index.md")
+        (content / "scenes.md").write_text(page)
+    return BuildConfig(tmp_path, content, tmp_path / name, ROOT / "node_modules", cache=None, **options)
+
+
+def _tree(folder: Path) -> dict[str, bytes]:
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_process_pool_gives_the_serial_bytes(tmp_path):
+    """`--jobs 2` (two local processes) builds the same tree, byte for byte, as a serial build."""
+    serial = _book(tmp_path, "serial")
+    pooled = _book(tmp_path, "pooled", jobs=2)
+    build(serial, progress=None)
+    build(pooled, progress=None)
+    assert _tree(serial.out) == _tree(pooled.out)
+
+
+def test_dask_cluster_gives_the_serial_bytes(tmp_path):
+    """The same build on a Dask LocalCluster on 127.0.0.1, through its executor, gives the same bytes."""
+    distributed = pytest.importorskip("distributed", reason="the Dask extra is part of the test install")
+    serial = _book(tmp_path, "serial")
+    build(serial, progress=None)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None,
+                                  processes=True) as cluster:
+        report = build(_book(tmp_path, "dask", scheduler=cluster.scheduler_address), progress=None)
+    assert report.computed == report.scenes == 2
+    assert _tree(serial.out) == _tree(tmp_path / "dask")
+
+
+def test_chunked_scene_gives_the_same_tables(tmp_path, monkeypatch):
+    """A model costly per point is split into blocks of rows; joined, they give the same bytes."""
+    serial = _book(tmp_path, "whole")
+    build(serial, progress=None)
+    monkeypatch.setattr(Collision, "chunk_stops", 1000)
+    report = build(_book(tmp_path, "chunked", jobs=2), progress=None)
+    assert report.evaluations > 10  # the collision's 60,500 stops went out in many blocks
+    assert _tree(serial.out) == _tree(tmp_path / "chunked")
+
+
+def test_plan_splits_only_heavy_models(tmp_path):
+    """Blocks of at most `max_stops` points (or one row) cover every row of the grid exactly once."""
+    from sitegen.build import needed_outputs, read_pages, resolve_scenes
+    from sitegen.errors import ErrorLog
+
+    log = ErrorLog()
+    config = _book(tmp_path, "plan")
+    scene = next(s.scene for s in resolve_scenes(read_pages(config, log), log) if s.scene.model.name == "collision")
+    units = plan_scene(scene, needed_outputs(scene), max_stops=5000)
+    full = [u for u in units if u.axes == (0, 1, 2, 3, 4)]
+    one_row = 60_500 // scene.axes[0].count  # a block is whole rows of the first slider
+    assert len(full) > 1 and all(u.stops() <= max(5000, one_row) for u in full)
+    rows = sorted(r for u in full for r in range(*u.rows))
+    assert rows == list(range(scene.axes[0].count))  # every row once
+
+
+class _Explodes(Model):
+    """A model that fails at one parameter value, as a solver might."""
+
+    name = "explodes"
+    title = "Explodes"
+    params = (Param("x", "x", "", 0.0),)
+    outputs = (Output("y", "y", "", ("x",)),)
+
+    def _evaluate(self, x, wanted, effects):
+        if np.any(x["x"] == 0.5):
+            raise ValueError("the solve failed at x = 0.5")
+        return {"y": x["x"]}
+
+
+def test_worker_failure_comes_back_as_an_author_error(tmp_path, monkeypatch):
+    """An error inside a worker process reaches the author as `file:line: scene '...': ...`."""
+    from sitegen.render.figures import FIGURES
+
+    monkeypatch.setitem(MODELS, "explodes", _Explodes)
+    monkeypatch.setitem(FIGURES, "explodes", FIGURES["impulse"].__class__())
+    page = '+++\ntitle = "Boom"\n+++\n\n```scene\nmodel: explodes\nslider x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n'
+    monkeypatch.setitem(FIGURES, "bare", _Bare())
+    with pytest.raises(BuildFailed) as failure:
+        build(_book(tmp_path, "out", page=page, jobs=2), progress=None)
+    assert [str(e) for e in failure.value.errors] == [
+        "content/scenes.md:5: scene 'explodes': model 'explodes' failed: the solve failed at x = 0.5"
+    ]
+
+
+class _Bare:
+    label = "empty axes"
+
+    def layers(self, scene):
+        return []
+
+    def draw(self, scene, tables):
+        from sitegen.render.style import new_figure
+
+        return new_figure(2.0)[0]

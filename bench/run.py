@@ -9,6 +9,7 @@ import json
 import os
 import platform
 import re
+import shutil
 import statistics
 import subprocess
 import sys
@@ -30,7 +31,7 @@ def build_times(runs: int = 3) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         for _ in range(runs):
             start = time.perf_counter()
-            report = build(BuildConfig.at(ROOT, Path(tmp) / "build"), progress=None)
+            report = build(BuildConfig.at(ROOT, Path(tmp) / "build", cache=None), progress=None)
             totals.append(time.perf_counter() - start)
             phases.append(report.phases)
     return {
@@ -39,6 +40,47 @@ def build_times(runs: int = 3) -> dict:
         "phases_median_s": {k: statistics.median(p[k] for p in phases) for k in phases[0]},
         "stored_values": report.stored_values,
     }
+
+
+def rebuild_times(runs: int = 3) -> dict:
+    """Cold build, no-op rebuild, one-scene rebuild and a Dask build: seconds and evaluation counts."""
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp)
+        shutil.copytree(ROOT / "content", root / "content")
+        config = BuildConfig(root, root / "content", root / "build", ROOT / "node_modules", cache=root / ".cache")
+
+        def timed(cfg):
+            start = time.perf_counter()
+            report = build(cfg, progress=None)
+            return time.perf_counter() - start, report
+
+        colds = []
+        for _ in range(runs):
+            shutil.rmtree(config.cache, ignore_errors=True)
+            colds.append(timed(config))
+        noops = [timed(config) for _ in range(runs)]
+        page = root / "content" / "newtons-laws.md"
+        page.write_text(page.read_text().replace("slider F_pk: 0..50 step 2 default 12", "slider F_pk: 0..50 step 1 default 12"))
+        one_scene = timed(config)
+        result = {
+            "cold_s": statistics.median(t for t, _ in colds),
+            "cold_evaluations": colds[-1][1].evaluations,
+            "noop_s": statistics.median(t for t, _ in noops),
+            "noop_evaluations": noops[-1][1].evaluations,
+            "one_scene_s": one_scene[0],
+            "one_scene_computed": one_scene[1].computed,
+            "one_scene_evaluations": one_scene[1].evaluations,
+        }
+        try:
+            from distributed import LocalCluster
+        except ImportError:
+            return result
+        with LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster:
+            dask_config = BuildConfig(root, root / "content", root / "build-dask", ROOT / "node_modules", cache=None,
+                                      scheduler=cluster.scheduler_address)
+            seconds, report = timed(dask_config)
+        result.update(dask_cold_s=seconds, dask_evaluations=report.evaluations)
+        return result
 
 
 def page_sizes(site: Path) -> dict:
@@ -65,6 +107,7 @@ def main() -> int:
     report = {
         "machine": {"python": platform.python_version(), "cpu_count": os.cpu_count(), "platform": platform.platform()},
         "build": build_times(),
+        "rebuilds": rebuild_times(),
         "pages": page_sizes(site),
     }
     latency_file = OUT / "latency.json"
@@ -73,6 +116,11 @@ def main() -> int:
     (OUT / "report.json").write_text(json.dumps(report, indent=2, sort_keys=True))
     print(f"build: median {report['build']['median_s']:.2f} s over {report['build']['runs']} cold builds, "
           f"{report['build']['stored_values']} stored values")
+    r = report["rebuilds"]
+    print(f"cache: cold {r['cold_s']:.2f} s ({r['cold_evaluations']} evaluations), no-op {r['noop_s']:.2f} s "
+          f"({r['noop_evaluations']} evaluations), one scene edited {r['one_scene_s']:.2f} s "
+          f"({r['one_scene_computed']} scene, {r['one_scene_evaluations']} evaluations)"
+          + (f", Dask LocalCluster cold {r['dask_cold_s']:.2f} s ({r['dask_evaluations']} evaluations)" if "dask_cold_s" in r else ""))
     for name, s in report["pages"].items():
         print(f"{name:<22} html {s['html_raw'] / 1024:7.1f} KB raw {s['html_gzip'] / 1024:6.1f} KB gzip | "
               f"with assets {s['total_raw'] / 1024:7.1f} KB raw {s['total_gzip'] / 1024:6.1f} KB gzip")

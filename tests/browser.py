@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import functools
 import http.server
+import json
 import math
 import re
 import threading
@@ -238,11 +239,11 @@ class SceneState:
 
 
 _ROOT_JS = "const root = document.getElementById(sceneId); if (!root) throw new Error('no scene ' + sceneId);"
-_STATE_JS = """(() => {
+_STATE_JS = """const readState = () => {
   const text = el => el ? el.textContent : null;
   const controls = [...root.querySelectorAll('[data-param]')].map(el => {
     const param = el.dataset.param;
-    const label = el.id ? document.querySelector(`label[for="${el.id}"]`) : null;
+    const label = el.labels && el.labels.length ? el.labels[0] : null;  // <label for=id> (or wrapping)
     return {
       param, tag: el.tagName.toLowerCase(), id: el.id,
       attrs: {type: el.getAttribute('type'), min: el.getAttribute('min'), max: el.getAttribute('max'),
@@ -265,11 +266,11 @@ _STATE_JS = """(() => {
   const b = root.querySelector('button[data-animate]');
   const button = b ? {animate: b.dataset.animate, pressed: b.getAttribute('aria-pressed'), text: b.textContent.trim()} : null;
   return {controls, readouts, layers, button};
-})()"""
+};"""
 
 # Move controls: [param, value] pairs. A slider gets its value and an `input` event (as a user's
 # drag does); a choice's radio with that value is checked and gets `input` and `change` (as a click).
-_MOVE_JS = """arg.forEach(([param, v]) => {
+_MOVE_JS = """const moveTo = pairs => pairs.forEach(([param, v]) => {
   const el = root.querySelector(`[data-param="${param}"]`);
   if (!el) throw new Error('no control ' + param);
   if (el.tagName === 'FIELDSET') {
@@ -282,12 +283,17 @@ _MOVE_JS = """arg.forEach(([param, v]) => {
     el.value = v;
     el.dispatchEvent(new Event('input', {bubbles: true}));
   }
-})"""
+});"""
 
 
 def _in_scene(page, scene: BookScene, body: str, arg=None):
-    """Evaluate `body` (statements over `root`, the scene element, and `arg`) in the page."""
-    return page.evaluate(f"([sceneId, arg]) => {{ {_ROOT_JS} {body} }}", [scene.dom_id, arg])
+    """Evaluate `body` (statements over `root`, the scene element, and `arg`) in the page.
+
+    The result comes back as one JSON string: Playwright checks a structured result value by
+    value, which costs far more than the evaluation itself for a few hundred vertices.
+    """
+    text = page.evaluate(f"([sceneId, arg]) => JSON.stringify((() => {{ {_ROOT_JS} {body} }})())", [scene.dom_id, arg])
+    return None if text is None else json.loads(text)
 
 
 def _state(scene: BookScene, raw: dict) -> SceneState:
@@ -313,18 +319,28 @@ class _UnknownAxis:
 
 def read_state(page, scene: BookScene) -> SceneState:
     """The scene's controls, readouts, layers and play button, read together."""
-    return _state(scene, _in_scene(page, scene, f"return {_STATE_JS};"))
+    return _state(scene, _in_scene(page, scene, f"{_STATE_JS} return readState();"))
 
 
 def move(page, scene: BookScene, stops: Mapping[str, int]) -> SceneState:
     """Put controls on stops ({param: stop index}, in that order) and read the scene back."""
-    pairs = [[param, control_value(scene.axis(param), k)] for param, k in stops.items()]
-    return _state(scene, _in_scene(page, scene, f"{_MOVE_JS}; return {_STATE_JS};", pairs))
+    return move_many(page, scene, [stops])[0]
+
+
+def move_many(page, scene: BookScene, positions: list[Mapping[str, int]]) -> list[SceneState]:
+    """move() through several positions in one round trip, reading the scene after each.
+
+    The page's script updates a scene synchronously in its `input`/`change` handlers, so what is
+    read right after the events is what a reader sees in the next frame.
+    """
+    moves = [[[param, control_value(scene.axis(param), k)] for param, k in stops.items()] for stops in positions]
+    raws = _in_scene(page, scene, f"{_STATE_JS} {_MOVE_JS} return arg.map(pairs => {{ moveTo(pairs); return readState(); }});", moves)
+    return [_state(scene, raw) for raw in raws]
 
 
 def move_value(page, scene: BookScene, param: str, value: str) -> SceneState:
     """Write a raw value into one control (e.g. an off-grid number) and read the scene back."""
-    return _state(scene, _in_scene(page, scene, f"{_MOVE_JS}; return {_STATE_JS};", [[param, value]]))
+    return _state(scene, _in_scene(page, scene, f"{_STATE_JS} {_MOVE_JS} moveTo(arg); return readState();", [[param, value]]))
 
 
 def reset(page, scene: BookScene) -> SceneState:

@@ -34,11 +34,13 @@ from browser import (
     SiteServer,
     book,
     describe_stop,
+    expected_control_text,
     expected_readouts,
     launch,
     layer_deps,
     layer_problems,
     move,
+    move_many,
     move_value,
     parse_layer,
     plain,
@@ -373,25 +375,27 @@ def test_control_by_keyboard(scene_page, scene, param, transport):
 @pytest.mark.parametrize("scene,param,transport", _control_params())
 def test_control_by_value(scene_page, scene, param, transport):
     """Sliders: value + `input` at the ends, the default and a spread of stops between (and an
-    off-grid value, which the browser snaps to a stop); choices: a click on each option's label.
-    After every move the whole scene agrees with the model."""
+    off-grid value, which the browser snaps to a stop); choices: a click on each radio, then on
+    the default option's label. After every move the whole scene agrees with the model."""
     page, log, mark = scene_page(scene, transport)
     axis = scene.axis(param)
     i = scene.params.index(param)
     default = scene.defaults[i]
     problems = []
     if axis.kind == CHOICE:
-        labels = page.locator(f'#{scene.dom_id} fieldset[data-param="{param}"] label')
-        assert labels.count() == axis.count
-        for k in [*range(axis.count - 1, -1, -1), default]:
-            labels.nth(k).click()
+        group = page.locator(f'#{scene.dom_id} fieldset[data-param="{param}"]')
+        radios, labels = group.locator('input[type="radio"]'), group.locator("label")
+        assert radios.count() == labels.count() == axis.count
+        # each radio clicked (last first), then the default option's label text
+        for k, target in [*((k, radios.nth(k)) for k in range(axis.count - 1, -1, -1)), (default, labels.nth(default))]:
+            target.click()
             state = read_state(page, scene)
             assert state.stops[i] == k, f"clicked option {k} ({axis.labels[k]}), stop is {state.stops[i]}"
             problems += scene_problems(scene, state)
     else:
         last = axis.count - 1
-        for k in [0, last, default, *(k for k in spread(axis.count) if k not in (0, last)), default]:
-            state = move(page, scene, {param: k})
+        stops = [0, last, default, *(k for k in spread(axis.count) if k not in (0, last)), default]
+        for k, state in zip(stops, move_many(page, scene, [{param: k} for k in stops])):
             assert state.stops[i] == k, f"set stop {k}, control reads {state.control(param).value!r}"
             problems += scene_problems(scene, state)
         if axis.kind == RANGE and axis.count > 2:
@@ -448,7 +452,7 @@ def test_known_singular_stops():
 
 # --- e) random states of whole scenes --------------------------------------------------------------
 
-RANDOM_STATES = 150
+RANDOM_STATES = 200
 
 
 @pytest.mark.parametrize("scene,transport", _scene_params())
@@ -459,10 +463,11 @@ def test_random_scene_states(scene_page, scene, transport):
     page, log, mark = scene_page(scene, transport)
     rng = random.Random(f"{scene.key}/1")
     failures = []
-    for _ in range(RANDOM_STATES):
-        state_wanted = tuple(rng.randrange(a.count) for a in scene.axes)
-        # one round trip per state; each control still gets its own events
-        state = move(page, scene, dict(zip(scene.params, state_wanted)))
+    wanted = [tuple(rng.randrange(a.count) for a in scene.axes) for _ in range(RANDOM_STATES)]
+    states = []
+    for start in range(0, len(wanted), 25):  # 25 states per round trip; each control still gets its own events
+        states += move_many(page, scene, [dict(zip(scene.params, w)) for w in wanted[start:start + 25]])
+    for state_wanted, state in zip(wanted, states):
         assert state.stops == state_wanted, f"set {state_wanted}, controls read {state.stops}"
         failures += scene_problems(scene, state)
         texts = [c.valuetext or "" for c in state.controls] + [c.shown or "" for c in state.controls]
@@ -584,14 +589,14 @@ def test_layers_follow_controls(loaded, scene_page, scene, transport):
     problems = []
     for i, axis in enumerate(scene.axes):
         changed = set()
-        stops = range(axis.count) if axis.kind == CHOICE else spread(axis.count)
-        for k in stops:
-            state = move(page, scene, {axis.param: k})
-            layers = _parsed(state)
+        stops = list(range(axis.count) if axis.kind == CHOICE else spread(axis.count))
+        *states, state = move_many(page, scene, [{axis.param: k} for k in [*stops, scene.defaults[i]]])
+        for k, moved in zip(stops, states):
+            assert moved.stops[i] == k
+            layers = _parsed(moved)
             where = f"{axis.param}={describe_stop(scene, axis.param, k)}"
-            problems += [f"{where}: {p}" for p in geometry_problems(scene, layers, state.stops)]
-            changed |= {n for n in layers if state.layers[n] != start_state.layers[n]}
-        state = move(page, scene, {axis.param: scene.defaults[i]})
+            problems += [f"{where}: {p}" for p in geometry_problems(scene, layers, moved.stops)]
+            changed |= {n for n in layers if moved.layers[n] != start_state.layers[n]}
         assert state.layers == start_state.layers, f"layers not restored after moving {axis.param} back"
         must = responses.get(axis.param, set())
         assert must <= changed, f"moving {axis.param} left {sorted(must - changed)} still"
@@ -692,22 +697,49 @@ def test_animation_plays_and_pauses(scene_page, scene, transport):
     assert not log.trouble_since(mark)
 
 
-@pytest.mark.parametrize("scene,transport", _scene_params(ANIMATED, ("file",)))
-def test_animation_never_autoplays(open_page, scene, transport):
-    """With reduced motion asked for, the page loads still: the animated slider stays on its
-    default, in view or not, until the reader presses Play."""
-    page, log = open_page(scene.page.output_name, transport, reduced_motion="reduce")
-    assert page.evaluate("matchMedia('(prefers-reduced-motion: reduce)').matches")
-    i = scene.params.index(scene.animate)
-    page.wait_for_timeout(300)
-    assert read_state(page, scene).stops[i] == scene.defaults[i]
-    page.locator(f"#{scene.dom_id}").scroll_into_view_if_needed()
-    page.wait_for_timeout(600)  # more than ten frames of an animation
-    state = read_state(page, scene)
-    assert state.button["pressed"] == "false" and state.button["text"] == "Play"
-    assert state.stops == scene.defaults, "the animation started by itself"
-    assert scene_problems(scene, state) == []
-    assert not log.errors
+# Installed before any page script runs: every change the page makes to a play button's
+# aria-pressed or a control's aria-valuetext, from the very start.
+_WATCH_MOTION_JS = """
+window.__motion = [];
+new MutationObserver(records => records.forEach(r => window.__motion.push(
+  [r.attributeName, r.target.getAttribute(r.attributeName), r.target.dataset.param || r.target.dataset.animate || ''])))
+  .observe(document, {subtree: true, attributes: true, attributeFilter: ['aria-pressed', 'aria-valuetext']});
+"""
+
+
+@pytest.mark.parametrize(
+    "scene,motion,transport",
+    [pytest.param(s, m, "file", id=f"{s.key}-{m}-file") for s in ANIMATED for m in ("reduce", "no-preference")],
+)
+def test_animation_never_autoplays(chromium, site_url, scene, motion, transport):
+    """The page loads still (with reduced motion asked for, and without): the play button is never
+    pressed and the animated slider never leaves its default, in view or not, until the reader
+    presses Play."""
+    context = chromium.new_context(reduced_motion=motion)
+    try:
+        context.add_init_script(_WATCH_MOTION_JS)
+        page = context.new_page()
+        errors = []
+        page.on("pageerror", lambda e: errors.append(str(e)))
+        page.goto(site_url(scene.page.output_name, transport), wait_until="load")
+        assert page.evaluate("matchMedia('(prefers-reduced-motion: reduce)').matches") == (motion == "reduce")
+        page.wait_for_timeout(300)
+        page.locator(f"#{scene.dom_id}").scroll_into_view_if_needed()
+        page.wait_for_timeout(600)  # more than ten frames of an animation
+        state = read_state(page, scene)
+        assert state.button["pressed"] == "false" and state.button["text"] == "Play"
+        assert state.stops == scene.defaults, "the animation started by itself"
+        assert scene_problems(scene, state) == []
+        i = scene.params.index(scene.animate)
+        default_text = expected_control_text(scene, scene.animate, scene.defaults[i])
+        changes = page.evaluate("window.__motion")
+        pressed = [c for c in changes if c[0] == "aria-pressed" and c[1] != "false"]
+        assert not pressed, f"the play button was pressed by the page itself: {pressed}"
+        moved = [c[1] for c in changes if c[0] == "aria-valuetext" and c[2] == scene.animate and c[1] != default_text]
+        assert not moved, f"the animated slider moved by itself: {moved[:5]}"
+        assert not errors
+    finally:
+        context.close()
 
 
 def _visible_fraction(page, scene) -> float:

@@ -151,3 +151,14 @@ def test_cache_writes_leave_no_temporary_files(book):
     """Entries are written to a temporary file and renamed; none is left behind."""
     build(book, progress=None)
     assert not [p for p in book.cache.rglob(".tmp-*")]
+
+
+def test_changed_default_redraws_the_figure(book, tmp_path):
+    """A new default moves the figure's layers: a warm-cache build equals a build without cache."""
+    build(book, progress=None)
+    _edit(book, "slider F_pk: 0..50 step 2 default 12", "slider F_pk: 0..50 step 2 default 20")
+    warm = build(book, progress=None)
+    assert warm.computed == 0  # the tables do not depend on the default
+    fresh = BuildConfig(book.root, book.content, tmp_path / "fresh", book.node_modules, cache=None)
+    build(fresh, progress=None)
+    assert (book.out / CHAPTER.replace(".md", ".html")).read_bytes() == (fresh.out / CHAPTER.replace(".md", ".html")).read_bytes()

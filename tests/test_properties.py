@@ -23,6 +23,7 @@ from scipy.integrate import quad
 from scipy.special import cosdg
 
 from sitegen.physics import MODELS
+from sitegen.physics import bubble as bubble_module
 from sitegen.physics.acoustic_energy import C as C_AIR
 from sitegen.physics.bubble_terms import P0
 from sitegen.physics.impulse import Impulse, force
@@ -54,7 +55,8 @@ def _signed(magnitudes: st.SearchStrategy[float]) -> st.SearchStrategy[float]:
 
 
 def _small(hi_exp: float, lo_exp: float = -300.0, zero: bool = True, signed: bool = False) -> st.SearchStrategy[float]:
-    """A departure δ ≥ 0 from a neutral value: exactly 0, or 10**u with u in [lo_exp, hi_exp]."""
+    """A departure δ from a neutral value: exactly 0 (unless `zero` is False), or ±10**u with u in
+    [lo_exp, hi_exp] (the sign only when `signed`)."""
     magnitudes = _log_uniform(lo_exp, hi_exp)
     if signed:
         magnitudes = _signed(magnitudes)
@@ -250,7 +252,8 @@ def test_spring_work_is_path_independent_by_quadrature(case):
     exact = _exact_potential_drop(case["k"], case["x_c"], case["ell0"])
     assert abs(arc - direct) <= 1e-12 * scale, f"|W_arc − W_dir| = {abs(arc - direct) / scale:.3g} kR²"
     for name, work in (("arc", arc), ("direct", direct)):
-        assert abs(Fraction(work) - exact) <= Fraction(1e-12 * scale), f"{name}: {float(abs(Fraction(work) - exact)) / scale:.3g} kR²"
+        error = abs(Fraction(work) - exact)
+        assert error <= Fraction(1e-12 * scale), f"{name}: {float(error) / scale:.3g} kR²"
 
 
 @_settings(300)
@@ -331,6 +334,57 @@ def test_lever_mirror_negates_the_net_torque_exactly(case):
         assert abs(a["MA"] * b["MA"] - 1.0) <= 4 * EPS
 
 
+def _arms(x):
+    return x["m_L"] * x["x_p"] + x["m_R"] * (2.0 - x["x_p"])
+
+
+def _stop_time_reference(x, off):
+    """√(2Iθs/|τ|): uniform angular acceleration, the θs → 0 limit; ∞ where the engine sees a balance
+    (|m_L x_p − m_R(ℓ − x_p)| within the 4ε roundoff of its terms, lever.py `_moving_torque`)."""
+    per_g = x["m_L"] * x["x_p"] - x["m_R"] * (2.0 - x["x_p"])
+    if abs(per_g) <= 4 * EPS * _arms(x):
+        return math.inf
+    inertia = x["m_L"] * x["x_p"] ** 2 + x["m_R"] * (2.0 - x["x_p"]) ** 2
+    return math.sqrt(2 * inertia * math.radians(x["theta_s"]) / (G * abs(per_g)))
+
+
+def _stop_speed_bound(d, x, ref):
+    """ω at the stop, √(2|τ| sin θs/I) ≤ √(2|τ|θs/I): it vanishes with θs."""
+    inertia = x["m_L"] * x["x_p"] ** 2 + x["m_R"] * (2.0 - x["x_p"]) ** 2
+    torque = G * abs(x["m_L"] * x["x_p"] - x["m_R"] * (2.0 - x["x_p"]))
+    return math.sqrt(2 * torque * math.radians(d) / inertia) * (1 + 1e-12)
+
+
+def _tipping_series(degrees):
+    """t_stop/√(2Iθs/|τ|) − 1 = θs²/60 + O(θs⁴): the departure from uniform acceleration (≤ θs²)."""
+    return math.radians(degrees) ** 2
+
+
+def _tipping_cancellation(degrees):
+    """The closed form K(½) − F(arccos√sin θ | ½) cancels as θ → 0: ~ε·K(½)/√θ relative, plus 8ε
+    (test_lever_stop_time_stays_accurate_as_the_stop_angle_vanishes: the cancellation-free form keeps 8ε)."""
+    return 8 * EPS + 4 * EPS * math.sqrt(2) * 1.8540746773013719 / (2 * math.sqrt(math.radians(degrees)))
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "BUG lever.py:213 `_tipping_integral`: √2(K(½) − F(arccos√sin θ | ½)) cancels as θ → 0 (rel error 9e−10 at "
+    "θs = 1e−12°, 9e−12 at 1e−9°, 3e−13 at 1e−5°); √2·F(arctan√(2 sin θ/(1 − sin θ)) | ½) (Legendre's "
+    "complement, tan φ tan ψ = √2) is exact to 2e−16"))
+@example(degrees=1e-12, case={"m_L": 1.0, "m_R": 3.0, "x_p": 1.0})
+@_settings(100)
+@given(degrees=_log_uniform(-12.0, -3.0), case=st.fixed_dictionaries({
+    "m_L": _log_uniform(-3.0, 3.0), "m_R": _log_uniform(-3.0, 3.0), "x_p": st.floats(0.0, 2.0)}))
+def test_lever_stop_time_stays_accurate_as_the_stop_angle_vanishes(degrees, case):
+    """t_stop = √(2Iθs/|τ|)(1 + θs²/60) to 16ε as θs → 0 (the series of ∫₀^θ dφ/√sin φ = 2√θ + θ^{5/2}/30)."""
+    out = LEVER.evaluate({**case, "theta_s": degrees}, wanted=["t_stop"], effects=("rotation_dynamics",))
+    reference = _stop_time_reference({**case, "theta_s": degrees}, None) * (1 + math.radians(degrees) ** 2 / 60)
+    if math.isinf(reference):
+        assert math.isinf(float(out["t_stop"]))
+    else:
+        rel = abs(float(out["t_stop"]) / reference - 1)
+        assert rel <= 16 * EPS, f"rel {rel:.3g}"
+
+
 # ================================================================================================
 # §0.4 rule 2: the vanishing limit of every effect of every model
 # ================================================================================================
@@ -365,6 +419,8 @@ class Limit:
     companions: tuple[str, ...] = ()  # effects on in both evaluations: any subset, or all of them
     optional: bool = True  # False: every companion is always on
     strict: bool = True  # every other output without an effect must be bitwise unchanged
+    common: Callable | None = None  # bound for every scalar output present with and without the effect
+    common_skip: tuple[str, ...] = ()  # ... except outputs ending in these (a readout that → ∞ in the limit)
     examples: int = 100
     skip: str = ""  # why this parameter has no vanishing limit to test
 
@@ -379,7 +435,7 @@ def _rel(factor: float, roundoff: float = 8 * EPS):
     return lambda d, x, ref: (factor * abs(d) + (roundoff if d else 0.0)) * np.abs(ref)
 
 
-def _exact(d, x, ref):
+def _equal_at_neutral(d, x, ref):
     """Equal at δ = 0, not compared elsewhere (a discrete output that may flip for δ > 0)."""
     return 0.0 if d == 0 else np.inf
 
@@ -433,21 +489,7 @@ _LEVER_INPUTS = st.fixed_dictionaries({
 })
 
 
-def _arms(x):
-    return x["m_L"] * x["x_p"] + x["m_R"] * (2.0 - x["x_p"])
-
-
-def _stop_time_reference(x, off):
-    """√(2Iθs/|τ|): uniform angular acceleration, the θs → 0 limit; ∞ where the engine sees a balance
-    (|m_L x_p − m_R(ℓ − x_p)| within the 4ε roundoff of its terms, lever.py `_moving_torque`)."""
-    per_g = x["m_L"] * x["x_p"] - x["m_R"] * (2.0 - x["x_p"])
-    if abs(per_g) <= 4 * EPS * _arms(x):
-        return math.inf
-    inertia = x["m_L"] * x["x_p"] ** 2 + x["m_R"] * (2.0 - x["x_p"]) ** 2
-    return math.sqrt(2 * inertia * math.radians(x["theta_s"]) / (G * abs(per_g)))
-
-
-_TILT = [f"{name}" for name in ("y_left", "y_right")] + [
+_TILT = ["y_left", "y_right"] + [
     f"{block}_block_{side}{edge}" for block in ("left", "right") for edge in "01" for side in ("bottom", "top")
 ]
 _LEVER_LIMITS = [
@@ -462,19 +504,17 @@ _LEVER_LIMITS = [
                       lambda d, x, ref: d / (x["m_L"] + x["m_R"]) + (8 * EPS if d else 0.0)),
               Compare("marker_x1_bar", "marker_x1",
                       lambda d, x, ref: d / (x["m_L"] + x["m_R"]) + (8 * EPS if d else 0.0)),
-              Compare("state_bar", "state", _exact),
-              *(Compare(f"{name}_bar", name, _exact) for name in _TILT),
+              Compare("state_bar", "state", _equal_at_neutral),
+              *(Compare(f"{name}_bar", name, _equal_at_neutral) for name in _TILT),
           ), companions=("rotation_dynamics",)),
     # The rotation outputs have no counterpart without the effect; θs → 0 is the uniform-acceleration limit.
     Limit("lever", "rotation_dynamics", "theta_s", "theta_s->0", _LEVER_INPUTS, _small(-2.0, lo_exp=-12.0, zero=False),
-          value=lambda d, x: d,
           compare=(
-              Compare("t_stop", _stop_time_reference, lambda d, x, ref: math.radians(d) ** 2 * ref + 4 * EPS * ref),
-              Compare("omega_stop", lambda x, off: 0.0,
-                      lambda d, x, ref: math.sqrt(2 * G * abs(x["m_L"] * x["x_p"] - x["m_R"] * (2.0 - x["x_p"]))
-                                                  * math.radians(d) / (x["m_L"] * x["x_p"] ** 2 + x["m_R"] * (2.0 - x["x_p"]) ** 2)) * (1 + 1e-12)),
+              Compare("t_stop", _stop_time_reference, lambda d, x, ref: (_tipping_series(d) + _tipping_cancellation(d)) * ref),
+              Compare("omega_stop", lambda x, off: 0.0, _stop_speed_bound),
           )),
 ]
+
 
 # --- I5 chain --------------------------------------------------------------------------------------
 
@@ -498,6 +538,11 @@ def _damping_shift(d, x, ref, off=None):
     return d * x["t"] * math.sqrt(2 * x["_E"]) * (1 + 1e-9) + (1e-13 * np.nanmax(np.abs(ref)) if d else 0.0)
 
 
+def _onsite_energy_bound(d, x, ref):
+    """The on-site spring adds ½mω0²Σu0² ≤ (ω0/ω1)² E0 to the energy at release."""
+    return (d / _lowest_bare_mode(x)) ** 2 * ref + (4 * EPS * ref if d else 0.0)
+
+
 def _spring_shift(d, x, ref):
     """max_j|u_ω0 − u_0| ≤ ω0² t √(2E)/ω1: the forcing −mω0²u has ‖F‖/√m ≤ ω0²√(2E)/ω1 (Poincaré)."""
     return d**2 * x["t"] * math.sqrt(2 * x["_E"]) / _lowest_bare_mode(x) * (1 + 1e-9) + (
@@ -519,8 +564,8 @@ _CHAIN_LIMITS = [
               Compare("u_dots", "u_dots", _spring_shift),
               Compare("dev", "dev", lambda d, x, ref: _spring_shift(d, x, ref) + (1e-13 if d else 0.0)),
               # ½mω0²Σu0² ≤ (ω0/ω1)² E0.
-              Compare("E_chain", "E_chain", lambda d, x, ref: (d / _lowest_bare_mode(x)) ** 2 * ref + (4 * EPS * ref if d else 0.0)),
-              Compare("E_chain_mJ", "E_chain_mJ", lambda d, x, ref: (d / _lowest_bare_mode(x)) ** 2 * ref + (4 * EPS * ref if d else 0.0)),
+              Compare("E_chain", "E_chain", _onsite_energy_bound),
+              Compare("E_chain_mJ", "E_chain_mJ", _onsite_energy_bound),
               # hypot(ω, ω0) − ω ≤ ω0²/2ω.
               Compare("omega_max", "omega_max", lambda d, x, ref: d**2 / (2 * ref) + (2 * EPS * ref if d else 0.0)),
               Compare("log_omega", "log_omega",
@@ -637,36 +682,48 @@ _ACOUSTIC_LIMITS = [
 ]
 
 # --- K4 bubble ---------------------------------------------------------------------------------------
+# The dynamic readouts belong to one pressure history (step, drive or ramp: one per scene) and carry its
+# prefix. A compressibility or liquid term is compared readout by readout with the same history on; a
+# history itself is compared with the bubble left at rest (R ≡ R0), which is what the model without it is.
 
+_HISTORY_PREFIX = getattr(bubble_module, "PREFIX", {"step": "collapse", "drive": "driven", "ramp": "ramp"})
 _B_EFFECTS = ("gas", "vdw_hard_core", "surface_tension", "viscosity", "drive", "keller_miksis")
 _C_EFFECTS = ("gas", "vapour", "surface_tension", "viscosity", "ramp")
+_A_EFFECTS = ("vapour", "step")
 # A driven bubble that stays mild (no violent collapse), where the reduced models are well conditioned.
 _MILD_BUBBLE = st.fixed_dictionaries({
     "R0": _log_uniform(math.log10(3.0), math.log10(20.0)), "p_a": st.floats(0.2, 0.9), "f": st.floats(20.0, 80.0),
 })
-_NUCLEUS = st.fixed_dictionaries({"R0": _log_uniform(0.0, 1.0), "kappa": st.just(1.0)})
+_NUCLEUS = st.fixed_dictionaries({"R0": _log_uniform(0.0, 1.0), "kappa": st.just(1.0), "p_target": st.floats(0.5, 0.95)})
+_CAVITY = st.fixed_dictionaries({"R0": _log_uniform(2.0, 4.0), "p_inf": st.floats(0.25, 10.0)})
 
 
 def _bubble_rel(d, x, ref):
-    """physics.md §13 (K4): the reduced model is reproduced to 1e−6 rel."""
-    return 1e-6 * np.abs(ref)
-
-
-_BUBBLE_RADII = (Compare("R_max", "R_max", _bubble_rel), Compare("R_min", "R_min", _bubble_rel))
-_BUBBLE_DRIVEN = (*_BUBBLE_RADII, Compare("R_max2", "R_max2", _bubble_rel), Compare("R_min2", "R_min2", _bubble_rel),
-                  Compare("mach_max", "mach_max", lambda d, x, ref: 1e-6 * np.abs(ref) + 1e-12))
+    """physics.md §13 (K4): the reduced model is reproduced to 1e−6 rel (text readouts: the same phrase)."""
+    return 1e-6 * np.abs(ref) + 1e-12
 
 
 def _bubble(effect, param, label, delta, *, effects=_B_EFFECTS, inputs=_MILD_BUBBLE, value=lambda d, x: d,
-            compare=_BUBBLE_DRIVEN):
+            compare=(), skip_suffixes=()):
     others = tuple(e for e in effects if e != effect)
     return Limit("bubble", effect, param, label, inputs, delta, value=value, compare=compare, companions=others,
-                 optional=False, strict=False, examples=6)
+                 optional=False, strict=False, examples=6, common=None if compare else _bubble_rel,
+                 common_skip=skip_suffixes)
+
+
+def _at_rest(history, radii, speed="mach"):
+    """The history's readouts against the bubble at rest: radii → 1 (1e−6 rel), wall speed → 0 (1e−6)."""
+    prefix = _HISTORY_PREFIX[history]
+    return (*(Compare(f"{prefix}_{name}", lambda x, off: 1.0, _bubble_rel) for name in radii),
+            Compare(f"{prefix}_{speed}", lambda x, off: 0.0, lambda d, x, ref: 1e-6))
 
 
 def _step_neutral(d, x):
-    """p∞ = (1 + δ) atm with the gas content at the equilibrium p_g0 = p0 + 2σ/R0: the step vanishes at δ = 0."""
-    x["gas_content"] = (1.0 + 2 * 0.0728 / (P0 * x["R0"] * 1e-6)) / (1.0 + d)
+    """p∞ = (1 + δ) atm with the gas content at its equilibrium, p_gi = p0: the step vanishes at δ = 0.
+
+    (Without surface tension: with it the equilibrium content 1 + 2σ/R0p0 lies above the domain's 1.)
+    """
+    x["gas_content"] = 1.0 / (1.0 + d)
     return 1.0 + d
 
 
@@ -680,28 +737,34 @@ _BUBBLE_LIMITS = [
     Limit("bubble", "inertia", "", "no-parameter", skip="inertia is the base law, always on"),
     Limit("bubble", "gas", "kappa", "kappa", skip="kappa is the polytropic exponent, not the gas amount; "
           "gas->0 is singular (the Rayleigh collapse), tested via K4 reference 1 (physics.md §13)"),
-    _bubble("vdw_hard_core", "h_frac", "h_frac->0", _small(-4.0)),
-    _bubble("vapour", "p_v", "p_v->0", _small(-6.0), effects=(*_B_EFFECTS, "vapour")),
-    _bubble("surface_tension", "sigma", "sigma->0", _small(-10.0)),
-    _bubble("viscosity", "mu", "mu->0", _small(-10.0)),
-    _bubble("thermal_damping", "D_g", "D_g->0", _small(-20.0),
+    _bubble("vdw_hard_core", "h_frac", "h_frac->0(driven)", _small(-4.0), skip_suffixes=("Rmin_h",)),
+    _bubble("vapour", "p_v", "p_v->0(driven)", _small(-6.0), effects=(*_B_EFFECTS, "vapour")),
+    _bubble("vapour", "p_v", "p_v->0(ramp)", _small(-6.0), effects=_C_EFFECTS, inputs=_NUCLEUS),
+    _bubble("surface_tension", "sigma", "sigma->0(driven)", _small(-10.0)),
+    _bubble("surface_tension", "sigma", "sigma->0(collapse)", _small(-10.0), effects=(*_A_EFFECTS, "surface_tension"),
+            inputs=_CAVITY),
+    _bubble("viscosity", "mu", "mu->0(driven)", _small(-10.0)),
+    _bubble("viscosity", "mu", "mu->0(ramp)", _small(-10.0), effects=_C_EFFECTS, inputs=_NUCLEUS),
+    _bubble("viscosity", "mu", "mu->0(collapse)", _small(-10.0), effects=(*_A_EFFECTS, "viscosity"), inputs=_CAVITY),
+    _bubble("thermal_damping", "D_g", "D_g->0(driven)", _small(-20.0),
             effects=("gas", "surface_tension", "viscosity", "thermal_damping", "drive")),
-    # Without the drive the run has no period: only R_max, R_min and the wall speed exist in both.
-    _bubble("drive", "p_a", "p_a->0", _small(-12.0),
-            compare=(*_BUBBLE_RADII, Compare("mach_max", "mach_max", lambda d, x, ref: 1e-6 * np.abs(ref) + 1e-12))),
+    # Neither compressibility term has a parameter of its own; c -> ∞ (base parameter) removes it (KM -> RP).
+    _bubble("keller_miksis", "c", "c->inf(base-param,driven)", _small(-12.0, lo_exp=-15.0, zero=False),
+            value=lambda d, x: 1.0 / d),
+    _bubble("radiation", "c", "c->inf(base-param,driven)", _small(-12.0, lo_exp=-15.0, zero=False),
+            value=lambda d, x: 1.0 / d, effects=("gas", "surface_tension", "viscosity", "drive", "radiation")),
+    # The pressure histories: without one the bubble stays at rest at R0.
+    _bubble("drive", "p_a", "p_a->0", _small(-12.0), compare=_at_rest("drive", ("R_max", "R_min", "R_max2", "R_min2"))),
     Limit("bubble", "drive", "f", "f", skip="f is the drive's frequency, not its strength: the drive vanishes with p_a"),
-    _bubble("step", "p_inf", "p_inf->p0", _small(-9.0, signed=True), value=_step_neutral,
-            effects=("gas", "surface_tension", "drive", "step")),
+    _bubble("step", "p_inf", "p_inf->p0", _small(-9.0), value=_step_neutral,
+            effects=("gas", "step"), compare=_at_rest("step", ("R_min",))),
     Limit("bubble", "step", "gas_content", "gas_content", skip="gas_content is tied to p_inf: the step's neutral "
           "point is p_inf = p0 with the gas at its equilibrium p_g0, tested as p_inf->p0"),
     _bubble("ramp", "p_target", "p_end->p0", _small(-9.0, signed=True), effects=_C_EFFECTS, inputs=_NUCLEUS,
-            value=_ramp_neutral, compare=_BUBBLE_RADII),
+            value=_ramp_neutral, compare=(*_at_rest("ramp", ("R_max",))[:-1],
+                                          Compare(f"{_HISTORY_PREFIX['ramp']}_growth", lambda x, off: 0.0, lambda d, x, ref: 0.0))),
     Limit("bubble", "ramp", "t_ramp", "t_ramp", skip="a duration, not a strength: the ramp vanishes with p_end->p0"),
     Limit("bubble", "ramp", "t_hold", "t_hold", skip="a duration, not a strength: the ramp vanishes with p_end->p0"),
-    # Neither compressibility term has a parameter of its own; c -> ∞ (base parameter) removes it (KM -> RP).
-    _bubble("keller_miksis", "c", "c->inf(base-param)", _small(-12.0, lo_exp=-15.0, zero=False), value=lambda d, x: 1.0 / d),
-    _bubble("radiation", "c", "c->inf(base-param)", _small(-12.0, lo_exp=-15.0, zero=False), value=lambda d, x: 1.0 / d,
-            effects=("gas", "surface_tension", "viscosity", "drive", "radiation")),
 ]
 
 # --- effects without a parameter -------------------------------------------------------------------
@@ -731,6 +794,10 @@ def _evaluate_pair(limit: Limit, x: dict, delta: float, others) -> tuple[dict, d
     if limit.strict:
         plain = [o.name for o in model.outputs if not o.effect]
         names_on, names_off = list(dict.fromkeys(names_on + plain)), list(dict.fromkeys(names_off + plain))
+    if limit.common:
+        shared = [o.name for o in model.outputs if not o.size and (not o.effect or o.effect in others)
+                  and not o.name.endswith(("_solver", *limit.common_skip))]  # the method label may change
+        names_on, names_off = list(dict.fromkeys(names_on + shared)), list(dict.fromkeys(names_off + shared))
     on = model.evaluate(x, wanted=names_on, effects=(*others, limit.effect))
     off = model.evaluate(x, wanted=names_off, effects=others)
     return x, on, off
@@ -741,7 +808,8 @@ def _check_limit(limit: Limit, x: dict, delta: float, others) -> None:
     if "E_chain" in on:  # the chain's bounds need its energy at release (per μc²A²), with the effect on
         x["_E"] = float(on["E_chain"])
     compared = set()
-    for c in limit.compare:
+    shared = [Compare(name, name, limit.common) for name in off if limit.common and name in on]
+    for c in (*limit.compare, *shared):
         value = np.asarray(on[c.on], float)
         ref = np.asarray(off[c.off] if isinstance(c.off, str) else c.off(x, off), float)
         bound = np.asarray(c.bound(delta, x, ref), float)

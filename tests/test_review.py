@@ -161,6 +161,8 @@ def two_builds(tmp_path_factory) -> tuple[Path, Path]:
     shutil.copytree(ROOT / "content", root / "content")
     shutil.copytree(ROOT / "src" / "sitegen", root / "src" / "sitegen", ignore=shutil.ignore_patterns("__pycache__"))
     (root / "node_modules").symlink_to(ROOT / "node_modules")
+    if (ROOT / ".cache").is_dir():  # a warm start (entries are content-addressed); only the changed scene is recomputed
+        shutil.copytree(ROOT / ".cache", root / ".cache")
     old = _build_copy(root, root / "old")
     model = root / MODEL_FILE
     text = model.read_text()
@@ -301,7 +303,7 @@ def test_review_against_a_revision_builds_it_in_a_temporary_worktree(tmp_path, c
     assert main(["build", "--root", str(repo)]) == 0
     assert main(["review", "--base", "main", "--root", str(repo), "--out", str(tmp_path / "diff"), "--no-render"]) == 1
     summary = (tmp_path / "diff" / "summary.md").read_text()
-    assert "`main (" in summary and "working tree (HEAD" in summary and "uncommitted changes" in summary
+    assert "`main (" in summary and "working tree (main at " in summary and "uncommitted changes" in summary
     assert summary.startswith("## Build review: 1 scene (") and "set of readouts" in summary
     assert _git(repo, "worktree", "list").count("\n") == 1
     assert "is not a commit" not in capsys.readouterr().err

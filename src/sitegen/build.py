@@ -219,7 +219,8 @@ def render_figures(scenes: list[PageScene], tables, remember=compute_now) -> dic
         def draw(view=view, scene=scene, scene_tables=scene_tables, layers=layers, points=points) -> bytes:
             return figure_svg(view.draw(scene, scene_tables), layers, points, dom_id(scene), view.label).encode()
 
-        key = digest(_scene_digest(item), source_digest(FIGURE_MODULES | {type(view).__module__}), "figure")
+        # The layers are drawn at the defaults, so the defaults (through the points) belong in the key.
+        key = digest(_scene_digest(item), source_digest(FIGURE_MODULES | {type(view).__module__}), repr(points), "figure")
         figures[_key(item)] = RenderedScene(remember("figures", key, draw).decode(), tuple(layers))
     return figures
 

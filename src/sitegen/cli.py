@@ -59,6 +59,9 @@ def _build(args) -> int:
     if args.no_cache:
         options["cache"] = None
     config = BuildConfig.at(args.root, args.out, **options)
+    if not config.content.is_dir():
+        print(f"sitegen: no content/ folder in {config.root}; a book is content/index.md and its other pages", file=sys.stderr)
+        return 2
     try:
         report = build(config, progress=_Progress(sys.stdout, args.explain))
     except BuildFailed as failure:
@@ -69,6 +72,20 @@ def _build(args) -> int:
     except MathToolMissing as problem:
         print(f"sitegen: {problem}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print(f"build interrupted; {config.out} holds the last complete build", file=sys.stderr)
+        return 130
+    except OSError as problem:  # the machine's side: a folder that cannot be written, a full disk
+        if args.debug:
+            raise
+        print(f"sitegen: {problem}; {config.out} holds the last complete build", file=sys.stderr)
+        return 2
+    except Exception as problem:  # a bug in sitegen or in a model, not in the book
+        if args.debug:
+            raise
+        print(f"sitegen: internal error: {type(problem).__name__}: {problem}\n"
+              f"{config.out} holds the last complete build; run again with --debug for the traceback", file=sys.stderr)
+        return 3
     total = sum(report.phases.values())
     size = sum(report.files.values())
     print(f"built {report.pages} pages, {report.scenes} scenes ({report.computed} computed, {report.cached} cached), "
@@ -105,14 +122,37 @@ def _counter(line: str) -> tuple[int, int]:
     return int(done), int(total)
 
 
+class _SiteHandler(http.server.SimpleHTTPRequestHandler):
+    """Serves the files of one folder and nothing else: no listings, no path out of it (not through
+    '..', encoded or not, nor a symbolic link)."""
+
+    def send_head(self):
+        root = os.path.realpath(self.directory)
+        target = os.path.realpath(self.translate_path(self.path))
+        if target != root and not target.startswith(root + os.sep):
+            self.send_error(404, "File not found")
+            return None
+        return super().send_head()
+
+    def list_directory(self, path):
+        self.send_error(404, "No listing; link to a file")
+        return None
+
+
 def _serve(args) -> int:
     directory = args.dir.resolve()
     if not (directory / "index.html").is_file():
         print(f"sitegen: nothing to serve in {directory}; run 'make site' first", file=sys.stderr)
         return 1
-    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(directory))
-    with http.server.ThreadingHTTPServer((args.bind, args.port), handler) as server:
-        print(f"serving {directory} at http://{args.bind}:{args.port}/index.html (Ctrl-C stops)")
+    handler = functools.partial(_SiteHandler, directory=str(directory))
+    try:
+        server = http.server.ThreadingHTTPServer((args.bind, args.port), handler)
+    except OSError as problem:
+        print(f"sitegen: cannot serve on {args.bind}:{args.port}: {problem.strerror or problem}; choose another --port", file=sys.stderr)
+        return 1
+    with server:
+        host, port = server.server_address[:2]
+        print(f"serving {directory} at http://{host}:{port}/index.html (Ctrl-C stops)", flush=True)
         try:
             server.serve_forever()
         except KeyboardInterrupt:

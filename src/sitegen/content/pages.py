@@ -40,7 +40,12 @@ def discover_pages(content_dir: Path) -> list[Path]:
 def read_page(path: Path, root: Path) -> tuple[Page | None, list[AuthorError]]:
     """Parse one page file; return the page (None if unusable) and every error in it."""
     source = path.relative_to(root).as_posix()
-    lines = path.read_text(encoding="utf-8").split("\n")
+    data = path.read_bytes()
+    try:
+        lines = data.decode("utf-8-sig").split("\n")  # -sig: a byte-order mark some editors add is dropped
+    except UnicodeDecodeError as error:
+        where = SourceLoc(source, data.count(b"\n", 0, error.start) + 1)
+        return None, [AuthorError(where, f"the file is not UTF-8 text (byte 0x{data[error.start]:02x}); save it as UTF-8")]
     meta, body_start, errors = _front_matter(lines, source)
     if meta is None:
         return None, errors

@@ -17,7 +17,7 @@ import numpy as np
 from . import bubble_terms as terms
 from .base import Model, Output, Param
 from .bubble_point import (
-    BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, SOLVER_LABELS, Scales, check_effects, compose, protocol, read_run,
+    BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, SOLVER_LABELS, Scales, check_effects, compose, read_run,
 )
 from .bubble_solve import CURVE_POINTS, Run, solve
 from .bubble_terms import P0, WATER, Problem
@@ -60,6 +60,8 @@ def _history_outputs() -> tuple[Output, ...]:
             extra = {"labels": shown} if isinstance(shown, tuple) else {"decimals": shown, "special": "—"}
             outputs.append(Output(f"{prefix}_{key}", label, unit, deps, effect=history, **extra))
         for key, decimals, size in GEOMETRY:
+            if key.startswith("mark") and history == "ramp":  # the ramp's growth has no extremum to mark
+                continue
             outputs.append(Output(f"{prefix}_{key}", f"figure: {key}", "", deps, decimals=decimals, size=size, ragged=True, effect=history))
     return tuple(outputs)
 
@@ -70,22 +72,22 @@ class Bubble(Model):
     name = "bubble"
     title = "Rayleigh–Plesset bubble dynamics"
     params = (
-        Param("R0", "R<sub>0</sub>", "µm", 4.5, lo=0.0, hi=1e5, lo_open=True, description="radius at rest at t = 0"),
+        Param("R0", "R<sub>0</sub>", "µm", 4.5, lo=0.0, lo_open=True, description="radius at rest at t = 0"),
         Param("rho", "ρ", "kg/m³", WATER["rho"], lo=0.0, lo_open=True, description="liquid density"),
         Param("c", "c", "m/s", WATER["c"], lo=0.0, lo_open=True, description="speed of sound in the liquid"),
         Param("kappa", "κ", "", 5 / 3, lo=1.0, hi=3.0, description="polytropic exponent (γ with thermal damping)").with_effect("gas"),
         Param("h_frac", "h/R<sub>0</sub>", "", 1 / 8.86, lo=0.0, hi=0.9, description="van der Waals hard-core radius").with_effect("vdw_hard_core"),
-        Param("p_v", "p<sub>v</sub>", "Pa", WATER["p_v"], lo=0.0, hi=1e6, description="vapour pressure").with_effect("vapour"),
+        Param("p_v", "p<sub>v</sub>", "Pa", WATER["p_v"], lo=0.0, hi=5e4, description="vapour pressure").with_effect("vapour"),
         Param("sigma", "σ", "N/m", WATER["sigma"], lo=0.0, hi=1.0, description="surface tension").with_effect("surface_tension"),
         Param("mu", "µ", "Pa·s", WATER["mu"], lo=0.0, hi=100.0, description="liquid viscosity").with_effect("viscosity"),
         Param("D_g", "D<sub>g</sub>", "mm²/s", 20.5, lo=0.0, description="thermal diffusivity of the gas (argon)").with_effect("thermal_damping"),
         Param("p_a", "p<sub>a</sub>/p<sub>0</sub>", "", 1.3, lo=0.0, hi=10.0, description="drive amplitude").with_effect("drive"),
         Param("f", "f", "kHz", 26.5, lo=0.0, hi=1e4, lo_open=True, description="drive frequency").with_effect("drive"),
         Param("p_inf", "p<sub>∞</sub>", "atm", 1.0, lo=0.0, hi=1e3, lo_open=True, description="liquid pressure from t = 0").with_effect("step"),
-        Param("gas_content", "p<sub>gi</sub>/p<sub>∞</sub>", "", 0.0, lo=0.0, hi=100.0, description="initial gas pressure").with_effect("step"),
+        Param("gas_content", "p<sub>gi</sub>/p<sub>∞</sub>", "", 0.0, lo=0.0, hi=1.0, description="initial gas pressure").with_effect("step"),
         Param("p_target", "p<sub>target</sub>/p<sub>Blake</sub>", "", 0.99, description="end of the pressure ramp").with_effect("ramp"),
-        Param("t_ramp", "t<sub>ramp</sub>", "µs", 200.0, lo=0.0, hi=1e4, lo_open=True, description="ramp duration").with_effect("ramp"),
-        Param("t_hold", "t<sub>hold</sub>", "µs", 100.0, lo=0.0, hi=1e4, description="hold after the ramp").with_effect("ramp"),
+        Param("t_ramp", "t<sub>ramp</sub>", "µs", 200.0, lo=0.0, hi=1e3, lo_open=True, description="ramp duration").with_effect("ramp"),
+        Param("t_hold", "t<sub>hold</sub>", "µs", 100.0, lo=0.0, hi=1e3, description="hold after the ramp").with_effect("ramp"),
     )
     outputs = (
         Output("t_c", "Rayleigh collapse time t<sub>c</sub>", "µs", ("R0", "rho", "p_inf", "p_v"), decimals=3, special="∞ (no collapse: p∞ ≤ p_v)", effect="step"),

@@ -40,7 +40,8 @@ _FLAG_OF_STATUS = {MACH: 2, KM_STOP: 3, POINT: 4, CORE: 5, UNBOUNDED_GROWTH: 6, 
 SOLVER_LABELS = ("analytic (betaincinv)", "DOP853, rtol 1e−6", "LSODA (stiff: 4µT/ρR₀² > 10³), rtol 1e−6", "other")
 BLAKE_LABELS = ("bounded: R stayed below the Blake radius", "R passed R_B but stayed below 10 R_B", "unbounded: R reached 10 R_B")
 
-TERMINAL = (MACH, KM_STOP, POINT, CORE, UNBOUNDED_GROWTH)
+GUARDS = (MACH, KM_STOP, POINT, CORE)  # terminal events that end a run before its window does
+TERMINAL = GUARDS + (UNBOUNDED_GROWTH,)
 ABANDONED = (CAP_NFEV, CAP_WALL, FAILED)
 
 
@@ -54,11 +55,6 @@ def check_effects(effects) -> None:
     protocols = [p for p in PROTOCOLS if p in effects]
     if len(protocols) > 1:
         raise ValueError(f"effects {' and '.join(f'`{p}`' for p in protocols)} exclude each other: one pressure history per scene")
-
-
-def protocol(effects) -> str:
-    """The scene's pressure history: "step", "drive", "ramp", or "" (the liquid stays at p0)."""
-    return next((p for p in PROTOCOLS if p in effects), "")
 
 
 class Scales:
@@ -160,8 +156,8 @@ def read_run(run: Run, pb: Problem, scales: Scales, effects) -> dict:
 def _extremes(run: Run, pb: Problem, a: float, b: float) -> dict:
     """R_max, R_min (τ, r) and max |ṙ| over [a, b] from events, plus the ends of [a, b] if reached.
 
-    A run stopped early by a guard has no value where no event was found (e.g. no R_min when the
-    empty collapse stops at |Ṙ| = c); an abandoned run has none at all.
+    A run stopped by a guard inside [a, b] has no R_min there (the collapse it was heading into is
+    not computed, e.g. the empty collapse stopped at |Ṙ| = c); an abandoned run has no value at all.
     """
     missing = (np.inf, np.inf)
     if run.status in ABANDONED:
@@ -179,6 +175,8 @@ def _extremes(run: Run, pb: Problem, a: float, b: float) -> dict:
         maxima.append((stop_t, stop_r))
     if a <= stop_t <= b and run.status in (MACH, KM_STOP):
         speeds.append((stop_t, stop_v))
+    if a <= stop_t <= b and run.status in GUARDS:  # the minimum of [a, b] lies beyond the stop: unknown
+        minima = []
     return {
         "r_max": max(maxima, key=lambda row: row[1], default=missing),
         "r_min": min(minima, key=lambda row: row[1], default=missing),
@@ -189,15 +187,13 @@ def _extremes(run: Run, pb: Problem, a: float, b: float) -> dict:
 
 def _gas_peaks(pb: Problem, r_min: float) -> dict:
     """Peak gas pressure (GPa), adiabatic temperature (K) and R_min/h at the minimum radius."""
-    if not math.isfinite(r_min) or not pb.gas:
-        return {"pg_peak": np.inf, "Tg_peak": np.inf, "Rmin_h": np.inf if pb.eta == 0 or not math.isfinite(r_min) else r_min / pb.eta}
-    e3 = pb.eta**3
-    compression = (1.0 - e3) / (r_min**3 - e3)
-    return {
-        "pg_peak": pb.gas * compression**pb.kappa * P0 * 1e-9,
-        "Tg_peak": T0 * compression ** (pb.kappa - 1.0),
-        "Rmin_h": r_min / pb.eta if pb.eta else np.inf,
-    }
+    found = math.isfinite(r_min)
+    out = {"pg_peak": np.inf, "Tg_peak": np.inf, "Rmin_h": r_min / pb.eta if found and pb.eta else np.inf}
+    if found and pb.gas:
+        e3 = pb.eta**3
+        compression = (1.0 - e3) / (r_min**3 - e3)
+        out.update(pg_peak=pb.gas * compression**pb.kappa * P0 * 1e-9, Tg_peak=T0 * compression ** (pb.kappa - 1.0))
+    return out
 
 
 def _y_transform(pb: Problem, effects):
@@ -207,8 +203,8 @@ def _y_transform(pb: Problem, effects):
     """
     if "drive" in effects:
         return lambda r: np.log10(np.asarray(r, float))
-    if "ramp" in effects:
-        r_b = pb.r_unbounded / terms.UNBOUNDED
+    r_b = pb.r_unbounded / terms.UNBOUNDED
+    if "ramp" in effects and math.isfinite(r_b):  # without surface tension there is no Blake radius
         return lambda r: np.log10(np.asarray(r, float) / r_b)
     return lambda r: np.asarray(r, float)
 

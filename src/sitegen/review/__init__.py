@@ -19,7 +19,7 @@ def review_builds(old: Path, new: Path, out: Path, old_label: str | None = None,
     review = compare_trees(read_tree(old), read_tree(new), old_label or str(old), new_label or str(new))
     if render:
         render_figures(review)
-    else:
+    elif any(s.figure.old_svg and s.figure.new_svg for s in review.figures()):
         review.render_note = "rendering was turned off (--no-render)"
     write_report(review, out)
     return review

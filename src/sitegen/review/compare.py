@@ -141,10 +141,11 @@ def compare_scenes(page: str, a: Scene | None, b: Scene | None) -> SceneChange:
     svg_a, svg_b = a.svg if a else "", b.svg if b else ""
     if svg_a != svg_b:
         change.figure = FigureChange(svg_a, svg_b, svg_change(svg_a, svg_b) if a and b else None)
-    data_a, data_b = a.data if a else None, b.data if b else None
-    if data_a != data_b:
-        change.tables = _table_changes(data_a, data_b)
-        change.controls = _control_notes(data_a or {}, data_b or {})
+    if a is None or b is None:  # a whole scene came or went: its outputs in one line, not one row each
+        change.controls = [f"{change.table_count} tables, all {change.status}"]
+    elif a.data != b.data:
+        change.tables = _table_changes(a.data, b.data)
+        change.controls = _control_notes(a.data, b.data)
     panel_a, panel_b = a.panel if a else "", b.panel if b else ""
     if panel_a != panel_b:
         change.panel = text_diff(text_lines(panel_a), text_lines(panel_b))

@@ -63,10 +63,12 @@ def _build(root: Path, project: Path) -> None:
 
 
 def working_tree_label(root: Path) -> str:
-    """'working tree (HEAD abc1234, uncommitted changes)', or plainly 'working tree' outside git."""
+    """'working tree (main at abc1234, uncommitted changes)', or plainly 'working tree' outside git."""
     try:
         head = _git(root, "rev-parse", "--short", "HEAD")
+        branch = _git(root, "rev-parse", "--abbrev-ref", "HEAD")
         dirty = _git(root, "status", "--porcelain", "--untracked-files=no")
     except ReviewError:
         return "working tree"
-    return f"working tree (HEAD {head}{', uncommitted changes' if dirty else ''})"
+    where = f"{branch} at {head}" if branch != "HEAD" else f"HEAD {head}"
+    return f"working tree ({where}{', uncommitted changes' if dirty else ''})"

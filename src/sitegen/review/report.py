@@ -102,7 +102,8 @@ def figure_notes(scene: SceneChange) -> list[str]:
 def summary_markdown(review: Review, report: Path | None = None) -> str:
     """A short summary to paste into a pull-request comment."""
     lines = [f"## Build review: {headline(review)}", "",
-             f"`{_md(review.old_label)}` → `{_md(review.new_label)}`: {review.page_count} pages, {review.scene_count} scenes compared."]
+             f"`{_md(review.old_label)}` → `{_md(review.new_label)}`: {_count(review.page_count, 'page') or '0 pages'}, "
+             f"{_count(review.scene_count, 'scene') or '0 scenes'} compared."]
     if not review.changed:
         return "\n".join(lines + ["", "Every file of the two builds is byte-identical."]) + "\n"
     lines += _figure_rows(review) + _table_rows(review) + _page_rows(review) + _file_rows(review)
@@ -130,9 +131,9 @@ def _figure_change(scene: SceneChange) -> str:
     parts = [percent(pixels.fraction) + " of the figure differs" if pixels else "SVG changed"]
     svg = scene.figure.svg
     if svg and svg.layers_changed:
-        parts.append("layers " + ", ".join(svg.layers_changed))
+        parts.append(f"layer{'s' if len(svg.layers_changed) > 1 else ''} {', '.join(svg.layers_changed)} moved")
     if svg and svg.static_changed:
-        parts.append("static drawing")
+        parts.append("static drawing changed")
     return "; ".join(parts)
 
 
@@ -166,10 +167,25 @@ def _page_rows(review: Review) -> list[str]:
         elif page.text:
             changed = [line for line in page.text if line.kind in "+-"]
             rows.append(f"- {page.name}: {len(changed)} line(s) of text changed")
-            rows += ["  ```diff", *(f"  {line.kind}{line.text[:160]}" for line in changed[:6]), "  ```"]
+            rows += ["  ```diff", *(f"  {line.kind}{_excerpt(line)}" for line in changed[:6]), "  ```"]
         elif page.markup:
             rows.append(f"- {page.name}: markup changed, no visible text")
     return ["", "**Pages** (text outside the scenes)", "", *rows] if rows else []
+
+
+def _excerpt(line, width: int = 150) -> str:
+    """A long line cut to the part around its first changed words."""
+    text = line.text
+    if len(text) <= width:
+        return text
+    start, offset = 0, 0
+    for piece, hot in line.runs:
+        if hot:
+            start = offset
+            break
+        offset += len(piece)
+    start = max(0, min(start - width // 3, len(text) - width))
+    return ("…" if start else "") + text[start : start + width] + ("…" if start + width < len(text) else "")
 
 
 def _file_rows(review: Review) -> list[str]:

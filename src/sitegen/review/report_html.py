@@ -42,7 +42,6 @@ h4 { font-size: 13px; text-transform: uppercase; letter-spacing: 0.06em; color: 
 .tag { font-size: 12.5px; padding: 1px 9px; border-radius: 999px; background: var(--bg); color: var(--muted); white-space: nowrap; }
 .tag.hot { background: var(--old-bg); color: #8a3510; }
 .figs { display: grid; grid-template-columns: repeat(3, minmax(0, 1fr)); gap: 14px; }
-.figs.two { grid-template-columns: repeat(2, minmax(0, 1fr)); }
 .figs figure { margin: 0; }
 .figs figcaption { font-size: 12px; font-weight: 600; letter-spacing: 0.06em; text-transform: uppercase; color: var(--muted); margin: 0 0 5px; }
 .figs img { display: block; width: 100%; height: auto; background: #fff; border: 1px solid var(--line); border-radius: 6px; }
@@ -79,7 +78,7 @@ pre.markup { margin: 0; padding: 10px 12px; background: var(--bg); border-radius
 ul.plain { margin: 0; padding-left: 18px; }
 .empty { background: var(--card); border: 1px dashed var(--line); border-radius: 10px; padding: 28px; text-align: center; color: var(--muted); margin-top: 24px; }
 footer { color: var(--muted); font-size: 13px; margin-top: 36px; }
-@media (max-width: 900px) { .figs, .figs.two { grid-template-columns: 1fr; } .wrap { padding: 0 14px; } }
+@media (max-width: 900px) { .figs { grid-template-columns: 1fr; } .wrap { padding: 0 14px; } }
 </style>
 </head>
 <body>
@@ -132,10 +131,11 @@ footer { color: var(--muted); font-size: 13px; margin-top: 36px; }
 <article class="card" id="{{ anchor(scene) }}">
 <header><h3>Scene <code>{{ scene.id }}</code></h3>
 <span class="tag">model {{ scene.model }}</span>
-{% if scene.status != 'changed' %}<span class="tag hot">scene {{ scene.status }}</span>{% endif %}
+{% if scene.status != 'changed' %}<span class="tag hot">scene {{ scene.status }}</span>{% else %}
 {% if scene.figure %}<span class="tag hot">figure changed</span>{% endif %}
 {% if scene.tables %}<span class="tag hot">{{ scene.tables|length }} of {{ scene.table_count }} tables changed</span>{% endif %}
 {% if scene.panel %}<span class="tag hot">readouts or controls changed</span>{% endif %}
+{% endif %}
 </header>
 {% set fig = scene.figure %}
 {% if fig %}
@@ -157,9 +157,9 @@ footer { color: var(--muted); font-size: 13px; margin-top: 36px; }
 <p class="notes">{% for note in figure_notes(scene) %}{{ note }}{% if not loop.last %} · {% endif %}{% endfor %}</p>
 <p class="notes"><span class="key"><i style="background: var(--new)"></i>only in new</span><span class="key"><i style="background: var(--old)"></i>only in old</span><span class="key"><i style="background: var(--both)"></i>colour changed</span></p>
 {% else %}
-<div class="figs two">
-<figure><figcaption>Old</figcaption>{% if fig.old_svg %}<img alt="old figure" src="{{ svg(fig.old_svg) }}">{% else %}<p class="notes">no figure</p>{% endif %}</figure>
-<figure><figcaption>New</figcaption>{% if fig.new_svg %}<img alt="new figure" src="{{ svg(fig.new_svg) }}">{% else %}<p class="notes">no figure</p>{% endif %}</figure>
+<div class="figs">
+<figure><figcaption>Old</figcaption>{% if fig.old_svg %}<img alt="old figure" src="{{ svg(fig.old_svg) }}">{% else %}<p class="notes">none: the scene is new</p>{% endif %}</figure>
+<figure><figcaption>New</figcaption>{% if fig.new_svg %}<img alt="new figure" src="{{ svg(fig.new_svg) }}">{% else %}<p class="notes">none: the scene was removed</p>{% endif %}</figure>
 </div>
 <p class="notes">{% for note in figure_notes(scene) %}{{ note }}{% if not loop.last %} · {% endif %}{% endfor %}</p>
 {% endif %}
@@ -184,7 +184,7 @@ footer { color: var(--muted); font-size: 13px; margin-top: 36px; }
 </table>
 {% endif %}
 {% if scene.controls %}
-<h4>Controls and data</h4>
+<h4>{% if scene.status == 'changed' %}Controls and data{% else %}Tables{% endif %}</h4>
 <ul class="plain">{% for note in scene.controls %}<li>{{ note }}</li>{% endfor %}</ul>
 {% endif %}
 {% if scene.panel %}

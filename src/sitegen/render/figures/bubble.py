@@ -46,9 +46,10 @@ class BubbleFigure:
         out = f"out:{_view(scene)}_"
         layers = [
             Layer("radius", "polyline", 0, xs=out + "curve_x", ys=out + "curve_y", style=_LINE),
-            Layer("extrema", "dots", 0, xs=out + "mark_x", ys=out + "mark_y", style={**_DOT, "stroke": s.INK, "stroke-width": "6"}),
             Layer("stop", "dots", 0, xs=out + "stop_x", ys=out + "stop_y", style={**_DOT, "stroke": s.ORANGE, "stroke-width": "8"}),
         ]
+        if _view(scene) != "ramp":
+            layers.insert(1, Layer("extrema", "dots", 0, xs=out + "mark_x", ys=out + "mark_y", style={**_DOT, "stroke": s.INK, "stroke-width": "6"}))
         if _view(scene) == "driven":
             xs = tuple(float(v) for v in np.round(np.linspace(0.0, _x_end(scene), CURVE_POINTS), 6))
             layers.append(Layer("drive", "polyline", 1, xs=xs, ys="out:driven_p_far", style={**_LINE, "stroke": s.ORANGE, "stroke-width": "1.8"}))
@@ -127,7 +128,7 @@ def _log_ticks(ax) -> None:
 
 def _y_range(tables, view: str) -> tuple[float, float]:
     """The smallest and largest radius coordinate of the curve and its event dots over every stop."""
-    ranges = [table_range(tables[f"{view}_{name}"]) for name in ("curve_y", "mark_y")]
+    ranges = [table_range(tables[f"{view}_{name}"]) for name in ("curve_y", "mark_y", "stop_y") if f"{view}_{name}" in tables]
     return min(r[0] for r in ranges), max(r[1] for r in ranges)
 
 
@@ -141,9 +142,9 @@ def _draw_ramp(ax, scene, tables) -> None:
     ax.axhline(1.0, color=s.MUTED, lw=0.8, ls=(0, (2, 3)))
     ramp = scene.base_values()["t_ramp"]
     ax.axvline(ramp, color=s.MUTED, lw=0.8, ls=(0, (2, 3)))
-    ax.text(ramp, ax.get_ylim()[0] + 0.03, " ramp ends", color=s.MUTED, fontsize=8, va="bottom")
+    ax.text(ramp, ax.get_ylim()[0] + 0.03, "ramp ends ", color=s.MUTED, fontsize=8, ha="right", va="bottom")
     ax.text(0.01 * _x_end(scene), 0.03, "Blake radius R$_B$", color=s.INK, fontsize=8, va="bottom")
     ax.text(0.01 * _x_end(scene), 1.03, "10 R$_B$: unbounded", color=s.MUTED, fontsize=8, va="bottom")
     ax.set_xlabel("time t (µs)")
     ax.set_ylabel("radius R / R$_B$ (log scale)")
-    _legend(ax, _model_handles("reached 10 R$_B$", "R$_{max}$ (event)"), loc="lower right")
+    _legend(ax, _model_handles("reached 10 R$_B$"), loc="lower right")

@@ -33,6 +33,7 @@ def figure_svg(fig, layers: list[Layer], points: list[list[tuple[float, float]]]
     svg = buffer.getvalue()
     svg = svg[svg.index("<svg") :]
     svg = re.sub(r"<metadata>.*?</metadata>\s*", "", svg, flags=re.S)
+    svg = re.sub(r"\s*<!--.*?-->", "", svg, flags=re.S)  # matplotlib's comments repeat the label TeX
     svg = re.sub(r'<svg[^>]*?(viewBox="[^"]+")[^>]*>', rf'<svg xmlns="http://www.w3.org/2000/svg" \1 class="scene-svg" role="img" aria-label="{escape(label)}">', svg, count=1)
     svg = svg.replace("</svg>", _layers_svg(layers, points, frames) + "</svg>")
     svg = _ID_ATTR.sub(lambda m: f'id="{prefix}-{m[1]}"', svg)

@@ -38,7 +38,7 @@ def stylesheet(node_modules: Path) -> bytes:
 
 def math_font(pages_html: list[str], remember=None) -> bytes:
     """Latin Modern Math cut down to the characters the pages' formulas use (with their variants)."""
-    characters = set("()[]{}|=+−0123456789")
+    characters = set("()[]{}|=+−0123456789√")  # √: <msqrt> draws it without a text character
     for html in pages_html:
         for element in _MATH_ELEMENT.findall(html):
             characters.update(unescape(_TAG.sub("", element)))

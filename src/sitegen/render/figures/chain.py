@@ -61,8 +61,8 @@ def _draw_string_axes(ax, tables) -> None:
     ax.set_ylabel("displacement u / A")
     ax.legend(
         handles=[
-            Line2D([], [], color=s.BLUE, marker="o", ls="none", ms=5, label="chain u$_j$(t)"),
-            Line2D([], [], color=s.ORANGE, lw=1.8, ls=(0, (6, 4)), label="string u$_c$(x, t)"),
+            Line2D([], [], color=s.BLUE, marker="o", ls="none", ms=5, label="chain of N masses"),
+            Line2D([], [], color=s.ORANGE, lw=1.8, ls=(0, (6, 4)), label="continuous string"),
         ],
         loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=2, frameon=False, fontsize=9,
     )
@@ -74,7 +74,7 @@ def _draw_dispersion_axes(ax) -> None:
     ax.set_ylim(LOG_LO, LOG_HI)
     ax.plot([LOG_LO, LOG_HI], np.log10(SPEED) + np.array([LOG_LO, LOG_HI]), color=s.INK, lw=1.2, zorder=1)
     decades = [1, 2, 3]
-    labels = [f"10$^{d}$" for d in decades]
+    labels = [f"{10**d:g}" for d in decades]  # plain text: mathtext would leave "$" in the SVG
     ax.set_xticks(decades, labels)
     ax.set_yticks(decades, labels)
     ax.set_xlabel("k (rad/m)")

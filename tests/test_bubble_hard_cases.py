@@ -137,8 +137,7 @@ def test_preset_B_with_keller_miksis_is_valid():
 
 def _stiff_bubble():
     """R0 = 1 µm, µ = 1 Pa s, ρ = 1260, p_a = 0.5 atm, 20 kHz: 4µT/ρR0² = 1.6e5 per period."""
-    point = _point("B", R0=1.0, mu=1.0, rho=1260.0, p_a=0.5, f=20.0, kappa=1.4)
-    return compose(point, ("gas", "surface_tension", "viscosity", "drive"))[0]
+    return preset_problem("stiff")[0]
 
 
 def test_stiff_viscous_microbubble_gets_an_implicit_solver_under_5000_evaluations():

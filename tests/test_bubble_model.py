@@ -306,7 +306,7 @@ _C_EFFECTS = PRESETS["C"][0]
 VANISHING = [
     pytest.param("B", _MILD_B, _B_EFFECTS, {"sigma": 1e-12}, ("surface_tension",), id="sigma->0"),
     pytest.param("B", _MILD_B, _B_EFFECTS, {"mu": 1e-12}, ("viscosity",), id="mu->0"),
-    pytest.param("B", _MILD_B, _B_EFFECTS, {"h_frac": 1e-6}, ("vdw_hard_core",), id="h->0"),
+    pytest.param("B", _MILD_B, _B_EFFECTS, {"h_frac": 1e-4}, ("vdw_hard_core",), id="h->0"),
     pytest.param("B", {"f": 50.0}, _B_EFFECTS, {"p_a": 1e-13}, ("drive",), id="p_a->0"),
     pytest.param("B", _MILD_B, _B_EFFECTS, {"c": 1e12}, ("keller_miksis",), id="KM:c->inf"),
     pytest.param("B", _MILD_B, ("gas", "surface_tension", "viscosity", "drive", "radiation"), {"c": 1e12}, ("radiation",), id="radiation:c->inf"),
@@ -354,6 +354,15 @@ def test_scale_free_collapse_is_solved_once_per_nondimensional_problem():
              for g in (0, 1e-4, 1e-3, 1e-2, 1e-1)]
     problems = {compose(_point("A", R0=r0, p_inf=p, gas_content=g, kappa=1.4), ("vapour", "step", "gas"))[0] for r0, p, g in stops}
     assert len(problems) == 30
+
+
+def test_drawn_curve_passes_through_the_event_detected_minimum():
+    """Preset B: the lowest vertex of the drawn R(t) is the event-detected minimum (0.17587 R0, 2nd cycle); samples alone stay above 0.35 R0."""
+    out = _evaluate("B", ["driven_R_min", "driven_R_min2"])
+    curve = Bubble().evaluate(PRESETS["B"][1], wanted=["driven_curve_y"], effects=PRESETS["B"][0])["driven_curve_y"]
+    pb, _ = preset_problem("B")
+    assert 10 ** np.nanmin(curve) == pytest.approx(min(out.values()), rel=1e-12)
+    assert np.nanmin(solve(pb).r) > 2 * min(out.values())
 
 
 def test_read_run_never_returns_nan_outside_the_curve_padding():

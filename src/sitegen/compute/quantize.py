@@ -11,10 +11,10 @@ def quantize(values, decimals: int, special: bool = False) -> np.ndarray:
     """Round to `decimals` digits and return the integer count of 10**-decimals units.
 
     A value that rounds to zero becomes plain 0, so a page never shows "-0.000". With `special`,
-    infinite values become the SPECIAL marker.
+    non-finite values (a singularity, or a quantity that does not exist there) become the SPECIAL marker.
     """
     values = np.asarray(values, dtype=float)
-    infinite = np.isinf(values) if special else np.zeros(values.shape, bool)
+    infinite = ~np.isfinite(values) if special else np.zeros(values.shape, bool)
     scaled = np.rint(np.where(infinite, 0.0, values) * 10.0**decimals)
     quanta = scaled.astype(np.int64) + 0  # + 0 folds -0 into 0 (integers carry no sign of zero)
     return np.where(infinite, SPECIAL, quanta)

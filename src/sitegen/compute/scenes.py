@@ -171,8 +171,8 @@ def _range_problem(s: SliderSpec, model: Model) -> str | None:
     count = (s.hi - s.lo) / s.step
     if count != count.to_integral_value():
         return f"range {s.lo}..{s.hi} is not a whole number of steps of {s.step}; max {s.lo + s.step * int(count)} would be"
-    if count + 1 > MAX_STOPS:
-        return f"has {int(count) + 1} stops, more than {MAX_STOPS}; use a larger step"
+    if count + 1 > MAX_STOPS:  # (the count itself can have hundreds of digits: not worth printing)
+        return f"has more than {MAX_STOPS} stops from {s.lo} to {s.hi} in steps of {s.step}; use a larger step"
     for bound, value in (("min", s.lo), ("max", s.hi)):
         if problem := _domain_problem(model, s.param, value, bound):
             return problem

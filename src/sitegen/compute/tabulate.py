@@ -177,8 +177,8 @@ def _drop_constant_axes(axes: tuple[int, ...], quanta: np.ndarray) -> tuple[tupl
 
 
 def _require_finite(scene: ResolvedScene, axes: tuple[int, ...], output, array: np.ndarray) -> None:
-    """Fail on a non-finite value, unless the output declares how the page shows it (not NaN)."""
-    allowed = np.isinf(array) if output.special else np.zeros(array.shape, bool)
+    """Fail on a non-finite value, unless the output declares how the page shows it in words."""
+    allowed = np.ones(array.shape, bool) if output.special else np.zeros(array.shape, bool)
     bad = np.argwhere(~(np.isfinite(array) | allowed))
     if len(bad):
         raise AuthorError(

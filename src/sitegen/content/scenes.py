@@ -20,7 +20,8 @@ from ..errors import AuthorError, SourceLoc
 
 KEYS = ("model", "id", "slider", "choice", "fix", "effects", "readouts", "figure", "caption", "animate")
 _LINE = re.compile(r"^(?P<key>[A-Za-z_]+)(?:\s+(?P<name>[A-Za-z_][A-Za-z0-9_]*))?\s*:\s*(?P<value>.*?)\s*$")
-_NUMBER = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?"
+# A number, or NaN/infinity, which are read as numbers so that the error can say what is wrong with them.
+_NUMBER = r"[-+]?(?:(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?|(?i:nan|inf(?:inity)?)(?!\w))"
 _SLIDER = re.compile(
     rf"^(?P<lo>{_NUMBER})\s*\.\.\s*(?P<hi>{_NUMBER})\s+step\s+(?P<step>{_NUMBER})\s+default\s+(?P<default>{_NUMBER})$"
 )
@@ -152,12 +153,13 @@ def _parse_line(text: str, loc: SourceLoc, fields: dict) -> None:
 def _parse_slider(name: str, value: str, loc: SourceLoc) -> SliderSpec:
     listed = _LIST.match(value)
     if listed:
-        stops = tuple(_decimal(v, loc, "stop") for v in listed["values"].split(","))
-        return SliderSpec(name, min(stops), max(stops), Decimal(0), _decimal(listed["default"], loc, "default"), loc, stops)
+        stops = tuple(_decimal(v.strip(), loc, f"slider '{name}' stop") for v in listed["values"].split(","))
+        return SliderSpec(name, min(stops), max(stops), Decimal(0), _decimal(listed["default"], loc, f"slider '{name}' default"), loc, stops)
     match = _SLIDER.match(value)
     if not match:
         raise AuthorError(loc, f"malformed slider '{name}': '{value}'; write {SLIDER_FORM}")
-    lo, hi, step, default = (_decimal(match[k], loc, k) for k in ("lo", "hi", "step", "default"))
+    words = {"lo": "min", "hi": "max", "step": "step", "default": "default"}
+    lo, hi, step, default = (_decimal(match[k], loc, f"slider '{name}' {words[k]}") for k in words)
     return SliderSpec(name, lo, hi, step, default, loc)
 
 

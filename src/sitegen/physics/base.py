@@ -56,8 +56,9 @@ class Output:
 
     A number output is shown with `decimals` digits; a text output is an index into `labels`.
     A vector output (`size` > 0) gives `size` numbers per parameter point, e.g. the geometry of a
-    curve; a ragged one pads with NaN after its last element. Where the physics is singular an
-    output may be non-finite if it says how to show that (`special`, e.g. "∞").
+    curve; a ragged one pads with NaN after its last element. Where the physics is singular (±inf)
+    or the quantity does not exist (NaN) an output may be non-finite if it says how to show that in
+    words (`special`, e.g. "∞" or "—"); any other non-finite value fails the build.
     """
 
     name: str

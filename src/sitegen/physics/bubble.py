@@ -51,6 +51,15 @@ GEOMETRY = (("curve_x", 3, CURVE_SIZE), ("curve_y", 3, CURVE_SIZE), ("stop_x", 5
             ("mark_x", 5, 2), ("mark_y", 3, 2))
 
 
+# The solver is chosen from the stiffness 4µT/ρR0² (µ with its thermal part) and from whether only
+# inertia acts; c and the quantities the choice never reads are not its dependencies.
+SOLVER_DEPS = {
+    "step": ("R0", "rho", "kappa", "h_frac", "p_v", "sigma", "mu", "D_g", "p_inf", "gas_content"),
+    "drive": ("R0", "rho", "kappa", "p_v", "sigma", "mu", "D_g", "p_a", "f"),
+    "ramp": ("R0", "rho", "kappa", "h_frac", "p_v", "sigma", "mu", "D_g", "t_ramp", "t_hold"),
+}
+
+
 def _history_outputs() -> tuple[Output, ...]:
     """Every dynamic output, per pressure history, each depending on the liquid, the gas and that history."""
     outputs = []
@@ -58,7 +67,8 @@ def _history_outputs() -> tuple[Output, ...]:
         deps = LIQUID_AND_GAS + HISTORY_PARAMS[history]
         for key, label, unit, shown in DYNAMIC[history] + COMMON:
             extra = {"labels": shown} if isinstance(shown, tuple) else {"decimals": shown, "special": "—"}
-            outputs.append(Output(f"{prefix}_{key}", label, unit, deps, effect=history, **extra))
+            output_deps = SOLVER_DEPS[history] if key == "solver" else deps
+            outputs.append(Output(f"{prefix}_{key}", label, unit, output_deps, effect=history, **extra))
         for key, decimals, size in GEOMETRY:
             if key.startswith("mark") and history == "ramp":  # the ramp's growth has no extremum to mark
                 continue
@@ -119,17 +129,20 @@ class Bubble(Model):
 
 
 def _delta_p(x, effects):
+    """p∞ − p_v of the collapse, Pa (p0 without the step, no p_v without vapour)."""
     p_inf = x["p_inf"] * P0 if "step" in effects else np.full_like(x["R0"], P0)
     return p_inf - (x["p_v"] if "vapour" in effects else 0.0)
 
 
 def _t_c(x, effects):
+    """Rayleigh's collapse time in µs (R0 is in µm); infinite when p∞ ≤ p_v (no collapse)."""
     delta = _delta_p(x, effects)
     safe = np.where(delta > 0, delta, 1.0)
     return np.where(delta > 0, terms.RAYLEIGH_B * x["R0"] * np.sqrt(x["rho"] / (6.0 * safe)), np.inf)
 
 
 def _mach_radius(x, effects):
+    """R/R0 where the incompressible collapse reaches |Ṙ| = c."""
     delta = np.maximum(_delta_p(x, effects), 1e-300)
     return terms.mach_one_radius(delta / (x["rho"] * x["c"] ** 2), 1.0)
 
@@ -186,12 +199,13 @@ def _solve_points(x, names, effects) -> dict[str, np.ndarray]:
     return out
 
 
-# --- presets, for the accuracy report ---------------------------------------------------------------------
+# --- presets, for the tests and the accuracy report -------------------------------------------------------
 
-PRESETS = {
+PRESETS = {  # name: (effects, parameters that differ from the defaults), physics.md K4 and §11.2
     "A": (("inertia", "vapour", "step"), {"R0": 1000.0, "p_inf": 1.0}),
     "B": (("gas", "vdw_hard_core", "surface_tension", "viscosity", "drive", "keller_miksis"), {"R0": 4.5, "p_a": 1.3, "f": 26.5}),
     "C": (("gas", "vapour", "surface_tension", "viscosity", "ramp"), {"R0": 1.0, "kappa": 1.0, "p_target": 0.99}),
+    "stiff": (("gas", "surface_tension", "viscosity", "drive"), {"R0": 1.0, "mu": 1.0, "rho": 1260.0, "p_a": 0.5, "f": 20.0, "kappa": 1.4}),
 }
 
 

@@ -50,7 +50,7 @@ FAILED = "failed"  # the solver gave up (step size underflow)
 
 @dataclass(frozen=True)
 class Caps:
-    """Hard limits on one solve: right-hand-side evaluations and wall-clock seconds."""
+    """Hard limits on one solve: right-hand-side evaluations (event functions included) and wall-clock seconds."""
 
     max_nfev: int = 200_000
     max_seconds: float = 10.0

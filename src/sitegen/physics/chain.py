@@ -115,18 +115,19 @@ def _inverse(coefficients: np.ndarray, ends: str) -> np.ndarray:
 def _oscillation(omega: np.ndarray, gamma: float, t: np.ndarray):
     """The decaying C(t) and S(t) of each mode: e^{−γt/2}·cos ω_d t and e^{−γt/2}·sin(ω_d t)/ω_d, ω_d² = ω² − γ²/4.
 
-    S is t·sinc, so ω_d → 0 (a rigid or critically damped mode) needs no special case. An overdamped
+    S is sin(ω_d t)/ω_d, and t where ω_d = 0 (a rigid or critically damped mode); sin and cos of the
+    same rounded phase keep each mode's energy exact at any t (t·sinc would round it differently). An overdamped
     mode (ω_d² < 0, rate r = |ω_d|) takes e^{−γt/2}·cosh rt and e^{−γt/2}·sinh(rt)/r, written with
     e^{(r − γ/2)t} so that they neither overflow nor lose digits; both join the others continuously.
     """
     if not gamma:
         phase = omega * t
-        return np.cos(phase), t * np.sinc(phase / np.pi)
+        return np.cos(phase), _sine_over(phase, omega, t)
     squared = omega**2 - gamma**2 / 4
     rate = np.sqrt(np.abs(squared))
     decay = np.exp(-gamma * t / 2)
     phase = rate * t
-    under_c, under_s = decay * np.cos(phase), decay * t * np.sinc(phase / np.pi)
+    under_c, under_s = decay * np.cos(phase), decay * _sine_over(phase, rate, t)
     over = squared < 0
     if not np.any(over):
         return under_c, under_s
@@ -135,6 +136,13 @@ def _oscillation(omega: np.ndarray, gamma: float, t: np.ndarray):
     shrink = np.divide(-np.expm1(-twice), twice, out=np.ones_like(twice), where=twice > 0)  # (1 − e^{−2rt})/(2rt)
     over_c, over_s = slowest * (1 + np.exp(-twice)) / 2, slowest * t * shrink
     return np.where(over, over_c, under_c), np.where(over, over_s, under_s)
+
+
+def _sine_over(phase, frequency, t):
+    """sin(phase)/frequency, or t where the frequency is 0 (its limit)."""
+    phase, frequency = np.broadcast_arrays(phase, frequency)
+    still = frequency == 0
+    return np.where(still, t, np.sin(phase) / np.where(still, 1.0, frequency))
 
 
 def evolve(u0: np.ndarray, v0: np.ndarray, t, terms: Terms = BARE) -> tuple[np.ndarray, np.ndarray]:

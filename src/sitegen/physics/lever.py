@@ -209,8 +209,13 @@ def _inertia(x):
 
 
 def _tipping_integral(theta):
-    """∫₀^θ dφ/√(sin φ) for 0 < θ ≤ π/2, in closed form: √2 (K(½) − F(arccos √(sin θ) | ½))."""
-    return math.sqrt(2.0) * (ellipk(0.5) - ellipkinc(np.arccos(np.sqrt(np.sin(theta))), 0.5))
+    """∫₀^θ dφ/√(sin φ) for 0 < θ ≤ π/2, in closed form: √2 F(ψ | ½) with tan ψ = √(2 sin θ/(1 − sin θ)).
+
+    This is Legendre's complement of √2 (K(½) − F(arccos √(sin θ) | ½)), which cancels as θ → 0.
+    """
+    sine = np.sin(theta)
+    psi = np.where(sine < 1.0, np.arctan(np.sqrt(2.0 * sine / np.maximum(1.0 - sine, np.finfo(float).tiny))), np.pi / 2)
+    return math.sqrt(2.0) * ellipkinc(psi, 0.5)
 
 
 def _moving_torque(x):

@@ -74,9 +74,9 @@ class Work(Model):
     _drag_size = WEDGE_VERTICES * MOST_DRAG_ARROWS
     outputs = (
         Output("W", "W along path", "J", ("force", "path", "h", *_spring, *_drag)),
-        # U of the conservative forces acting (spring, gravity). Drag has no potential: with drag alone
-        # U is constant and this is 0, and W = [U(A) - U(B)] + W_drag splits the work on every path.
-        Output("dU", "U(A) − U(B)", "J", ("force", *_spring)),
+        # U of the conservative forces acting (spring, gravity). Drag has no potential at all, so with
+        # drag alone there is no U to speak of: NaN, shown as "—".
+        Output("dU", "U(A) − U(B)", "J", ("force", *_spring), special="—"),
         Output("W_drag", "W by drag", "J", ("force", "path", "h", *_drag)),
         Output("verdict", "path-independent?", "", ("force",), labels=("yes — conservative", "no — depends on the path")),
         Output("L", "path length", "m", ("path", "h")),
@@ -118,7 +118,7 @@ class Work(Model):
 
         formulas = {
             "W": lambda: released() + drag(),
-            "dU": released,
+            "dU": lambda: np.where(spring | (mass is not None), released(), np.nan),
             "W_drag": drag,
             "verdict": lambda: np.where(spring, CONSERVATIVE, PATH_DEPENDENT),  # the field's kind, never a comparison
             "L": lambda: path_length(arc, x["h"]),

@@ -111,7 +111,7 @@ def _stops(scene, **values) -> tuple[int, ...]:
 
 @pytest.mark.parametrize(
     "output, expected",
-    [("tau_L", "19.62 N·m"), ("tau_R", "19.62 N·m"), ("tau_net", "0.00 N·m"), ("MA", "1.00 ×"), ("state", "balanced")],
+    [("tau_L", "19.62 N·m"), ("tau_R", "19.62 N·m"), ("tau_net", "0.00 N·m"), ("MA", "1.00×"), ("state", "balanced")],
     ids=["tau_L", "tau_R", "tau_net", "MA", "state"],
 )
 def test_defaults_show_the_seed_readouts(built_scene, output, expected):
@@ -168,7 +168,7 @@ PIVOT_AT_THE_END = {
     == "∞ (pivot at the end)",
     "tau_R-is-0": lambda scene, tables, payload: np.all(_evaluate(["tau_R"], m_R=np.arange(1, 101) / 10, x_p=LENGTH)["tau_R"] == 0.0)
     and readout_text(tables["tau_R"], "N·m", _stops(scene, x_p=2.0)) == "0.00 N·m",
-    "MA-at-x_p=0-is-0.00": lambda scene, tables, payload: readout_text(tables["MA"], "×", _stops(scene, x_p=0.0)) == "0.00 ×",
+    "MA-at-x_p=0-is-0.00": lambda scene, tables, payload: readout_text(tables["MA"], "×", _stops(scene, x_p=0.0)) == "0.00×",
 }
 
 

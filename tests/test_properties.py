@@ -200,10 +200,6 @@ def test_exact_chain_conserves_energy_at_any_time(point):
     assert math.isfinite(et) and abs(et - e0) <= tolerance * e0 + 1e-290, f"E(t)/E(0) − 1 = {et / e0 - 1:.3g}"
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "BUG chain.py:124/129 `_oscillation`: S = t·sinc(phase/π) rounds the phase differently from cos(phase), "
-    "so each mode's energy drifts by ~ε·ωt (E(t)/E(0) − 1 = −1.38e−12 at N = 24, σ = 0.01, t = 1115); "
-    "S = sin(phase)/ω (t where ω = 0) keeps E to 2e−16 at any t"))
 @example({"N": 24.0, "sigma": 0.01, "t": 1115.0, "launch": 0.0, "ends": 0.0, "omega0": 0.0})
 @_settings(100)
 @given(_CHAIN_POINT.filter(lambda p: p["t"] >= 100.0))
@@ -366,10 +362,6 @@ def _tipping_cancellation(degrees):
     return 8 * EPS + 4 * EPS * math.sqrt(2) * 1.8540746773013719 / (2 * math.sqrt(math.radians(degrees)))
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "BUG lever.py:213 `_tipping_integral`: √2(K(½) − F(arccos√sin θ | ½)) cancels as θ → 0 (rel error 9e−10 at "
-    "θs = 1e−12°, 9e−12 at 1e−9°, 3e−13 at 1e−5°); √2·F(arctan√(2 sin θ/(1 − sin θ)) | ½) (Legendre's "
-    "complement, tan φ tan ψ = √2) is exact to 2e−16"))
 @example(degrees=1e-12, case={"m_L": 1.0, "m_R": 3.0, "x_p": 1.0})
 @_settings(100)
 @given(degrees=_log_uniform(-12.0, -3.0), case=st.fixed_dictionaries({

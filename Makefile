@@ -9,12 +9,12 @@ PORT   ?= 8000
 export OPENBLAS_NUM_THREADS := 1
 export DEBIAN_FRONTEND := noninteractive
 
-.PHONY: site test serve bench clean tools-node tools-chromium review accept-figures
+.PHONY: site test serve bench clean tools-node tools-chromium tools-java review accept-figures
 
 site: $(VENV)/.site-installed node_modules/.installed
 	$(BIN)/sitegen build
 
-test: $(VENV)/.test-installed node_modules/.installed tools-chromium
+test: $(VENV)/.test-installed node_modules/.installed tools-chromium tools-java
 	$(BIN)/pytest
 
 serve: site
@@ -48,12 +48,17 @@ $(VENV)/.test-installed: $(VENV)/.site-installed pyproject.toml
 	touch $@
 
 node_modules/.installed: package.json package-lock.json | tools-node
-	npm ci --no-audit --no-fund --loglevel=error
+	npm ci --ignore-scripts --no-audit --no-fund --loglevel=error
 	touch $@
 
 # Temml (TeX -> MathML) runs on node at build time.
 tools-node:
 	@command -v node >/dev/null && command -v npm >/dev/null || { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q nodejs npm; }
+
+# The HTML checker (vnu.jar, from npm's vnu-jar: npm ci runs no install scripts, so its postinstall
+# never tries to download a Java runtime) runs on Debian's Java.
+tools-java:
+	@command -v java >/dev/null || { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q default-jre-headless; }
 
 # Browser tests drive Debian's chromium through Playwright (Playwright cannot download browsers here).
 tools-chromium:

@@ -5,7 +5,8 @@ The scenes come from the build's own parse (`read_pages` + `resolve_scenes`): ea
 effects and readouts. Expected texts are computed here independently of the page: the scene's
 model is evaluated at the exact stops the DOM's controls stand on (choices as the model's codes),
 with the scene's fixed values and effects, and formatted with `sitegen.compute.quantize.fmt` and
-`sitegen.site.assemble.with_unit` (or the output's labels, or its `special` phrase for ±inf).
+`sitegen.site.assemble.with_unit` (or the output's labels, or its `special` phrase where the
+value is not finite).
 Nothing is read from the scene's inline tables.
 
 Every DOM helper is one `page.evaluate()`: resolving a Playwright locator costs several
@@ -49,7 +50,7 @@ LAUNCH_ARGS = [
 ]
 
 # What a readout or a control's text must never show: a number the script failed to look up.
-BROKEN_TEXT = re.compile(r"NaN|Infinity|undefined|null|\[object")
+BROKEN_TEXT = re.compile(r"NaN|Infinity|undefined|\bnull\b|\[object")
 
 
 def launch(playwright, **options):
@@ -381,8 +382,9 @@ def _evaluate_texts(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, s
     texts = {}
     for output in scene.readouts:
         value = float(np.asarray(values[output.name]))
-        if math.isinf(value) and output.special:
-            texts[output.name] = output.special  # shown in words, without a unit
+        if not math.isfinite(value) and output.special:
+            # singular (±inf) or not defined here (NaN): shown in words, without a unit
+            texts[output.name] = output.special
             continue
         if not math.isfinite(value):
             raise ValueError(f"output {output.name!r} of scene {scene.id} is {value} at {stops}")
@@ -468,8 +470,9 @@ _DOT = re.compile(rf"^M({_NUMBER}),({_NUMBER})h0$", re.I)
 
 def parse_layer(attr: str, text: str | None) -> list[tuple[float, float]]:
     """A layer's vertices: SVG `points` ("x,y x,y") or, for dots, a path `d` ("Mx,yh0 Mx,yh0");
-    fails on anything that is not a finite number."""
-    assert text and text.strip(), f"empty {attr} {text!r}"
+    fails on anything that is not a finite number. An empty attribute is a layer with no vertices
+    at this stop (a ragged vector output of length 0, e.g. the arc when the chord is chosen)."""
+    assert text is not None, f"layer without its {attr} attribute"
     pattern = _DOT if attr == "d" else _PAIR
     points = []
     for item in text.split():
@@ -518,8 +521,9 @@ def spread(count: int, n: int = 8) -> list[int]:
 
 
 def singular_stops(scene: BookScene, output_name: str) -> list[tuple[int, ...]]:
-    """Full slider positions (the other controls at their defaults) where `output_name` is ±inf:
-    the output's dependencies are searched over their whole grid in one vectorised evaluation."""
+    """Full slider positions (the other controls at their defaults) where `output_name` is not
+    finite (±inf where the physics is singular, NaN where the quantity does not exist): the
+    output's dependencies are searched over their whole grid in one vectorised evaluation."""
     sc = scene.scene
     output = sc.model.output(output_name)
     dep_axes = [i for i, a in enumerate(sc.axes) if a.param in output.deps]
@@ -534,7 +538,7 @@ def singular_stops(scene: BookScene, output_name: str) -> list[tuple[int, ...]]:
         inputs[sc.axes[i].param] = grid
     values = np.asarray(sc.model.evaluate(inputs, wanted=[output_name], effects=sc.effects)[output_name], float)
     found = []
-    for where in zip(*np.nonzero(np.isinf(np.broadcast_to(values, shape)))):
+    for where in zip(*np.nonzero(~np.isfinite(np.broadcast_to(values, shape)))):
         stops = list(sc.default_stops)
         for i, k in zip(dep_axes, where):
             stops[i] = int(k)

@@ -6,6 +6,7 @@ POINT is one of
   swapped     just after the new tree is swapped in, before the old one is deleted
   cleanup     while the old tree is being deleted
   between     with no atomic exchange (as on systems without renameat2), between the two renames
+  cache       while the first cache entry is being written (half of it on disk, not yet renamed)
   none        not at all
 """
 from __future__ import annotations
@@ -69,6 +70,17 @@ def arm(point: str) -> None:
             return real_rename(self, target)
 
         Path.rename = rename
+    elif kind == "cache":
+        real_replace = os.replace
+
+        def replace(source, target, *args, **kwargs):
+            if f"{os.sep}.cache{os.sep}" in str(target):
+                size = os.path.getsize(source)
+                os.truncate(source, size // 2)
+                die()
+            return real_replace(source, target, *args, **kwargs)
+
+        os.replace = replace
     elif kind != "none":
         raise SystemExit(f"unknown point {point!r}")
 

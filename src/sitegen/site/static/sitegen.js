@@ -148,6 +148,7 @@
   /* Play/pause for a scene that animates one slider; it pauses when the scene leaves the screen. */
   function Animation(scene, root, button) {
     this.scene = scene;
+    this.root = root;
     this.button = button;
     this.index = scene.data.sliders.map(function (s) { return s.param; }).indexOf(button.getAttribute("data-animate"));
     this.timer = null;
@@ -165,6 +166,7 @@
 
   Animation.prototype.play = function () {
     var self = this;
+    this.setAnnouncements("off"); // 24 updates a second would drown a screen reader
     this.button.setAttribute("aria-pressed", "true");
     this.button.textContent = "Pause";
     this.timer = setInterval(function () { self.step(); }, FRAME_MS);
@@ -174,8 +176,14 @@
     if (!this.timer) return;
     clearInterval(this.timer);
     this.timer = null;
+    this.setAnnouncements("polite");
     this.button.setAttribute("aria-pressed", "false");
     this.button.textContent = "Play";
+  };
+
+  Animation.prototype.setAnnouncements = function (mode) {
+    var regions = this.root.querySelectorAll("[aria-live]");
+    for (var i = 0; i < regions.length; i++) regions[i].setAttribute("aria-live", mode);
   };
 
   Animation.prototype.step = function () {

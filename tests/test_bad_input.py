@@ -1,0 +1,195 @@
+"""Bad input never crashes the build or the command: the cases tests/invalid/ cannot hold
+(a model that raises, returns non-finite values or runs out of time; a file that is not UTF-8;
+an unknown figure, whose list of names grows with the book), and how `sitegen build` reports
+each kind of failure — file:line errors, an exit status, and no Python traceback unless --debug.
+"""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sitegen import cli
+from sitegen.build import BuildConfig, build
+from sitegen.errors import BuildFailed
+from sitegen.physics import MODELS, Model, Output, Param
+from sitegen.render.figures import FIGURES
+from sitegen.render.style import new_figure
+
+ROOT = Path(__file__).resolve().parents[1]
+HOME = '+++\ntitle = "Test book"\n+++\n\nA home page.\n'
+
+
+def make_book(root: Path, pages: dict[str, str | bytes]) -> BuildConfig:
+    """A throwaway project with the given pages and a home page."""
+    content = root / "content"
+    content.mkdir(parents=True)
+    for name, text in {"index": HOME, **pages}.items():
+        data = text if isinstance(text, bytes) else text.encode("utf-8")
+        (content / f"{name}.md").write_bytes(data)
+    if not (root / "node_modules").exists():
+        (root / "node_modules").symlink_to(ROOT / "node_modules")
+    return BuildConfig(root, content, root / "build", ROOT / "node_modules")
+
+
+def build_errors(config: BuildConfig) -> list[str]:
+    with pytest.raises(BuildFailed) as failure:
+        build(config, progress=None)
+    return [str(e) for e in failure.value.errors]
+
+
+class _Figure:
+    label = "empty axes"
+
+    def layers(self, scene):
+        return []
+
+    def draw(self, scene, tables):
+        return new_figure(2.0)[0]
+
+
+def _model(name: str, evaluate) -> type[Model]:
+    """A one-parameter model whose evaluation is `evaluate(x)`."""
+    return type(name.title(), (Model,), {
+        "name": name, "title": name, "params": (Param("x", "x", "", 1.0, 0.0, 10.0),),
+        "outputs": (Output("y", "y", "", ("x",)),),
+        "_evaluate": lambda self, x, wanted, effects: {"y": evaluate(x["x"])},
+    })
+
+
+def _raise(error):
+    def evaluate(x):
+        raise error
+
+    return evaluate
+
+
+def _capped(x):
+    """A solve with a budget that ran out at x >= 2: it says so by returning NaN there."""
+    return np.where(x >= 2, np.nan, x)
+
+
+SCENE = '+++\ntitle = "Model"\n+++\n\n```scene\nmodel: {name}\nslider x: 0..3 step 1 default 1\n```\n'
+
+
+@pytest.fixture
+def register(monkeypatch):
+    """register(name, evaluate): put a model and a bare figure in the registries for one test."""
+
+    def _register(name: str, evaluate) -> None:
+        monkeypatch.setitem(MODELS, name, _model(name, evaluate))
+        monkeypatch.setitem(FIGURES, name, _Figure())
+
+    return _register
+
+
+def test_model_that_raises_a_numerical_error(tmp_path, register):
+    """A model failing with ValueError/ArithmeticError (its documented way) is an author error at the scene."""
+    register("fragile", _raise(ValueError("the integral diverges")))
+    register("divider", _raise(ZeroDivisionError("division by zero")))
+    config = make_book(tmp_path, {"a": SCENE.format(name="fragile"), "b": SCENE.format(name="divider")})
+    assert build_errors(config) == [
+        "content/a.md:5: scene 'fragile': model 'fragile' failed: the integral diverges",
+        "content/b.md:5: scene 'divider': model 'divider' failed: division by zero",
+    ]
+
+
+def test_solve_out_of_time_reports_the_stop(tmp_path, register):
+    """A solve whose time or evaluation budget ran out returns NaN (failure as data); the build
+    fails naming the scene and the first slider value where it happened."""
+    register("capped", _capped)
+    config = make_book(tmp_path, {"slow": SCENE.format(name="capped")})
+    assert build_errors(config) == [
+        "content/slow.md:5: scene 'capped': output 'y' is not finite (nan) at x=2; the model must return finite numbers"
+    ]
+
+
+def test_model_returning_infinity_reports_the_stop(tmp_path, register):
+    """A model returning ±inf where its output declares no words for it fails the build at that stop."""
+    register("blowup", lambda x: np.where(x == 3, np.inf, x))
+    config = make_book(tmp_path, {"pole": SCENE.format(name="blowup")})
+    assert build_errors(config) == [
+        "content/pole.md:5: scene 'blowup': output 'y' is not finite (inf) at x=3; the model must return finite numbers"
+    ]
+
+
+def test_value_too_large_to_show_exactly(tmp_path):
+    """A finite value too large to count in units of its last digit (exactly, in the page's
+    JavaScript) fails the build at the stop, instead of showing a wrapped-around number."""
+    page = ('+++\ntitle = "Huge"\n+++\n\n```scene\nmodel: collision\n'
+            "slider m1: 1e20..3e20 step 1e20 default 1e20\nreadouts: p_before\n```\n")
+    assert build_errors(make_book(tmp_path, {"huge": page})) == [
+        "content/huge.md:5: scene 'collision': output 'p_before' is 3e+20 at m1=1E+20, too large to show "
+        "with 2 decimals (at most 9.0072e+13); narrow the sliders' ranges"
+    ]
+
+
+def test_unknown_figure_lists_the_figures(tmp_path):
+    """A figure name that is not registered is an error at its line, listing the figures."""
+    page = '+++\ntitle = "Figure"\n+++\n\n```scene\nmodel: impulse\nfigure: impuls\n```\n'
+    assert build_errors(make_book(tmp_path, {"fig": page})) == [
+        f"content/fig.md:7: scene 'impulse': unknown figure 'impuls'; figures: {', '.join(sorted(FIGURES))}"
+    ]
+
+
+def test_file_that_is_not_utf8(tmp_path):
+    """A page saved in another encoding is an error at the line of the first bad byte."""
+    page = '+++\ntitle = "Caf\xe9"\n+++\n'.encode("latin-1")
+    assert build_errors(make_book(tmp_path, {"latin": page})) == [
+        "content/latin.md:2: the file is not UTF-8 text (byte 0xe9); save it as UTF-8"
+    ]
+
+
+def test_byte_order_mark_is_ignored(tmp_path):
+    """A UTF-8 byte-order mark (some editors write one) does not hide the front matter."""
+    config = make_book(tmp_path, {"bom": "\ufeff" + '+++\ntitle = "BOM"\n+++\n\nText.\n'})
+    assert build(config, progress=None).pages == 2
+
+
+# --- the command ------------------------------------------------------------------------------------
+
+
+def run_cli(root: Path, *extra: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "sitegen.cli", "build", "--root", str(root), "--no-cache", *extra],
+                          capture_output=True, text=True, timeout=300, check=False)
+
+
+def test_every_error_of_every_page_in_one_run(tmp_path):
+    """The command prints every author error of the book, sorted, then a summary; exit 1."""
+    pages = {name: (ROOT / "tests" / "invalid" / f"{name}.md").read_text(encoding="utf-8")
+             for name in ("not-finite-or-reversed", "front-matter-types", "bad-tex")}
+    make_book(tmp_path, pages)
+    done = run_cli(tmp_path)
+    expected = [line for name in sorted(pages) for line in (ROOT / "tests" / "invalid" / f"{name}.expected").read_text().splitlines()]
+    assert done.returncode == 1
+    assert done.stderr.splitlines() == [*expected, f"build failed: {len(expected)} error(s); {tmp_path / 'build'} was left as it was"]
+
+
+def test_missing_content_folder(tmp_path):
+    """A project without content/ is one line and exit 2, not an empty site."""
+    done = run_cli(tmp_path)
+    assert done.returncode == 2 and "no content/ folder" in done.stderr and "Traceback" not in done.stderr
+
+
+def test_output_that_cannot_be_written(tmp_path):
+    """An output folder that cannot be made (here: under a file) is one line and exit 2."""
+    make_book(tmp_path, {})
+    (tmp_path / "file").write_text("not a folder")
+    done = run_cli(tmp_path, "--out", str(tmp_path / "file" / "build"))
+    assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
+    assert done.stderr.startswith("sitegen: ") and "holds the last complete build" in done.stderr
+
+
+def test_internal_error_is_reported_without_traceback(tmp_path, register, capsys):
+    """A bug (an exception no author can cause) is one line naming it, exit 3; --debug shows the traceback."""
+    register("buggy", _raise(KeyError("oops")))
+    make_book(tmp_path, {"bug": SCENE.format(name="buggy")})
+    assert cli.main(["build", "--root", str(tmp_path), "--no-cache"]) == 3
+    err = capsys.readouterr().err
+    assert "sitegen: internal error: KeyError: 'oops'" in err and "--debug" in err and "Traceback" not in err
+    assert not (tmp_path / "build").exists()
+    with pytest.raises(KeyError):
+        cli.main(["build", "--root", str(tmp_path), "--no-cache", "--debug"])

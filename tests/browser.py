@@ -520,27 +520,39 @@ def spread(count: int, n: int = 8) -> list[int]:
     return sorted({0, last, *(round(i * last / (n + 1)) for i in range(1, n + 1))})
 
 
-def singular_stops(scene: BookScene, output_name: str) -> list[tuple[int, ...]]:
-    """Full slider positions (the other controls at their defaults) where `output_name` is not
-    finite (±inf where the physics is singular, NaN where the quantity does not exist): the
-    output's dependencies are searched over their whole grid in one vectorised evaluation."""
+_SINGULAR: dict[str, dict[str, list[tuple[int, ...]]]] = {}
+
+
+def singular_stops(scene: BookScene) -> dict[str, list[tuple[int, ...]]]:
+    """For each readout with a `special` phrase, the full slider positions (the other controls at
+    their defaults) where the model's value is not finite: ±inf where the physics is singular,
+    NaN where the quantity does not exist. Each group of outputs with the same dependencies is
+    searched over its whole grid in one vectorised evaluation (memoised per scene)."""
+    if scene.key in _SINGULAR:
+        return _SINGULAR[scene.key]
     sc = scene.scene
-    output = sc.model.output(output_name)
-    dep_axes = [i for i, a in enumerate(sc.axes) if a.param in output.deps]
-    if not dep_axes:
-        return []
-    shape = tuple(sc.axes[i].count for i in dep_axes)
-    if math.prod(shape) > 2_000_000:
-        raise NotImplementedError(f"{output_name}: {math.prod(shape)} points is too many to search")
-    grids = np.meshgrid(*(sc.axes[i].values() for i in dep_axes), indexing="ij")
-    inputs = {k: np.full(shape, v) for k, v in stop_inputs(sc, sc.default_stops).items()}
-    for i, grid in zip(dep_axes, grids):
-        inputs[sc.axes[i].param] = grid
-    values = np.asarray(sc.model.evaluate(inputs, wanted=[output_name], effects=sc.effects)[output_name], float)
-    found = []
-    for where in zip(*np.nonzero(~np.isfinite(np.broadcast_to(values, shape)))):
-        stops = list(sc.default_stops)
-        for i, k in zip(dep_axes, where):
-            stops[i] = int(k)
-        found.append(tuple(stops))
+    groups: dict[tuple[int, ...], list[str]] = {}
+    for output in sc.readouts:
+        if output.special:
+            dep_axes = tuple(i for i, a in enumerate(sc.axes) if a.param in output.deps)
+            groups.setdefault(dep_axes, []).append(output.name)
+    found: dict[str, list[tuple[int, ...]]] = {}
+    for dep_axes, names in groups.items():
+        shape = tuple(sc.axes[i].count for i in dep_axes)
+        if math.prod(shape) > 2_000_000:
+            raise NotImplementedError(f"{names}: {math.prod(shape)} points is too many to search")
+        grids = np.meshgrid(*(sc.axes[i].values() for i in dep_axes), indexing="ij")
+        inputs = {k: np.full(shape, v) for k, v in stop_inputs(sc, sc.default_stops).items()}
+        for i, grid in zip(dep_axes, grids):
+            inputs[sc.axes[i].param] = grid
+        values = sc.model.evaluate(inputs, wanted=names, effects=sc.effects)
+        for name in names:
+            bad = ~np.isfinite(np.broadcast_to(np.asarray(values[name], float), shape))
+            found[name] = []
+            for where in zip(*np.nonzero(bad)):
+                stops = list(sc.default_stops)
+                for i, k in zip(dep_axes, where):
+                    stops[i] = int(k)
+                found[name].append(tuple(stops))
+    _SINGULAR[scene.key] = found
     return found

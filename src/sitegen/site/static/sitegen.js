@@ -159,7 +159,7 @@
     });
     if ("IntersectionObserver" in window) {
       new IntersectionObserver(function (entries) {
-        if (!entries[0].isIntersecting) self.pause();
+        if (!entries[entries.length - 1].isIntersecting) self.pause();
       }).observe(root);
     }
   }

@@ -107,6 +107,15 @@ def test_solve_out_of_time_reports_the_stop(tmp_path, register):
     ]
 
 
+def test_solve_that_exceeds_its_time_limit_is_an_author_error(tmp_path, register):
+    """A solver that raises TimeoutError at its wall-time cap fails the build at the scene, saying so."""
+    register("stalled", _raise(TimeoutError("the solve exceeded its 10 s wall-time limit")))
+    config = make_book(tmp_path, {"stall": SCENE.format(name="stalled")})
+    assert build_errors(config) == [
+        "content/stall.md:5: scene 'stalled': model 'stalled' failed: the solve exceeded its 10 s wall-time limit"
+    ]
+
+
 def test_model_returning_infinity_reports_the_stop(tmp_path, register):
     """A model returning ±inf where its output declares no words for it fails the build at that stop."""
     register("blowup", lambda x: np.where(x == 3, np.inf, x))

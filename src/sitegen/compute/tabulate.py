@@ -104,7 +104,7 @@ def evaluate_unit(unit: WorkUnit) -> dict[str, np.ndarray]:
     shape = tuple(len(v) for v in values)
     try:
         results = scene.model.evaluate(inputs, unit.names, scene.effects)
-    except (ValueError, ArithmeticError) as error:
+    except (ValueError, ArithmeticError, TimeoutError) as error:  # a model's documented ways to fail
         raise AuthorError(scene.spec.loc, f"model '{scene.model.name}' failed: {error}", scene.id) from None
     out = {}
     for name in unit.names:

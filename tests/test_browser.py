@@ -78,7 +78,9 @@ def _control_params(transports=TRANSPORTS):
 # --- fixtures -----------------------------------------------------------------------------------
 
 
-@pytest.fixture(scope="session")
+# Module scope: another module may start Playwright's sync API of its own (the review's renderer),
+# which cannot run while this one's event loop is open in the same thread.
+@pytest.fixture(scope="module")
 def chromium():
     with sync_playwright() as playwright:
         browser = launch(playwright)
@@ -134,7 +136,7 @@ def _new_page(chromium, url: str, javascript: bool = True, **context_options):
     return context, page, log
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def loaded(chromium, site_url):
     """loaded(name, transport, javascript=True) -> (page, log): one shared, loaded page per
     (name, transport, javascript) for the whole session. Tests must not navigate it away."""

@@ -24,15 +24,8 @@ from pathlib import Path
 
 from playwright.sync_api import sync_playwright
 
-CHROMIUM = "/usr/bin/chromium"
-LAUNCH_ARGS = [
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--no-first-run",
-    "--disable-sync",
-]
+from sitegen.review.figures import CHROMIUM, LAUNCH_ARGS
+
 
 # In the page: time `samples` inputs of random sliders at random stops (after `warmup` untimed
 # ones), then the same number again as one batch. Stops are written exactly from the attributes

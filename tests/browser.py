@@ -34,20 +34,11 @@ from sitegen.compute.scenes import ResolvedScene
 from sitegen.content.pages import Page
 from sitegen.errors import ErrorLog
 from sitegen.render.figures import FIGURES
+from sitegen.review.figures import CHROMIUM, LAUNCH_ARGS  # one place for Chromium's settings
 from sitegen.site.assemble import with_unit
 
 ROOT = Path(__file__).resolve().parents[1]
 
-CHROMIUM = "/usr/bin/chromium"
-# We run as root (no sandbox); without the networking flags Chromium phones Google hosts.
-LAUNCH_ARGS = [
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--no-first-run",
-    "--disable-sync",
-]
 
 # What a readout or a control's text must never show: a number the script failed to look up.
 BROKEN_TEXT = re.compile(r"NaN|Infinity|undefined|\bnull\b|\[object")

@@ -18,3 +18,18 @@ def built_site(tmp_path_factory) -> Path:
     folder = tmp_path_factory.mktemp("site")
     build(BuildConfig.at(ROOT, folder / "build", cache=folder / ".cache"), progress=None)
     return folder / "build"
+
+
+# Module scope: another module may start Playwright's sync API of its own (the review's renderer),
+# which cannot run while a browser's event loop is open in the same thread.
+@pytest.fixture(scope="module")
+def chromium():
+    """Debian's Chromium, headless, for the browser tests of one module."""
+    from playwright.sync_api import sync_playwright
+
+    from browser import launch
+
+    with sync_playwright() as playwright:
+        browser = launch(playwright)
+        yield browser
+        browser.close()

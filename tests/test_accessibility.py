@@ -16,7 +16,6 @@ Keyboard operation of each control (arrows, Page Up/Down, Home/End) is tested in
 from __future__ import annotations
 
 import pytest
-from playwright.sync_api import sync_playwright
 
 from a11y import (
     control_size_problems,
@@ -29,7 +28,7 @@ from a11y import (
     target_size_problems,
     text_contrast_problems,
 )
-from browser import ROOT, launch
+from browser import ROOT
 from sitegen.content.pages import discover_pages
 
 PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
@@ -39,14 +38,6 @@ WIDTHS = {"desktop": 1280, "phone": 360}
 
 def _page_scheme_params():
     return [pytest.param(name, scheme, id=f"{name[:-5]}-{scheme}") for name in PAGES for scheme in SCHEMES]
-
-
-@pytest.fixture(scope="module")
-def chromium():
-    with sync_playwright() as playwright:
-        browser = launch(playwright)
-        yield browser
-        browser.close()
 
 
 def _load(chromium, site, name: str, contexts: list, **options):

@@ -27,7 +27,6 @@ from pathlib import Path
 from urllib.parse import unquote, urljoin, urlparse
 
 import pytest
-from playwright.sync_api import sync_playwright
 
 from browser import (
     BROKEN_TEXT,
@@ -76,16 +75,6 @@ def _control_params(transports=TRANSPORTS):
 
 
 # --- fixtures -----------------------------------------------------------------------------------
-
-
-# Module scope: another module may start Playwright's sync API of its own (the review's renderer),
-# which cannot run while this one's event loop is open in the same thread.
-@pytest.fixture(scope="module")
-def chromium():
-    with sync_playwright() as playwright:
-        browser = launch(playwright)
-        yield browser
-        browser.close()
 
 
 @pytest.fixture(scope="session")

@@ -22,6 +22,7 @@ serve: site
 
 bench: $(VENV)/.test-installed node_modules/.installed tools-chromium
 	$(BIN)/python bench/run.py
+	$(BIN)/sitegen bench
 
 # Build revision BASE (default HEAD) in a temporary git worktree, build the working tree, and write
 # build-review/index.html and build-review/summary.md. Exits 1 when anything changed (for CI).

@@ -23,6 +23,7 @@ OUT = ROOT / "build-bench"
 sys.path.insert(0, str(ROOT / "src"))
 
 from sitegen.build import BuildConfig, build  # noqa: E402
+from scenes import print_rows, scene_figures  # noqa: E402  (bench/scenes.py)
 
 
 def build_times(runs: int = 3) -> dict:
@@ -60,7 +61,7 @@ def rebuild_times(runs: int = 3) -> dict:
             colds.append(timed(config))
         noops = [timed(config) for _ in range(runs)]
         page = root / "content" / "newtons-laws.md"
-        page.write_text(page.read_text().replace("slider F_pk: 0..50 step 2 default 12", "slider F_pk: 0..50 step 1 default 12"))
+        page.write_text(page.read_text().replace("slider F_pk: 0..50 step 0.5 default 12", "slider F_pk: 0..50 step 1 default 12"))
         one_scene = timed(config)
         result = {
             "cold_s": statistics.median(t for t, _ in colds),
@@ -110,6 +111,7 @@ def main() -> int:
         "rebuilds": rebuild_times(),
         "pages": page_sizes(site),
     }
+    report["scenes"] = scene_figures(site)
     latency_file = OUT / "latency.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "latency.py"), "--site", str(site), "--out", str(latency_file)], check=True)
     report["latency"] = json.loads(latency_file.read_text())
@@ -124,6 +126,7 @@ def main() -> int:
     for name, s in report["pages"].items():
         print(f"{name:<22} html {s['html_raw'] / 1024:7.1f} KB raw {s['html_gzip'] / 1024:6.1f} KB gzip | "
               f"with assets {s['total_raw'] / 1024:7.1f} KB raw {s['total_gzip'] / 1024:6.1f} KB gzip")
+    print_rows(report["scenes"])
     print(f"wrote {OUT / 'report.json'}")
     return 0
 

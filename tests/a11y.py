@@ -91,6 +91,8 @@ const where = el => {
   return parts.join(' > ');
 };
 const visible = el => {
+  // The content of a closed <details> keeps its boxes in Chromium but is neither shown nor focusable.
+  if (el.closest('details:not([open]) > :not(summary)')) return false;
   const style = getComputedStyle(el);
   const box = el.getBoundingClientRect();
   return style.visibility !== 'hidden' && style.display !== 'none' && box.width > 0 && box.height > 0;

@@ -356,10 +356,10 @@ def stop_inputs(scene: ResolvedScene, stops) -> dict[str, float]:
     return values
 
 
-_EXPECTED: dict[tuple[int, tuple[int, ...]], dict[str, str]] = {}
+_EXPECTED: dict[tuple[int, tuple[int, ...]], dict[str, tuple[str, ...]]] = {}
 
 
-def _expected(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, str]:
+def _expected(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, tuple[str, ...]]:
     """The readout texts at a full slider position (memoised: the http run repeats the file run's states)."""
     key = (id(scene), stops)
     if key not in _EXPECTED:
@@ -367,7 +367,7 @@ def _expected(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, str]:
     return _EXPECTED[key]
 
 
-def _evaluate_texts(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, str]:
+def _evaluate_texts(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, tuple[str, ...]]:
     names = [o.name for o in scene.readouts]
     values = scene.model.evaluate(stop_inputs(scene, stops), wanted=names, effects=scene.effects)
     texts = {}
@@ -375,19 +375,37 @@ def _evaluate_texts(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, s
         value = float(np.asarray(values[output.name]))
         if not math.isfinite(value) and output.special:
             # singular (±inf) or not defined here (NaN): shown in words, without a unit
-            texts[output.name] = output.special
+            texts[output.name] = (output.special,)
             continue
         if not math.isfinite(value):
             raise ValueError(f"output {output.name!r} of scene {scene.id} is {value} at {stops}")
         if output.labels:
-            texts[output.name] = output.labels[int(value)]
+            texts[output.name] = (output.labels[int(value)],)
         else:
-            texts[output.name] = with_unit(fmt(value, output.decimals), output.unit)
+            texts[output.name] = tuple(with_unit(t, output.unit) for t in _roundings(value, output.decimals))
     return texts
 
 
+def _roundings(value: float, decimals: int) -> list[str]:
+    """The correct displays of a value: its rounding, and where the value sits on a rounding tie
+    (to its own float error, e.g. K = 0.005 J at 2 decimals) also the neighbour on the other side.
+    An output the page computes from a proven expression may land on either side of a tie."""
+    shown = fmt(value, decimals)
+    scaled = value * 10.0**decimals
+    if abs(abs(scaled - math.floor(scaled)) - 0.5) > 1e-9 * max(1.0, abs(scaled)):
+        return [shown]
+    other = math.floor(scaled) if round(scaled) != math.floor(scaled) else math.ceil(scaled)
+    return [shown, fmt(other * 10.0**-decimals, decimals)]
+
+
 def expected_readouts(scene: BookScene, stops) -> dict[str, str]:
-    """The readout texts the page must show at these stops, computed from the model itself."""
+    """The readout texts the page must show at these stops, computed from the model itself (the
+    first of the correct displays; see `accepted_readouts`)."""
+    return {name: texts[0] for name, texts in _expected(scene.scene, tuple(stops)).items()}
+
+
+def accepted_readouts(scene: BookScene, stops) -> dict[str, tuple[str, ...]]:
+    """Every correct text of each readout at these stops (two where the exact value is a rounding tie)."""
     return dict(_expected(scene.scene, tuple(stops)))
 
 
@@ -436,9 +454,9 @@ def scene_problems(scene: BookScene, state: SceneState) -> list[str]:
         if BROKEN_TEXT.search(text or ""):
             problems.append(f"readout {name} shows {text!r}")
     if all(k is not None for k in stops):
-        for name, text in expected_readouts(scene, stops).items():
-            if state.readouts.get(name) != text:
-                problems.append(f"readout {name}: page {state.readouts.get(name)!r}, model {text!r}")
+        for name, texts in accepted_readouts(scene, stops).items():
+            if state.readouts.get(name) not in texts:
+                problems.append(f"readout {name}: page {state.readouts.get(name)!r}, model {' or '.join(map(repr, texts))}")
     if problems:
         where = ", ".join(f"{c.param}={describe_stop(scene, c.param, k)}" for c, k in zip(state.controls, stops))
         problems = [f"[{where}] {p}" for p in problems]
@@ -497,7 +515,7 @@ def layer_deps(scene: BookScene) -> dict[str, set[str]]:
             if isinstance(ref, str) and ref.startswith("in:"):
                 params.add(ref[3:])
             elif isinstance(ref, str) and ref.startswith("out:"):
-                params |= set(model.output(ref[4:]).deps)
+                params |= set(model.deps_of(ref[4:], scene.scene.effects))
         deps[layer.name] = params & set(scene.params)
     return deps
 
@@ -525,7 +543,7 @@ def singular_stops(scene: BookScene) -> dict[str, list[tuple[int, ...]]]:
     groups: dict[tuple[int, ...], list[str]] = {}
     for output in sc.readouts:
         if output.special:
-            dep_axes = tuple(i for i, a in enumerate(sc.axes) if a.param in output.deps)
+            dep_axes = tuple(i for i, a in enumerate(sc.axes) if a.param in sc.model.deps_of(output.name, sc.effects))
             groups.setdefault(dep_axes, []).append(output.name)
     found: dict[str, list[tuple[int, ...]]] = {}
     for dep_axes, names in groups.items():

@@ -86,8 +86,42 @@ def test_unknown_effect_lists_what_the_model_offers(tmp_path):
     """An effect the model does not offer is an error that names the effects it does offer."""
     page = '+++\ntitle = "Effects"\n+++\n\n```scene\nmodel: collision\neffects: restitution_law drag\n```\n'
     assert build_errors(make_book(tmp_path, {"effects": page})) == [
-        "content/effects.md:7: scene 'collision': model 'collision' has no effect 'drag'. It offers: restitution_law"
+        "content/effects.md:7: scene 'collision': model 'collision' has no effect 'drag'. It offers: restitution_law, contact_spring_dashpot, explosive"
     ]
+
+
+def test_effect_of_another_model_lists_what_this_model_offers(tmp_path):
+    """Naming an effect that exists, but on another model (the chain's boundary on the impulse), is an error at
+    the effects line listing the impulse's own effects."""
+    page = '+++\ntitle = "Effects"\n+++\n\n```scene\nmodel: impulse\neffects: boundary shape\n```\n'
+    assert build_errors(make_book(tmp_path, {"effects": page})) == [
+        "content/effects.md:7: scene 'impulse': model 'impulse' has no effect 'boundary'. "
+        "It offers: shape, initial_velocity, contact_from_collision"
+    ]
+
+
+def test_parameter_replaced_by_an_enabled_effect_is_an_error_at_its_control(tmp_path):
+    """With the spring–dashpot contact, e comes from the contact: a slider on e is an error at its line."""
+    page = ('+++\ntitle = "Contact"\n+++\n\n```scene\nmodel: collision\neffects: contact_spring_dashpot\n'
+            'slider e: 0..1 step 0.5 default 1\n```\n')
+    assert build_errors(make_book(tmp_path, {"contact": page})) == [
+        "content/contact.md:8: scene 'collision': parameter 'e' is not used with effect 'contact_spring_dashpot', "
+        "which takes its place; remove its control"
+    ]
+
+
+def test_restitution_above_one_names_the_effect_that_allows_it(tmp_path):
+    """e > 1 is outside the domain unless the scene enables `explosive`; the error says so, and with the effect it builds."""
+    block = '```scene\nmodel: collision\n{effects}slider e: 0..1.5 step 0.5 default 1\n```\n'
+    page = '+++\ntitle = "Explosive"\n+++\n\n' + block.format(effects="")
+    (tmp_path / "without").mkdir()
+    (tmp_path / "with").mkdir()
+    assert build_errors(make_book(tmp_path / "without", {"explosive": page})) == [
+        "content/explosive.md:7: scene 'collision': slider 'e' max 1.5 exceeds the model's bound 1.0 "
+        "(effect 'explosive' allows larger values)"
+    ]
+    config = make_book(tmp_path / "with", {"explosive": page.replace(block.format(effects=""), block.format(effects="effects: explosive\n"))})
+    build(config, progress=None)
 
 
 def test_unknown_parent_page(tmp_path):

@@ -52,6 +52,7 @@ from browser import (
     stop_inputs,
 )
 from sitegen.compute.grid import CHOICE, RANGE
+from sitegen.compute.structure import proof_stops, structured_pieces
 from sitegen.compute.quantize import fmt
 
 PAGES, SCENES = book()
@@ -472,6 +473,30 @@ def test_random_scene_states(scene_page, scene, transport):
     assert not log.trouble_since(mark)
 
 
+# --- e2) outputs the page computes from proven expressions -------------------------------------------
+
+STRUCTURED_SCENES = [s for s in SCENES if structured_pieces(s.scene, s.readout_names)]
+
+
+@pytest.mark.parametrize("scene,transport", _scene_params(STRUCTURED_SCENES, ("file",)))
+def test_expressions_at_the_proofs_stops(scene_page, scene, transport):
+    """The build's proof of each declared structure, repeated through the real script: at the slider
+    box's corners, a spread of its edge stops and seeded random stops, every readout the script
+    computes from an expression equals the model's value at display precision (a tie either way)."""
+    page, log, mark = scene_page(scene, transport)
+    stops = proof_stops(scene.scene)
+    rng = random.Random(f"{scene.key}/proof")
+    chosen = [tuple(int(k) for k in s) for s in rng.sample(list(stops), min(300, len(stops)))]
+    corners = [tuple(int(k) for k in s) for s in stops if all(k in (0, a.count - 1) for k, a in zip(s, scene.axes))]
+    failures = []
+    for start in range(0, len(corners + chosen), 25):
+        batch = (corners + chosen)[start:start + 25]
+        for state in move_many(page, scene, [dict(zip(scene.params, w)) for w in batch]):
+            failures += scene_problems(scene, state)
+    assert not failures, f"{len(failures)} mismatches, e.g.:\n" + "\n".join(failures[:10])
+    assert not log.trouble_since(mark)
+
+
 # --- f) after going back in history ------------------------------------------------------------------
 
 
@@ -542,7 +567,7 @@ def geometry_problems(scene: BookScene, layers: dict[str, list], stops) -> list[
     at the initial and end at the final velocities."""
     problems = []
     name = scene.scene.model.name
-    values = {a.param: float(a.stop(k)) for a, k in zip(scene.axes, stops)}
+    values = {**scene.scene.base_values(), **{a.param: float(a.stop(k)) for a, k in zip(scene.axes, stops)}}
     if name == "impulse" and "area" in layers:
         j = _rounded(scene, stops, ["J"])["J"]
         if abs(_shoelace(layers["area"]) - j) > 5e-4 + 1e-9:
@@ -711,7 +736,8 @@ def test_animation_plays_and_pauses(scene_page, scene, transport):
 _WATCH_MOTION_JS = """
 window.__motion = [];
 new MutationObserver(records => records.forEach(r => window.__motion.push(
-  [r.attributeName, r.target.getAttribute(r.attributeName), r.target.dataset.param || r.target.dataset.animate || ''])))
+  [r.attributeName, r.target.getAttribute(r.attributeName), r.target.dataset.param || r.target.dataset.animate || '',
+   (r.target.closest('[data-scene]') || {}).id])))
   .observe(document, {subtree: true, attributes: true, attributeFilter: ['aria-pressed', 'aria-valuetext']});
 """
 
@@ -742,6 +768,7 @@ def test_animation_never_autoplays(chromium, site_url, scene, motion, transport)
         i = scene.params.index(scene.animate)
         default_text = expected_control_text(scene, scene.animate, scene.defaults[i])
         changes = page.evaluate("window.__motion")
+        changes = [c for c in changes if c[3] == scene.dom_id]  # another scene on the page may animate a slider of the same name
         pressed = [c for c in changes if c[0] == "aria-pressed" and c[1] != "false"]
         assert not pressed, f"the play button was pressed by the page itself: {pressed}"
         moved = [c[1] for c in changes if c[0] == "aria-valuetext" and c[2] == scene.animate and c[1] != default_text]

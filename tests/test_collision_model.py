@@ -303,3 +303,210 @@ def test_invalid_input_raises_naming_the_parameter(inputs):
     (name,) = inputs
     with pytest.raises(ValueError, match=f"`{name}`"):
         Collision().evaluate(inputs)
+
+
+# --- effect `contact_spring_dashpot`: a finite contact, μδ'' + c_d δ' + k_c δ = 0 ----------------------------------
+
+from scipy.integrate import quad, solve_ivp  # noqa: E402
+
+from sitegen.physics import contact  # noqa: E402
+
+CONTACT = ("contact_spring_dashpot",)
+# (m1, m2, v1i, v2i, k_c kN/m, c_d N·s/m): ζ from 0 to 0.9, mass ratios 1e−3 … 1e3, bodies moving either way.
+CONTACT_CASES = [
+    pytest.param(1.0, 2.0, 3.0, -1.0, 10.0, 0.0, id="defaults-elastic"),
+    pytest.param(1.0, 2.0, 3.0, -1.0, 10.0, 20.0, id="defaults-zeta-0.12"),
+    pytest.param(0.1, 10.0, 4.7, -2.2, 40.0, 30.0, id="light-hits-heavy-zeta-0.24"),
+    pytest.param(10.0, 0.1, -0.4, -4.9, 5.0, 25.0, id="heavy-catches-light-zeta-0.56"),
+    pytest.param(2.0, 3.0, 1.2, 0.4, 2.0, 88.0, id="zeta-0.90"),
+    pytest.param(1e3, 1.0, 0.5, -0.5, 50.0, 100.0, id="ratio-1e-3-zeta-0.22"),
+    pytest.param(1.0, 1e3, 5.0, 4.9, 1.0, 1.0, id="ratio-1e3-slow-zeta-0.016"),
+]
+
+
+def _contact_inputs(m1, m2, v1i, v2i, k_c, c_d) -> dict:
+    return {"m1": m1, "m2": m2, "v1i": v1i, "v2i": v2i, "k_c": k_c, "c_d": c_d}
+
+
+def _integrate_contact(m1, m2, v1i, v2i, k_c, c_d):
+    """Second method: both bodies' positions and velocities by DOP853 (rtol 1e−12) while they overlap;
+    the force k_c δ + c_d δ' pushes them apart; a terminal event ends the contact where δ returns to 0."""
+    k = 1e3 * k_c
+
+    def rhs(t, y):
+        x1, x2, u1, u2 = y
+        force = k * (x1 - x2) + c_d * (u1 - u2)  # on body 2, compressive > 0
+        return (u1, u2, -force / m1, force / m2)
+
+    def separated(t, y):
+        return y[0] - y[1]
+
+    separated.terminal, separated.direction = True, -1
+    period = 2 * np.pi * np.sqrt(m1 * m2 / (m1 + m2) / k)
+    solution = solve_ivp(rhs, (0.0, 10 * period), (0.0, 0.0, v1i, v2i), method="DOP853", rtol=1e-12,
+                         atol=1e-15 * max(abs(v1i), abs(v2i)) * period, events=separated, first_step=period * 1e-6)
+    assert solution.status == 1, solution.message
+    return solution.t_events[0][0], solution.y_events[0][0]
+
+
+@pytest.mark.parametrize("m1, m2, v1i, v2i, k_c, c_d", CONTACT_CASES)
+def test_integrated_contact_reproduces_the_restitution_law_with_its_e(m1, m2, v1i, v2i, k_c, c_d):
+    """The ODE-integrated contact ends with the velocities of the restitution law at the model's e_contact,
+    within 1e−9 of max(|v1i|, |v2i|), and after the model's contact time within 1e−9 rel."""
+    t_end, (_, _, u1, u2) = _integrate_contact(m1, m2, v1i, v2i, k_c, c_d)
+    out = Collision().evaluate(_contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["v1f", "v2f", "e_contact", "t_contact"],
+                               effects=CONTACT)
+    law = _evaluate(m1, m2, v1i, v2i, float(out["e_contact"]), wanted=["v1f", "v2f"])
+    scale = max(abs(v1i), abs(v2i))
+    assert abs(u1 - float(law["v1f"])) <= 1e-9 * scale and abs(u2 - float(law["v2f"])) <= 1e-9 * scale
+    assert float(out["v1f"]) == float(law["v1f"]) and float(out["v2f"]) == float(law["v2f"])
+    assert abs(1e-3 * float(out["t_contact"]) / t_end - 1) <= 1e-9
+
+
+@pytest.mark.parametrize("zeta", [0.0, 1e-12, 1e-6, 0.1, 0.5, 0.9, 0.999], ids=lambda z: f"zeta={z}")
+def test_restitution_of_the_contact_is_its_closed_form(zeta):
+    """e = exp(−x), x = ζπ/√(1 − ζ²) with 1 − ζ² taken exactly: within 4ε(1 + x) rel (the exponent's own
+    rounding is amplified by x), so the root formed as √((1 − ζ)(1 + ζ)) keeps its digits as ζ → 1."""
+    import math
+
+    exponent = math.pi * zeta / math.sqrt(float(1 - Fraction(zeta) ** 2))
+    expected = math.exp(-exponent)
+    assert abs(float(contact.restitution(zeta)) - expected) <= 4 * EPS * (1 + exponent) * expected
+
+
+@pytest.mark.parametrize("zeta", [1e-12, 1e-9, 1e-6, 1e-3, 1e-2], ids=lambda z: f"zeta={z}")
+def test_restitution_tends_to_one_as_damping_vanishes(zeta):
+    """Vanishing limit (§13, ζ → 0 ⇒ e → 1): 0 ≤ 1 − e ≤ πζ/√(1 − ζ²), and the final velocities approach
+    the elastic law's within w·Δ·(1 − e)."""
+    mu, k = 2.0 / 3.0, 1e4
+    c = zeta * 2 * np.sqrt(k * mu)
+    e = float(contact.restitution(contact.damping_ratio(mu, k, c)))
+    assert 0.0 <= 1.0 - e <= np.pi * zeta / np.sqrt(1 - zeta**2) * (1 + 1e-12) + 2 * EPS
+    out = Collision().evaluate({"k_c": 10.0, "c_d": c}, wanted=["v1f", "v2f"], effects=CONTACT)
+    elastic = _evaluate(1.0, 2.0, 3.0, -1.0, 1.0, wanted=["v1f", "v2f"])
+    assert abs(float(out["v1f"]) - float(elastic["v1f"])) <= (2 / 3) * 4 * (1 - e) + 4 * EPS * 3
+    assert abs(float(out["v2f"]) - float(elastic["v2f"])) <= (1 / 3) * 4 * (1 - e) + 4 * EPS * 3
+
+
+def test_undamped_contact_is_the_elastic_law_bitwise():
+    """c_d = 0 gives e = 1 exactly and every readout of the elastic collision bit for bit (the seed's values)."""
+    names = ["v1f", "v2f", "p_after", "K_after", "K_lost", "K_kept_pct", "status"]
+    m1, m2, v1i, v2i, e = _random_approaching(11, n=200, e=1.0)
+    law = _evaluate(m1, m2, v1i, v2i, e, wanted=names)
+    spring = Collision().evaluate({"m1": m1, "m2": m2, "v1i": v1i, "v2i": v2i, "k_c": 7.0, "c_d": 0.0}, wanted=names, effects=CONTACT)
+    assert all(np.array_equal(law[n], spring[n]) for n in names)
+
+
+@pytest.mark.parametrize("m1, m2, v1i, v2i, k_c, c_d", CONTACT_CASES)
+def test_impulse_of_the_contact_is_the_area_under_its_force(m1, m2, v1i, v2i, k_c, c_d):
+    """J = μ(1 + e)Δ equals quad of F(t) over the contact (1e−12 rel) and m2(v2f − v2i) (1e−13 rel)."""
+    mu = m1 * m2 / (m1 + m2)
+    out = Collision().evaluate(_contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["J", "t_contact", "v2f"], effects=CONTACT)
+    area, _ = quad(lambda t: float(contact.force(t, mu, 1e3 * k_c, c_d, v1i - v2i)), 0.0, 1e-3 * float(out["t_contact"]),
+                   epsabs=0.0, epsrel=1e-13, limit=200)
+    J = float(out["J"])
+    assert abs(area - J) <= 1e-12 * J
+    assert abs(m2 * (float(out["v2f"]) - v2i) - J) <= 1e-13 * (J + m2 * abs(v2i))
+
+
+@pytest.mark.parametrize("m1, m2, v1i, v2i, k_c, c_d", CONTACT_CASES)
+def test_contact_ends_where_the_overlap_closes_with_the_dashpot_pulling(m1, m2, v1i, v2i, k_c, c_d):
+    """The stated criterion: at t_c the overlap is 0 (to 1e−12 of its largest value) and the force is the
+    dashpot's pull, F(t_c) = −c_d e Δ (tensile when damped)."""
+    mu, k, delta = m1 * m2 / (m1 + m2), 1e3 * k_c, v1i - v2i
+    out = Collision().evaluate(_contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["t_contact", "e_contact"], effects=CONTACT)
+    t_c, e = 1e-3 * float(out["t_contact"]), float(out["e_contact"])
+    samples = np.linspace(0.0, t_c, 2001)
+    assert abs(float(contact.overlap(t_c, mu, k, c_d, delta))) <= 1e-12 * np.max(contact.overlap(samples, mu, k, c_d, delta))
+    assert float(contact.force(t_c, mu, k, c_d, delta)) == pytest.approx(-c_d * e * delta, rel=1e-9, abs=1e-9 * k * delta / np.sqrt(k / mu))
+
+
+@pytest.mark.parametrize("m1, m2, v1i, v2i, k_c, c_d", CONTACT_CASES)
+def test_peak_contact_force_is_the_maximum_of_the_force(m1, m2, v1i, v2i, k_c, c_d):
+    """F_max is the largest force: no sample of F over the contact exceeds it (1e−12), and a bounded
+    minimiser started anywhere finds the same value within 1e−9 rel."""
+    from scipy.optimize import minimize_scalar
+
+    mu, k, delta = m1 * m2 / (m1 + m2), 1e3 * k_c, v1i - v2i
+    out = Collision().evaluate(_contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["t_contact", "F_max"], effects=CONTACT)
+    t_c, peak = 1e-3 * float(out["t_contact"]), float(out["F_max"])
+    forces = contact.force(np.linspace(0.0, t_c, 20001), mu, k, c_d, delta)
+    assert np.max(forces) <= peak * (1 + 1e-12)
+    best = minimize_scalar(lambda t: -float(contact.force(t, mu, k, c_d, delta)), bounds=(0.0, t_c), method="bounded",
+                           options={"xatol": 1e-14 * t_c})
+    assert max(-best.fun, float(forces[0])) == pytest.approx(peak, rel=1e-9)
+
+
+@pytest.mark.parametrize("c_d", [2 * np.sqrt(1e4 * 2 / 3), 100.0, 1e4], ids=["critical", "zeta-0.61", "zeta-61"])
+def test_overdamped_contact_never_ends_and_the_bodies_move_together(c_d):
+    """ζ ≥ 1: the overlap never closes, so t_c = ∞ (shown as a phrase), e = 0 and v1f == v2f bitwise;
+    just below critical damping e is continuous with 0."""
+    out = Collision().evaluate({"k_c": 10.0, "c_d": c_d}, wanted=["t_contact", "e_contact", "v1f", "v2f", "contact_F"], effects=CONTACT)
+    zeta = float(contact.damping_ratio(2 / 3, 1e4, c_d))
+    if zeta >= 1:
+        assert np.isinf(out["t_contact"]) and float(out["e_contact"]) == 0.0
+        assert float(out["v1f"]) == float(out["v2f"])
+    assert np.all(np.isfinite(out["contact_F"]))
+    assert float(contact.restitution(np.nextafter(1.0, 0.0))) < 1e-6
+
+
+def test_contact_time_does_not_depend_on_the_approach_speed():
+    """A linear contact lasts π/ω_d whatever the speed: t_contact is the same for Δ = 0.1 and 10 m/s (bitwise)."""
+    slow = Collision().evaluate({"v1i": 0.1, "v2i": 0.0, "c_d": 30.0}, wanted=["t_contact"], effects=CONTACT)
+    fast = Collision().evaluate({"v1i": 5.0, "v2i": -5.0, "c_d": 30.0}, wanted=["t_contact"], effects=CONTACT)
+    assert float(slow["t_contact"]) == float(fast["t_contact"])
+
+
+def test_separating_bodies_feel_no_contact_force():
+    """v1i ≤ v2i: no impulse, no force, the velocities unchanged bitwise (the contact never starts)."""
+    out = Collision().evaluate({"v1i": -1.0, "v2i": 2.0, "c_d": 30.0}, wanted=["J", "F_max", "contact_F", "v1f", "v2f"], effects=CONTACT)
+    assert float(out["J"]) == 0.0 and float(out["F_max"]) == 0.0 and np.all(out["contact_F"] == 0.0)
+    assert (float(out["v1f"]), float(out["v2f"])) == (-1.0, 2.0)
+
+
+def test_contact_defaults_display_the_seed_readouts():
+    """With the contact and c_d = 0 the defaults show the elastic seed readouts −2.333, 1.667 and K lost 0.00."""
+    out = Collision().evaluate(Collision.defaults(), wanted=["v1f", "v2f", "K_lost"], effects=CONTACT)
+    assert [fmt(float(out[n]), Collision.output(n).decimals) for n in ("v1f", "v2f", "K_lost")] == ["\u22122.333", "1.667", "0.00"]
+
+
+# --- effect `explosive`: e > 1 only when the scene asks for it -----------------------------------------------------
+
+
+@pytest.mark.parametrize("e", [1.01, 1.5, 3.0], ids=["e=1.01", "e=1.5", "e=3"])
+def test_restitution_above_one_needs_the_explosive_effect(e):
+    """e > 1 is rejected (naming `e` and the effect that would allow it) unless `explosive` is on."""
+    with pytest.raises(ValueError, match="`e`.*explosive"):
+        Collision().evaluate({"e": e})
+    Collision().evaluate({"e": e}, effects=("explosive",))
+
+
+@pytest.mark.parametrize("e", [1.25, 2.0], ids=["e=1.25", "e=2"])
+def test_explosive_collision_gains_energy_and_keeps_momentum(e):
+    """e > 1: momentum conserved (4ε), K_lost = −½μ(e² − 1)Δ² < 0 (8ε rel), velocities from the same law (exact rationals)."""
+    m1, m2, v1i, v2i, _ = _random_approaching(12, n=300, e=0.0)
+    out = Collision().evaluate({"m1": m1, "m2": m2, "v1i": v1i, "v2i": v2i, "e": e}, effects=("explosive",),
+                               wanted=["v1f", "p_before", "p_after", "K_lost"])
+    scaled = np.abs(out["p_after"] - out["p_before"]) / (4 * EPS * (m1 * np.abs(v1i) + m2 * np.abs(v2i)))
+    assert np.max(scaled) <= 1.0
+    assert np.all(out["K_lost"] < 0)
+    for i in range(0, 300, 37):
+        exact = _exact(m1[i], m2[i], v1i[i], v2i[i], e)
+        assert abs(Fraction(float(out["K_lost"][i])) - exact["K_lost"]) <= 8 * EPS * abs(exact["K_lost"])
+        assert abs(Fraction(float(out["v1f"][i])) - exact["v1f"]) <= Fraction(4 * EPS) * Fraction(max(abs(v1i[i]), abs(v2i[i]))) * Fraction(e)
+
+
+def test_explosive_within_the_usual_range_is_the_base_law_bitwise():
+    """With e ≤ 1 the explosive effect changes nothing (its vanishing limit)."""
+    m1, m2, v1i, v2i, e = _random_approaching(13, n=300)
+    names = [o.name for o in Collision.outputs if not o.effect]
+    plain = _evaluate(m1, m2, v1i, v2i, e, wanted=names)
+    explosive = Collision().evaluate(dict(zip(NAMES, (m1, m2, v1i, v2i, e))), wanted=names, effects=("explosive",))
+    assert all(np.array_equal(plain[n], explosive[n]) for n in names)
+
+
+@pytest.mark.parametrize("other", ["restitution_law", "explosive"])
+def test_contact_excludes_the_instantaneous_laws(other):
+    """The contact replaces the restitution law: naming it with restitution_law or explosive is refused."""
+    with pytest.raises(ValueError, match="excludes"):
+        Collision().evaluate({}, wanted=["v1f"], effects=("contact_spring_dashpot", other))

@@ -406,10 +406,11 @@ ROTATION_CASES = [
 ]
 
 
-def _integrate_to_the_stop(m_L, m_R, x_p, theta_s):
-    """Second method: I θ'' = τ cos θ from rest by DOP853 (rtol 1e−12), stopped by a terminal event at ±θ_s."""
-    torque = 9.81 * (m_L * x_p - m_R * (LENGTH - x_p))
-    inertia = m_L * x_p**2 + m_R * (LENGTH - x_p) ** 2
+def _integrate_to_the_stop(m_L, m_R, x_p, theta_s, m_b=0.0):
+    """Second method: I θ'' = τ cos θ from rest by DOP853 (rtol 1e−12), stopped by a terminal event at ±θ_s;
+    with m_b > 0, I and τ include the uniform bar."""
+    torque = 9.81 * (m_L * x_p - m_R * (LENGTH - x_p) + m_b * (x_p - LENGTH / 2))
+    inertia = m_L * x_p**2 + m_R * (LENGTH - x_p) ** 2 + m_b * (LENGTH**2 / 12 + (LENGTH / 2 - x_p) ** 2)
     stop = math.copysign(math.radians(theta_s), torque)
 
     def hits_stop(t, y):
@@ -474,10 +475,48 @@ def test_moment_of_inertia_is_positive_with_the_pivot_at_an_end(x_p):
     assert value == pytest.approx(0.4, rel=4 * EPS)
 
 
-def test_rotation_with_bar_mass_is_refused_not_silently_wrong():
-    """Combining rotation_dynamics with bar_mass raises a ValueError naming both (their deps cannot express it yet)."""
-    with pytest.raises(ValueError, match="bar_mass and rotation_dynamics"):
-        _evaluate(["t_stop"], effects=["bar_mass", "rotation_dynamics"])
+BAR_ROTATION_CASES = [
+    pytest.param(2.0, 2.0, 1.2, 1.0, 15.0, id="tips-left-x_p=1.2-m_b=1"),
+    pytest.param(1.0, 6.5, 0.9, 3.0, 15.0, id="tips-right-heavy-right-m_b=3"),
+    pytest.param(0.1, 0.1, 0.0, 10.0, 30.0, id="bar-outweighs-the-blocks-x_p=0"),
+    pytest.param(3.0, 1.0, 1.7, 0.5, 90.0, id="stop-at-90deg"),
+]
+
+
+@pytest.mark.parametrize("m_L, m_R, x_p, m_b, theta_s", BAR_ROTATION_CASES)
+def test_rotation_with_the_bar_matches_the_integrated_motion(m_L, m_R, x_p, m_b, theta_s):
+    """bar_mass with rotation_dynamics: I includes m_b(ℓ²/12 + (ℓ/2 − x_p)²) and the torque m_b g (x_p − ℓ/2);
+    t_stop and ω_stop agree with the integrated ODE within 1e−9 rel."""
+    solution, _, inertia = _integrate_to_the_stop(m_L, m_R, x_p, theta_s, m_b)
+    t_event, omega_event = solution.t_events[0][0], solution.y_events[0][0][1]
+    out = _evaluate(["t_stop", "omega_stop", "inertia"], effects=["bar_mass", "rotation_dynamics"],
+                    m_L=m_L, m_R=m_R, x_p=x_p, m_b=m_b, theta_s=theta_s)
+    assert abs(float(out["inertia"]) / inertia - 1) <= 4 * EPS
+    assert abs(float(out["t_stop"]) / t_event - 1) <= 1e-9
+    assert abs(float(out["omega_stop"]) / omega_event - 1) <= 1e-9
+
+
+def test_rotation_ignores_the_bar_unless_bar_mass_is_on():
+    """Without bar_mass the rotation outputs are those of the massless bar, whatever m_b is given (bitwise)."""
+    names = ["inertia", "t_stop", "omega_stop"]
+    heavy = _evaluate(names, effects=["rotation_dynamics"], m_L=1.0, m_R=6.5, x_p=0.9, m_b=3.0)
+    plain = _evaluate(names, effects=["rotation_dynamics"], m_L=1.0, m_R=6.5, x_p=0.9)
+    assert all(float(heavy[n]) == float(plain[n]) for n in names)
+
+
+@pytest.mark.parametrize("m_b", [0.0, 1e-12, 1e-6, 1e-3], ids=lambda m: f"m_b={m}")
+def test_rotation_with_a_vanishing_bar_is_the_massless_rotation(m_b):
+    """m_b → 0 with both effects on: t_stop and ω_stop tend to the massless bar's, within a relative change
+    of O(m_b/M) (bound: m_b(ℓ²/3 + ℓ/2)/min(I, |τ|/g) + 16ε); m_b = 0 gives them bitwise."""
+    names = ["t_stop", "omega_stop"]
+    inputs = dict(m_L=1.0, m_R=6.5, x_p=0.9, theta_s=15.0)
+    with_bar = _evaluate(names, effects=["bar_mass", "rotation_dynamics"], m_b=m_b, **inputs)
+    massless = _evaluate(names, effects=["rotation_dynamics"], **inputs)
+    inertia = 1.0 * 0.9**2 + 6.5 * 1.1**2
+    arms = abs(1.0 * 0.9 - 6.5 * 1.1)
+    bound = m_b * (LENGTH**2 / 3 + LENGTH / 2) / min(inertia, arms) + (16 * EPS if m_b else 0.0)
+    for name in names:
+        assert abs(float(with_bar[name]) / float(massless[name]) - 1) <= bound, name
 
 
 # --- invalid input -----------------------------------------------------------------------------------------------

@@ -16,10 +16,21 @@ from sitegen.physics.base import Param
 POINTS = 16  # random valid points per check
 SPAN = 5.0  # sample each domain within [-SPAN, SPAN]
 
+def _effect_sets(model, output) -> list[frozenset[str]]:
+    """The effect sets an output's deps are checked under: the effects it needs (its own and those of
+    its parameters), and that set plus each effect that changes its deps (`deps_with`)."""
+    declared = model.output(output.name)
+    base = frozenset(e for e in (declared.effect, *(model.param(d).effect for d in declared.deps)) if e)
+    extra = [base | {effect} | {model.param(d).effect for d in deps if model.param(d).effect}
+             for effect, deps in declared.deps_with]
+    return list(dict.fromkeys([base, *extra]))
+
+
 CASES = [
-    pytest.param(model, output.name, id=f"{name}-{output.name}")
+    pytest.param(model, output.name, effects, id=f"{name}-{output.name}" + "".join(f"+{e}" for e in sorted(effects)))
     for name, model in MODELS.items()
     for output in model.outputs
+    for effects in _effect_sets(model, output)
 ]
 
 
@@ -46,18 +57,12 @@ def _bitwise_changed(before: np.ndarray, after: np.ndarray) -> np.ndarray:
     return np.any(before.view(np.uint8).reshape(POINTS, -1) != after.view(np.uint8).reshape(POINTS, -1), axis=1)
 
 
-def _effects_for(model, output: str) -> set[str]:
-    """The effects an output needs: its own and those its parameters belong to."""
-    declared = model.output(output)
-    return {e for e in (declared.effect, *(model.param(d).effect for d in declared.deps)) if e}
-
-
 @functools.lru_cache(maxsize=None)  # both tests of an output read the same counts
-def _params_that_change(model, output: str, seed: int) -> dict[str, int]:
-    """For each parameter, at how many of POINTS random valid points perturbing it alone changes `output`."""
+def _params_that_change(model, output: str, effects: frozenset[str], seed: int) -> dict[str, int]:
+    """For each parameter, at how many of POINTS random valid points perturbing it alone changes `output`
+    (with `effects` enabled)."""
     rng = np.random.default_rng(seed)
     base = {p.name: _sample(p, rng, POINTS) for p in model.params}
-    effects = _effects_for(model, output)
     reference = model().evaluate(base, wanted=[output], effects=effects)[output]
     counts = {}
     for p in model.params:
@@ -70,11 +75,11 @@ def _params_that_change(model, output: str, seed: int) -> dict[str, int]:
     return counts
 
 
-@pytest.mark.parametrize("model, output", CASES)
-def test_output_ignores_parameters_outside_its_deps(model, output):
-    """Perturbing a parameter not in the output's deps leaves it bitwise unchanged at every random point."""
-    counts = _params_that_change(model, output, seed=20240611)
-    deps = set(model.output(output).deps)
+@pytest.mark.parametrize("model, output, effects", CASES)
+def test_output_ignores_parameters_outside_its_deps(model, output, effects):
+    """Perturbing a parameter not in the output's deps (under the effects) leaves it bitwise unchanged at every random point."""
+    counts = _params_that_change(model, output, effects, seed=20240611)
+    deps = set(model.deps_of(output, effects))
     undeclared = {name: n for name, n in counts.items() if name not in deps and n > 0}
     assert not undeclared, f"{output} changes with undeclared parameters (points changed): {undeclared}"
 
@@ -92,17 +97,20 @@ RESPONDING_CASES = [
 ]
 
 
-@pytest.mark.parametrize("model, output", RESPONDING_CASES)
-def test_output_responds_to_every_declared_dep(model, output):
-    """Perturbing each declared dep changes the output at at least one random point (no superfluous dep)."""
-    counts = _params_that_change(model, output, seed=20240611)
-    inert = sorted(name for name in model.output(output).deps if counts[name] == 0)
+@pytest.mark.parametrize("model, output, effects", RESPONDING_CASES)
+def test_output_responds_to_every_declared_dep(model, output, effects):
+    """Perturbing each dep (under the effects) changes the output at at least one random point (no superfluous dep)."""
+    counts = _params_that_change(model, output, effects, seed=20240611)
+    inert = sorted(name for name in model.deps_of(output, effects) if counts[name] == 0)
     assert not inert, f"{output} declares deps it never responds to: {inert}"
 
 
-@pytest.mark.parametrize("model, output", CASES)
-def test_deps_name_declared_parameters(model, output):
-    """Every dep of an output is one of the model's parameters, listed once."""
-    deps = model.output(output).deps
+@pytest.mark.parametrize("model, output, effects", CASES)
+def test_deps_name_declared_parameters(model, output, effects):
+    """Every dep of an output is one of the model's parameters, listed once, and every effect that
+    changes its deps is one the model offers."""
+    declared = model.output(output)
+    deps = declared.deps + tuple(d for _, extra in declared.deps_with for d in extra)
     assert set(deps) <= {p.name for p in model.params}
-    assert len(set(deps)) == len(deps)
+    assert len(set(declared.deps)) == len(declared.deps)
+    assert {effect for effect, _ in declared.deps_with} <= set(model.effects)

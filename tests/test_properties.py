@@ -205,9 +205,13 @@ def test_exact_chain_conserves_energy_at_any_time(point):
 @given(_CHAIN_POINT.filter(lambda p: p["t"] >= 100.0))
 def test_exact_chain_energy_does_not_drift_with_the_phase(point):
     """Each mode's (ωû)² + v̂² does not depend on its phase, so the exact solution should keep E(t)/E(0) − 1
-    within 1e−12 however long it runs (t = 1e2 … 1e4), not only up to ε·ωt."""
-    e0, et, _ = _chain_energies(point)
-    assert abs(et - e0) <= 1e-12 * e0 + 1e-290, f"E(t)/E(0) − 1 = {et / e0 - 1:.3g}"
+    within 1e−12 however long it runs (t = 1e2 … 1e4), not only up to ε·ωt. Free ends and a ring are the
+    exception: no wall holds them, so their free translation (total momentum × t) rides in every u_j and
+    its rounding enters the stretches; they are held to the ε·ω_max·t bound of the test above (measured
+    1.6e−12 for a ring at N = 163, σ = 0.001, t = 1611)."""
+    e0, et, omega_max = _chain_energies(point)
+    drifting = 4 * EPS * omega_max * point["t"] if point["ends"] != 0.0 else 0.0  # 0: fixed ends
+    assert abs(et - e0) <= (1e-12 + drifting) * e0 + 1e-290, f"E(t)/E(0) − 1 = {et / e0 - 1:.3g}"
 
 
 # ================================================================================================
@@ -283,7 +287,7 @@ def test_impulse_is_the_same_for_the_triangle_and_the_hann_pulse(pulse):
     adaptive quadrature within 1e−12 rel (physics.md I1: the shape-independence demo), at any
     F_pk, τ, m far beyond the sliders; Δp = J bitwise and Δv = J/m."""
     F_pk, tau = pulse["F_pk"], pulse["tau"]
-    out = {k: float(v) for k, v in Impulse().evaluate(pulse).items()}
+    out = {k: float(v) for k, v in Impulse().evaluate(pulse, wanted=["J", "dp", "dv"]).items()}
     J = out["J"]
     triangle, _ = quad(lambda t: float(force(t, F_pk, tau)), 0.0, tau, points=[tau / 2], epsabs=0.0, epsrel=1e-13)
     hann, _ = quad(lambda t: F_pk * math.sin(math.pi * t / tau) ** 2, 0.0, tau, epsabs=0.0, epsrel=1e-13)
@@ -510,6 +514,89 @@ _LEVER_LIMITS = [
           )),
 ]
 
+
+# --- I1 impulse ------------------------------------------------------------------------------------
+
+_IMPULSE_INPUTS = st.fixed_dictionaries({
+    "F_pk": st.one_of(st.just(0.0), _log_uniform(-3.0, 3.0)), "tau": _log_uniform(-3.0, 1.0), "m": _log_uniform(-2.0, 2.0),
+    "shape": st.sampled_from([0.0, 1.0, 2.0, 3.0]), "v0": st.floats(-10.0, 10.0),
+    "m_hit": _log_uniform(-2.0, 2.0), "v_rel": st.floats(0.0, 10.0), "k_c": _log_uniform(-1.0, 2.0), "c_d": st.floats(0.0, 100.0),
+})
+
+
+def _reduced_mass(x, first: str, second: str) -> float:
+    return x[first] * x[second] / (x[first] + x[second])
+
+
+def _damping_loss(d, x, first: str, second: str) -> float:
+    """1 − e ≤ πζ/√(1 − ζ²) for the contact damping c_d = δ (ζ = δ/2√(k_c μ), k_c in kN/m)."""
+    zeta = d / (2.0 * math.sqrt(1e3 * x["k_c"] * _reduced_mass(x, first, second)))
+    return math.pi * zeta / math.sqrt((1 - zeta) * (1 + zeta)) if zeta < 1 else 1.0
+
+
+_IMPULSE_LIMITS = [
+    # The triangle is the base model's pulse: choosing it under `shape` changes no bit of any output.
+    Limit("impulse", "shape", "shape", "shape=triangle", _IMPULSE_INPUTS, None, value=lambda d, x: 0.0,
+          companions=("initial_velocity",)),
+    # v0 → 0: the velocity curve and the velocity after the pulse become those gained from rest, J/m.
+    Limit("impulse", "initial_velocity", "v0", "v0->0", _IMPULSE_INPUTS, _small(1.0, signed=True),
+          compare=(Compare("v_curve", "v_curve", lambda d, x, ref: abs(d) * (1 + 1e-15) + (4 * EPS * np.abs(ref) if d else 0.0)),
+                   Compare("v_after", "dv", lambda d, x, ref: abs(d) * (1 + 1e-15) + (4 * EPS * abs(ref) if d else 0.0))),
+          companions=("shape",)),
+    # The contact's force: damping → 0 makes it elastic, J → 2μΔ; the approach speed → 0 makes it vanish.
+    Limit("impulse", "contact_from_collision", "c_d", "c_d->0(J->2muDelta)", _IMPULSE_INPUTS, _small(-3.0),
+          compare=(Compare("J", lambda x, off: 2.0 * _reduced_mass(x, "m_hit", "m") * x["v_rel"],
+                           lambda d, x, ref: ref * (_damping_loss(d, x, "m_hit", "m") / 2 + 4 * EPS)),),
+          companions=("initial_velocity",), strict=False),
+    Limit("impulse", "contact_from_collision", "v_rel", "v_rel->0", _IMPULSE_INPUTS, _small(-3.0),
+          compare=(Compare("J", lambda x, off: 0.0, lambda d, x, ref: 2.0 * _reduced_mass(x, "m_hit", "m") * d * (1 + 4 * EPS)),
+                   Compare("F_max", lambda x, off: 0.0,
+                           lambda d, x, ref: d * (math.sqrt(1e3 * x["k_c"] * _reduced_mass(x, "m_hit", "m")) + x["c_d"]) * (1 + 1e-12))),
+          companions=("initial_velocity",), strict=False),
+    Limit("impulse", "contact_from_collision", "k_c", "k_c", skip="the stiffness sets the contact's duration and height, not "
+          "its strength: J depends on k_c only through e, and the contact vanishes with c_d->0 (elastic) or v_rel->0"),
+    Limit("impulse", "contact_from_collision", "m_hit", "m_hit", skip="the striking mass describes the collision that makes "
+          "the force (no neutral value); the contact's limits are c_d->0 and v_rel->0"),
+]
+
+# --- I2 collision ---------------------------------------------------------------------------------
+
+_CONTACT_INPUTS = st.fixed_dictionaries({
+    "m1": _log_uniform(-2.0, 2.0), "m2": _log_uniform(-2.0, 2.0), "v1i": st.floats(-10.0, 10.0), "v2i": st.floats(-10.0, 10.0),
+    "e": st.just(1.0), "k_c": _log_uniform(-1.0, 2.0), "c_d": st.floats(0.0, 100.0),
+})
+
+
+def _contact_bound(weight: str):
+    """|Δv| ≤ w Δ (1 − e) against the elastic law, plus the roundoff of the two evaluations."""
+    def bound(d, x, ref):
+        total = x["m1"] + x["m2"]
+        approach = max(x["v1i"] - x["v2i"], 0.0)
+        return x[weight] / total * approach * _damping_loss(d, x, "m1", "m2") + 8 * EPS * max(abs(x["v1i"]), abs(x["v2i"]))
+    return bound
+
+
+def _contact_energy_bound(d, x, ref):
+    """K lost ≤ μΔ²(1 − e), plus roundoff of the energies."""
+    approach = max(x["v1i"] - x["v2i"], 0.0)
+    before = 0.5 * x["m1"] * x["v1i"] ** 2 + 0.5 * x["m2"] * x["v2i"] ** 2
+    return _reduced_mass(x, "m1", "m2") * approach**2 * _damping_loss(d, x, "m1", "m2") + 16 * EPS * before
+
+
+_COLLISION_LIMITS = [
+    # physics.md §13: ζ → 0 ⇒ e → 1, and the contact's velocities and ledger become the elastic law's.
+    Limit("collision", "contact_spring_dashpot", "c_d", "c_d->0(zeta->0)", _CONTACT_INPUTS, _small(-3.0),
+          compare=(
+              Compare("e_contact", lambda x, off: 1.0, lambda d, x, ref: _damping_loss(d, x, "m1", "m2") + 2 * EPS),
+              Compare("v1f", "v1f", _contact_bound("m2")), Compare("v2f", "v2f", _contact_bound("m1")),
+              Compare("p_after", "p_after", lambda d, x, ref: 16 * EPS * (x["m1"] * abs(x["v1i"]) + x["m2"] * abs(x["v2i"]))),
+              Compare("K_after", "K_after", _contact_energy_bound), Compare("K_lost", "K_lost", _contact_energy_bound),
+              Compare("K_kept_pct", "K_kept_pct", lambda d, x, ref: 100 * _contact_energy_bound(d, x, ref)
+                      / max(0.5 * x["m1"] * x["v1i"] ** 2 + 0.5 * x["m2"] * x["v2i"] ** 2, 1e-300) + 1e-12),
+          )),
+    Limit("collision", "contact_spring_dashpot", "k_c", "k_c", skip="the stiffness alone sets the contact's duration, not "
+          "its outcome: at c_d = 0 every k_c gives the elastic law bitwise (test_collision_model); the contact vanishes with c_d->0"),
+]
 
 # --- I5 chain --------------------------------------------------------------------------------------
 
@@ -765,14 +852,15 @@ _BUBBLE_LIMITS = [
 # --- effects without a parameter -------------------------------------------------------------------
 
 _NO_PARAMETER = {
-    ("collision", "restitution_law"): "it is the base law (the contact and explosive laws of physics.md are not implemented)",
+    ("collision", "restitution_law"): "it is the base law, the default",
+    ("collision", "explosive"): "it widens e beyond 1; with 0 <= e <= 1 it is the base law",
     ("euler_slab", "convective_term"): "a readout of a term the linear balance leaves out",
     ("euler_slab", "gravity"): "a readout of a term the linear balance leaves out",
     ("euler_slab", "absorption"): "a readout of a term the linear balance leaves out",
 }
 
 LIMITS = [
-    *_WORK_LIMITS, *_LEVER_LIMITS, *_CHAIN_LIMITS, *_OSSICLE_LIMITS, *_KINETIC_LIMITS, *_ACOUSTIC_LIMITS, *_BUBBLE_LIMITS,
+    *_IMPULSE_LIMITS, *_COLLISION_LIMITS, *_WORK_LIMITS, *_LEVER_LIMITS, *_CHAIN_LIMITS, *_OSSICLE_LIMITS, *_KINETIC_LIMITS, *_ACOUSTIC_LIMITS, *_BUBBLE_LIMITS,
     *(Limit(m, e, "", "no-parameter", skip=f"no parameter: {why}") for (m, e), why in _NO_PARAMETER.items()),
     *(Limit(name, "(none)", "", "", skip="the model declares no effects") for name, model in MODELS.items() if not model.effects),
 ]

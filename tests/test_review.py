@@ -24,7 +24,9 @@ ROOT = Path(__file__).resolve().parents[1]
 # The constant the end-to-end test changes, and every output of its scene that depends on it.
 MODEL_FILE = "src/sitegen/physics/ossicles.py"
 CONSTANT = ("Z_AIR = 1.204 * 343.2", "Z_AIR = 1.293 * 331.3")  # air at 20 °C -> air at 0 °C
-AFFECTED = {"T0", "T0_dB", "T1", "T1_dB", "ell_match"}
+# The outputs the cochlea's impedance enters, and the two coordinate tables ("~…") the page's
+# expressions for T1, T1_dB and ell_match read it through.
+AFFECTED = {"T0", "T0_dB", "T1", "T1_dB", "ell_match", "~load_per_Z_air", "~sqrt_load_per_Z_air"}
 
 
 def _can_render() -> bool:
@@ -191,8 +193,10 @@ def test_changed_constant_changes_exactly_that_scene(constant_review):
     review, _ = constant_review
     assert review.changed
     assert [(s.page, s.id, s.status) for s in review.scenes()] == [("newtons-laws-examples.html", "ossicles", "changed")]
-    assert [p.name for p in review.pages] == ["newtons-laws-examples.html"]
-    assert not review.pages[0].text and not review.pages[0].markup
+    # The accuracy page lists each scene's table bytes, so its text changes too; nothing else does.
+    assert [p.name for p in review.pages] == ["accuracy.html", "newtons-laws-examples.html"]
+    examples = review.pages[1]
+    assert not examples.text and not examples.markup
     assert review.files == []
 
 
@@ -227,7 +231,7 @@ def test_report_lists_that_scene_and_nothing_else(constant_review):
     assert re.findall(r'<article class="card" id="([^"]+)"', html) == ["newtons-laws-examples--ossicles"]
     assert not re.search(r'(?:src|href)="(?!data:|#)', html), "the report must be self-contained"
     summary = (out / "summary.md").read_text()
-    assert summary.startswith("## Build review: 1 scene (1 figure, 5 tables, 1 set of readouts) changed")
+    assert summary.startswith("## Build review: 1 scene (1 figure, 7 tables, 1 set of readouts), 1 page's text changed")
     for name in AFFECTED:
         assert f"| ossicles | {name} |" in summary
     for other in ("impulse", "collision", "lever", "kinetic", "euler-slab", "acoustic-energy"):

@@ -1,5 +1,5 @@
-"""The build, as a short script of named phases: read, resolve, convert math, tabulate, render,
-assemble, write. Everything is read and computed before anything is written."""
+"""The build, as a short script of named phases: read, resolve, convert math, tabulate, check, render,
+assemble, report (the accuracy page's blocks), write. Everything is read and computed before anything is written."""
 from __future__ import annotations
 
 import time
@@ -7,6 +7,10 @@ from math import prod
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .accuracy.check import caption_sentence, check_scenes
+from .accuracy.page import fill_reports
+from .accuracy.records import SceneAccuracy
+from .accuracy.results import BENCH_NAME
 from .compute.scenes import ResolvedScene, resolve_scene
 from .compute.cache import TableCache, compute_now, digest, forget_sources, library_version, scene_key, source_digest
 from .compute.executors import executor_for
@@ -18,6 +22,7 @@ from .errors import AuthorError, ErrorLog, SourceLoc
 from .physics import MODELS
 from .render.svg import figure_svg
 from .render.figures import FIGURES
+from .render.figures.base import figure_label
 from .render.layers import layer_points
 from .site import assets
 from .site.assemble import RenderedScene, dom_id, page_html, scene_html, scene_payload
@@ -57,6 +62,7 @@ class BuildReport:
     phases: dict[str, float] = field(default_factory=dict)
     files: dict[str, int] = field(default_factory=dict)
     scene_lines: list[str] = field(default_factory=list)  # one line per scene: cached or computed and why
+    accuracy: list[SceneAccuracy] = field(default_factory=list)  # numerically computed scenes, in page/scene order
 
 
 @dataclass(frozen=True)
@@ -82,13 +88,16 @@ def build(config: BuildConfig, progress=print) -> BuildReport:
     log.raise_if_any()
     tables = clock.phase("tabulate", tabulate_scenes, scenes, cache, config, report, log, progress)
     log.raise_if_any()
+    report.accuracy = clock.phase("check", check_accuracy, scenes, log, remember, progress)
+    log.raise_if_any()
     figures = clock.phase("render", render_figures, scenes, tables, remember)
-    files = clock.phase("assemble", assemble_site, pages, scenes, tables, figures, mathml, config, remember)
+    files = clock.phase("assemble", assemble_site, pages, scenes, tables, figures, mathml, config, remember, report.accuracy)
+    files = clock.phase("report", fill_reports, files, pages, scenes, report.accuracy, config.content / BENCH_NAME, remember)
     if cache:
         report.scene_lines += cache.problems
     clock.phase("write", write_tree, files, config.out)
     report.pages, report.scenes = len(pages), len(scenes)
-    report.stored_values = sum(t.quanta.size for ts in tables.values() for t in ts.values())
+    report.stored_values = sum(t.stored_values() for ts in tables.values() for t in ts.values())
     report.files = {name: len(data) for name, data in sorted(files.items())}
     return report
 
@@ -155,7 +164,7 @@ def tabulate_scenes(scenes, cache: TableCache | None, config: BuildConfig, repor
         key = scene_key(item.scene, names)
         found = cache.load(key) if cache else None
         if found is not None:
-            tables[_key(item)] = {name: found[name] for name in names}
+            tables[_key(item)] = found
             _note_scene(report, item, cache, key, cached=True, seconds=0.0, progress=progress, total=len(scenes))
         else:
             try:
@@ -167,16 +176,24 @@ def tabulate_scenes(scenes, cache: TableCache | None, config: BuildConfig, repor
         for (item, names, key, units), futures in zip(pending, submitted):
             try:
                 results, seconds = _collect(futures)
-                computed = assemble_tables(item.scene, units, results)
+                computed = assemble_tables(item.scene, units, results, names)
             except AuthorError as error:
                 log.add(error)
                 continue
-            tables[_key(item)] = {name: computed[name] for name in names}
+            tables[_key(item)] = computed
             report.evaluations += len(units)
             if cache:
                 cache.store(key, tables[_key(item)])
             _note_scene(report, item, cache, key, cached=False, seconds=seconds, progress=progress, total=len(scenes))
     return tables
+
+
+def check_accuracy(scenes: list[PageScene], log: ErrorLog, remember=compute_now, progress=None) -> list[SceneAccuracy]:
+    """Each numerically computed scene measured against its model's reference (a scene over its tolerance is an error)."""
+    records, errors = check_scenes(scenes, remember, progress)
+    for error in errors:
+        log.add(error)
+    return records
 
 
 def _timed(function, *args):
@@ -220,7 +237,7 @@ def render_figures(scenes: list[PageScene], tables, remember=compute_now) -> dic
         points = layer_points(layers, scene, scene_tables, scene.default_stops)
 
         def draw(view=view, scene=scene, scene_tables=scene_tables, layers=layers, points=points) -> bytes:
-            return figure_svg(view.draw(scene, scene_tables), layers, points, dom_id(scene), view.label).encode()
+            return figure_svg(view.draw(scene, scene_tables), layers, points, dom_id(scene), figure_label(view, scene)).encode()
 
         # The layers are drawn at the defaults, so the defaults (through the points) belong in the key.
         key = digest(_scene_digest(item), source_digest(FIGURE_MODULES | {type(view).__module__}), repr(points), "figure")
@@ -228,9 +245,12 @@ def render_figures(scenes: list[PageScene], tables, remember=compute_now) -> dic
     return figures
 
 
-def assemble_site(pages, scenes, tables, figures, mathml, config: BuildConfig, remember=compute_now) -> dict[str, bytes]:
+def assemble_site(pages, scenes, tables, figures, mathml, config: BuildConfig, remember=compute_now,
+                  accuracy: list[SceneAccuracy] = ()) -> dict[str, bytes]:
     """Every output file, in memory: pages, the script, the stylesheet and the math font."""
     book_title = next((p.title for p in pages if p.slug == "index"), "Book")
+    checked = {(record.page, record.scene): record for record in accuracy}
+    linked = any(p.slug == "accuracy" for p in pages)  # the rows exist only on the accuracy page
     files: dict[str, bytes] = {}
     payload_code = source_digest(frozenset({"sitegen.site.assemble"}))
     for page in pages:
@@ -240,6 +260,8 @@ def assemble_site(pages, scenes, tables, figures, mathml, config: BuildConfig, r
             payload = remember("payloads", digest(_scene_digest(s), payload_code),
                                lambda s=s, figure=figure: scene_payload(s.scene, tables[_key(s)], figure.layers).encode())
             caption = fill_slots(s.caption, page.found, mathml[page.slug], [])
+            if (page.slug, s.scene.id) in checked:
+                caption = f"{caption} {caption_sentence(checked[(page.slug, s.scene.id)], linked)}".strip()
             html.append(scene_html(s.scene, tables[_key(s)], figure, caption, payload.decode()))
         body = fill_slots(page.html, page.found, mathml[page.slug], html)
         files[page.output_name] = page_html(page, body, pages, book_title).encode()

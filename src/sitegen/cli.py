@@ -1,4 +1,4 @@
-"""The `sitegen` command: build, serve, review (and accept-figures for the figure goldens)."""
+"""The `sitegen` command: build, serve, review, bench (and accept-figures for the figure goldens)."""
 from __future__ import annotations
 
 import argparse
@@ -36,6 +36,10 @@ def main(argv: list[str] | None = None) -> int:
     accept_cmd = commands.add_parser("accept-figures", help="rewrite the figure goldens from a build (refused in CI)")
     accept_cmd.add_argument("--build", type=Path, default=Path("build"))
     accept_cmd.add_argument("--goldens", type=Path, default=Path("tests/goldens"))
+    bench_cmd = commands.add_parser("bench", help="measure accuracy against cost; write content/accuracy/bench.json")
+    bench_cmd.add_argument("--root", type=Path, default=Path.cwd(), help="project folder (holds content/)")
+    bench_cmd.add_argument("--out", type=Path, default=None, help="results file (default ROOT/content/accuracy/bench.json)")
+    bench_cmd.add_argument("--quick", action="store_true", help="a few points, one run each: a smoke test, not a measurement")
     args = parser.parse_args(argv)
     if args.command == "build":
         return _build(args)
@@ -43,6 +47,8 @@ def main(argv: list[str] | None = None) -> int:
         from .review.command import run_review
 
         return run_review(args.trees, args.base, args.root, args.out, render=not args.no_render)
+    if args.command == "bench":
+        return _bench(args)
     if args.command == "accept-figures":
         from .review.command import run_accept
 
@@ -90,6 +96,24 @@ def _build(args) -> int:
     size = sum(report.files.values())
     print(f"built {report.pages} pages, {report.scenes} scenes ({report.computed} computed, {report.cached} cached), "
           f"{report.stored_values} stored values, {size / 1024:.0f} KiB in {total:.2f} s -> {config.out}")
+    return 0
+
+
+def _bench(args) -> int:
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    from .accuracy.bench import run_bench, summary_lines
+    from .accuracy.experiments import FULL, QUICK
+    from .accuracy.results import BENCH_FILE, write_results
+
+    root = args.root.resolve()
+    if not (root / "content").is_dir():
+        print(f"sitegen: no content/ folder in {root}", file=sys.stderr)
+        return 2
+    out = args.out or root / BENCH_FILE
+    results = run_bench(root, QUICK if args.quick else FULL, progress=lambda line: print(line, flush=True))
+    write_results(results, out)
+    print("\n".join(summary_lines(results)))
+    print(f"wrote {out}")
     return 0
 
 

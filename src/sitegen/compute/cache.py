@@ -22,10 +22,11 @@ from pathlib import Path
 import numpy as np
 
 from .scenes import ResolvedScene
-from .tabulate import Table
+from .structure import Structured
+from .table import Table
 
 PACKAGE_ROOT = Path(__file__).resolve().parents[1]  # src/sitegen
-TABULATOR_MODULES = ("sitegen.compute.tabulate", "sitegen.compute.quantize", "sitegen.compute.grid", "sitegen.compute.scenes")
+TABULATOR_MODULES = ("sitegen.compute.tabulate", "sitegen.compute.structure", "sitegen.compute.table", "sitegen.compute.quantize", "sitegen.compute.grid", "sitegen.compute.scenes")
 LIBRARIES = ("numpy", "scipy", "matplotlib")
 
 
@@ -52,6 +53,8 @@ def scene_key(scene: ResolvedScene, outputs: list[str]) -> CacheKey:
         "effects": sorted(scene.effects),
         "outputs": sorted(outputs),
     }
+    if scene.model.settings is not None:  # the numerical settings change the numbers; the tolerance does not
+        request["numerics"] = scene.model.settings.knobs()
     modules = frozenset({type(scene.model).__module__, *TABULATOR_MODULES})
     return CacheKey(_sha(json.dumps(request, sort_keys=True)), source_digest(modules), library_digest())
 
@@ -174,11 +177,17 @@ class TableCache:
             raise
 
 
-def _encode(tables: dict[str, Table]) -> bytes:
+def _encode(tables: dict) -> bytes:
     meta, arrays = [], {}
     for i, (name, t) in enumerate(sorted(tables.items())):
+        if isinstance(t, Structured):
+            meta.append({"name": name, "expr": t.expr, "decimals": t.decimals, "labels": list(t.labels), "width": t.width,
+                         "special": t.special, "parts": sorted(t.parts), "bounds": list(t.bounds), "sliders": len(t.sliders)})
+            arrays.update({f"s{i}_{k}": v for k, v in enumerate(t.sliders)})
+            continue
         meta.append({"name": name, "axes": list(t.axes), "shape": list(t.shape), "decimals": t.decimals,
-                     "labels": list(t.labels), "width": t.width, "special": t.special, "ragged": t.lengths is not None})
+                     "labels": list(t.labels), "width": t.width, "special": t.special, "ragged": t.lengths is not None,
+                     "summed": t.summed_axes, "raw": t.raw})
         arrays[f"q{i}"] = t.quanta
         if t.lengths is not None:
             arrays[f"n{i}"] = t.lengths
@@ -187,14 +196,23 @@ def _encode(tables: dict[str, Table]) -> bytes:
     return buffer.getvalue()
 
 
-def _decode(payload: bytes) -> dict[str, Table]:
+def _decode(payload: bytes) -> dict:
     with np.load(io.BytesIO(payload), allow_pickle=False) as archive:
         meta = json.loads(archive["meta"].tobytes().decode())
-        return {
+        tables = {
             m["name"]: Table(m["name"], tuple(m["axes"]), tuple(m["shape"]), archive[f"q{i}"], m["decimals"],
-                             tuple(m["labels"]), m["width"], archive[f"n{i}"] if m["ragged"] else None, m["special"])
-            for i, m in enumerate(meta)
+                             tuple(m["labels"]), m["width"], archive[f"n{i}"] if m["ragged"] else None, m["special"],
+                             m.get("summed", False), m.get("raw", False))
+            for i, m in enumerate(meta) if "expr" not in m
         }
+        for i, m in enumerate(meta):
+            if "expr" in m:
+                tables[m["name"]] = Structured(
+                    m["name"], m["expr"], m["decimals"], tuple(m["labels"]), m["width"], m["special"],
+                    {p: tables[p] for p in m["parts"]}, tuple(archive[f"s{i}_{k}"] for k in range(m["sliders"])),
+                    tuple(m["bounds"]),
+                )
+        return tables
 
 
 def _module_path(name: str) -> Path:

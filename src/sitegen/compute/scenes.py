@@ -8,6 +8,7 @@ from decimal import Decimal
 from ..content.scenes import CHOICE_FORM, ChoiceSpec, SceneSpec, SliderSpec
 from ..errors import AuthorError
 from ..physics import Model, Output
+from ..physics.numerics import configure
 from .grid import CHOICE, LIST, Axis
 
 MAX_STOPS = 100_001  # per slider; more is almost certainly a typo in the step
@@ -55,12 +56,13 @@ def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[Reso
 
     axes, stops = [], []
     seen: set[str] = set()
+    enabled = frozenset(spec.effects) & frozenset(model.effects)  # (an effect may widen a domain)
     for control in spec.sliders:
         if isinstance(control, ChoiceSpec):
             axis, problem = _choice_axis(control, model, seen)
             what = "choice"
         else:
-            axis, problem = _slider_axis(control, model, seen)
+            axis, problem = _slider_axis(control, model, seen, enabled)
             what = "slider"
         seen.add(control.param)
         if problem:
@@ -78,7 +80,7 @@ def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[Reso
         elif item.param in seen:
             problem = "also has a slider; keep the slider or the fixed value"
         else:
-            problem = _domain_problem(model, item.param, item.value, "value")
+            problem = _domain_problem(model, item.param, item.value, "value", enabled)
         if problem:
             error(f"fix {item.param}", f"fixed '{item.param}' {problem}")
         else:
@@ -93,6 +95,11 @@ def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[Reso
         needs = model.param(name).effect
         if needs and needs not in enabled:
             error("effects", f"parameter '{name}' belongs to effect '{needs}'; add it to the scene's 'effects:' line")
+    for control in [*spec.sliders, *spec.fixed]:
+        if control.param in {p.name for p in model.params} and (replacing := model.param(control.param).unused_under(enabled)):
+            errors.append(AuthorError(control.loc, f"parameter '{control.param}' is not used with effect '{replacing}', which "
+                                      "takes its place; remove its control", spec.id))
+    settings = _settings(spec, model, enabled, error)
     known = {o.name: o for o in model.outputs if not o.effect or o.effect in enabled}
     for name in spec.readouts:
         if name not in known:
@@ -100,15 +107,30 @@ def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[Reso
     if errors:
         return None, errors
     readouts = tuple(known[n] for n in spec.readouts) if spec.readouts else tuple(o for o in known.values() if not o.size)
-    scene = ResolvedScene(spec, model, tuple(axes), tuple(stops), tuple(fixed), frozenset(spec.effects), readouts)
+    scene = ResolvedScene(spec, type(model)(settings), tuple(axes), tuple(stops), tuple(fixed), frozenset(spec.effects), readouts)
     return scene, []
 
 
-def _slider_axis(s: SliderSpec, model: Model, seen: set[str]) -> tuple[Axis | None, str | None]:
+def _settings(spec: SceneSpec, model: Model, enabled: set[str], error):
+    """The model's numerical settings with the scene's `numerics:` line applied (errors reported)."""
+    if not spec.numerics:
+        return model.settings
+    if model.numerics is None or not model.is_numerical(enabled):
+        what = "this scene, with these effects," if model.numerics is not None else "everything"
+        error("numerics", f"model '{model.name}' computes {what} in closed form; remove the 'numerics:' line")
+        return model.settings
+    try:
+        return configure(model.numerics, model.methods, dict(spec.numerics))
+    except ValueError as problem:
+        error("numerics", f"numerics: {problem}")
+        return model.settings
+
+
+def _slider_axis(s: SliderSpec, model: Model, seen: set[str], effects: frozenset[str]) -> tuple[Axis | None, str | None]:
     """The slider's grid, or what is wrong with it (said after "slider 'NAME' ")."""
     problem = _control_problem(s.param, model, seen) or (
         "is a choice of the model; write it as " + CHOICE_FORM if model.param(s.param).choices else None
-    ) or (_list_problem(s, model) if s.listed else _range_problem(s, model))
+    ) or (_list_problem(s, model, effects) if s.listed else _range_problem(s, model, effects))
     if problem:
         return None, problem
     if s.listed:
@@ -149,11 +171,11 @@ def _control_problem(name: str, model: Model, seen: set[str]) -> str | None:
     return None
 
 
-def _list_problem(s: SliderSpec, model: Model) -> str | None:
+def _list_problem(s: SliderSpec, model: Model, effects: frozenset[str]) -> str | None:
     if list(s.listed) != sorted(set(s.listed)):
         return "stops must be listed in increasing order, each once"
     for value in s.listed:
-        if problem := _domain_problem(model, s.param, value, "stop"):
+        if problem := _domain_problem(model, s.param, value, "stop", effects):
             return problem
     if s.default not in s.listed:
         return f"default {s.default} is not one of the listed stops"
@@ -162,7 +184,7 @@ def _list_problem(s: SliderSpec, model: Model) -> str | None:
     return None
 
 
-def _range_problem(s: SliderSpec, model: Model) -> str | None:
+def _range_problem(s: SliderSpec, model: Model, effects: frozenset[str]) -> str | None:
     """What is wrong with an evenly spaced slider (said after "slider 'NAME' "), or None."""
     if s.step <= 0:
         return f"step {s.step} must be positive"
@@ -174,7 +196,7 @@ def _range_problem(s: SliderSpec, model: Model) -> str | None:
     if count + 1 > MAX_STOPS:  # (the count itself can have hundreds of digits: not worth printing)
         return f"has more than {MAX_STOPS} stops from {s.lo} to {s.hi} in steps of {s.step}; use a larger step"
     for bound, value in (("min", s.lo), ("max", s.hi)):
-        if problem := _domain_problem(model, s.param, value, bound):
+        if problem := _domain_problem(model, s.param, value, bound, effects):
             return problem
     k = (s.default - s.lo) / s.step
     if not (s.lo <= s.default <= s.hi) or k != k.to_integral_value():
@@ -189,13 +211,15 @@ def _no_such_param(name: str, model: Model) -> str:
     return f"names no parameter of model '{model.name}'{_suggest(name, names)} Its parameters: {', '.join(names)}"
 
 
-def _domain_problem(model: Model, name: str, value: Decimal, what: str) -> str | None:
-    """What is wrong with `value` for parameter `name` (said after the subject), or None."""
-    param = model.param(name)
+def _domain_problem(model: Model, name: str, value: Decimal, what: str, effects: frozenset[str] = frozenset()) -> str | None:
+    """What is wrong with `value` for parameter `name` under the scene's effects (said after the subject), or None."""
+    param = model.param(name).under(effects)
     if param.contains(float(value)):
         return None
+    widen = "".join(f" (effect '{effect}' allows {'larger values' if hi == float('inf') else f'up to {_bound(hi)}'})"
+                    for effect, hi in param.wider if float(value) <= hi)
     if float(value) > param.hi:
-        return f"{what} {value} exceeds the model's bound {_bound(param.hi)}"
+        return f"{what} {value} exceeds the model's bound {_bound(param.hi)}{widen}"
     return f"{what} {value} is outside the model's domain {param.domain_text()}"
 
 

@@ -7,44 +7,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import AuthorError
+from ..physics.structure import outputs_read
 from .quantize import SPECIAL, quantize
 from .scenes import ResolvedScene
-
-
-@dataclass(frozen=True)
-class Table:
-    """One output over the stops of the sliders it depends on, as integers of its last digit."""
-
-    output: str
-    axes: tuple[int, ...]  # positions in the scene's sliders, in slider order
-    shape: tuple[int, ...]
-    quanta: np.ndarray  # int64, C order over `axes` (a row of `width` per point for a vector)
-    decimals: int
-    labels: tuple[str, ...] = ()  # for text outputs: quanta index these phrases
-    width: int = 0  # 0 for a scalar output, else the (longest) vector length
-    lengths: np.ndarray | None = None  # for a ragged vector: the length at each point
-    special: str = ""  # how to show a SPECIAL quantum
-
-    def flat_index(self, stops: tuple[int, ...]) -> int:
-        """Row of the table at a full slider position (one stop per scene slider)."""
-        return int(np.ravel_multi_index(tuple(stops[a] for a in self.axes), self.shape)) if self.axes else 0
-
-    def at(self, stops: tuple[int, ...]):
-        """The quantum (or, for a vector, the quanta) at a full slider position."""
-        row = self.flat_index(stops)
-        if not self.width:
-            return int(self.quanta[row])
-        values = self.quanta.reshape(-1, self.width)[row]
-        return values[: self.lengths[row]] if self.lengths is not None else values
-
-    def rows(self) -> list:
-        """Every entry in order, vectors trimmed to their length (for the page's JSON)."""
-        if not self.width:
-            return self.quanta.tolist()
-        matrix = self.quanta.reshape(-1, self.width).tolist()
-        if self.lengths is None:
-            return matrix
-        return [row[:n] for row, n in zip(matrix, self.lengths.tolist())]
+from .structure import compile_structured, structured_pieces
+from .table import Table, drop_constant_axes
 
 
 MAX_POINTS = 20_000_000  # per group of outputs: beyond this a scene would exhaust memory
@@ -71,8 +38,8 @@ def plan_scene(scene: ResolvedScene, names: list[str], max_stops: int | None = N
     """The units of work for a scene: one per group of outputs sharing their sliders, split into
     blocks of rows of at most `max_stops` points when given (for models costly per point)."""
     groups: dict[tuple[int, ...], list[str]] = defaultdict(list)
-    for name in names:
-        deps = scene.model.output(name).deps
+    for name in per_stop_outputs(scene, names):
+        deps = scene.model.deps_of(name, scene.effects)
         groups[tuple(i for i, a in enumerate(scene.axes) if a.param in deps)].append(name)
     units = []
     for axes, group in sorted(groups.items()):
@@ -113,8 +80,18 @@ def evaluate_unit(unit: WorkUnit) -> dict[str, np.ndarray]:
     return out
 
 
-def assemble_tables(scene: ResolvedScene, units: list[WorkUnit], results: list[dict[str, np.ndarray]]) -> dict[str, Table]:
-    """Join the units' blocks (in plan order) and turn each output into its table."""
+def per_stop_outputs(scene: ResolvedScene, names) -> list[str]:
+    """The outputs among `names` tabulated at every stop: those without a declared structure, and
+    those a structure reads at every stop."""
+    pieces = structured_pieces(scene, names)
+    read = set().union(*(outputs_read(p) for p in pieces.values())) if pieces else set()
+    return [n for n in names if n not in pieces] + sorted(read - set(names))
+
+
+def assemble_tables(scene: ResolvedScene, units: list[WorkUnit], results: list[dict[str, np.ndarray]],
+                    names=()) -> dict:
+    """Join the units' blocks (in plan order) into tables, then add the outputs among `names` that
+    have a declared structure (compiled and proven against the model here)."""
     blocks: dict[tuple[int, ...], list[dict[str, np.ndarray]]] = defaultdict(list)
     for unit, result in zip(units, results):
         blocks[unit.axes].append(result)
@@ -126,14 +103,16 @@ def assemble_tables(scene: ResolvedScene, units: list[WorkUnit], results: list[d
         for name in unit.names:
             array = np.concatenate([p[name] for p in parts], axis=0) if unit.axes else parts[0][name]
             tables[name] = _finish_table(scene, unit.axes, name, array)
+    pieces = structured_pieces(scene, names)
+    if pieces:
+        tables.update(compile_structured(scene, pieces, tables))
     return tables
 
 
 def tabulate_scene(scene: ResolvedScene, names: list[str]) -> dict[str, Table]:
     """Evaluate the named outputs over their slider grids here and now; fail on any non-finite value."""
     units = plan_scene(scene, names)
-    tables = assemble_tables(scene, units, [evaluate_unit(u) for u in units])
-    return {name: tables[name] for name in names}
+    return assemble_tables(scene, units, [evaluate_unit(u) for u in units], names)
 
 
 def _finish_table(scene: ResolvedScene, axes: tuple[int, ...], name: str, array: np.ndarray) -> Table:
@@ -147,7 +126,7 @@ def _finish_table(scene: ResolvedScene, axes: tuple[int, ...], name: str, array:
     quanta = array.astype(np.int64) if output.is_text else quantize(array, output.decimals, special=bool(output.special))
     if lengths is not None:  # drop axes only where the lengths are constant too
         quanta = np.concatenate([quanta, lengths[..., None]], axis=-1)
-    kept, quanta = _drop_constant_axes(axes, quanta)
+    kept, quanta = drop_constant_axes(axes, quanta)
     if lengths is not None:
         quanta, lengths = quanta[..., :-1], quanta[..., -1]
     grid = quanta.shape[: len(kept)]
@@ -166,22 +145,6 @@ def _ragged_lengths(scene: ResolvedScene, axes, output, array: np.ndarray) -> np
         bad = np.argwhere(~np.all(finite == padded_at_end, axis=-1))[0]
         raise AuthorError(scene.spec.loc, f"output '{output.name}' has NaN inside its values {_stop_text(scene, axes, bad)}", scene.id)
     return lengths
-
-
-def _drop_constant_axes(axes: tuple[int, ...], quanta: np.ndarray) -> tuple[tuple[int, ...], np.ndarray]:
-    """Remove the axes along which the displayed value never changes (checked at every stop).
-
-    A declared dependency can vanish at display precision, e.g. the momentum after a collision
-    equals the momentum before whatever the restitution; the page then needs no table along it.
-    """
-    kept = []
-    for position, axis in reversed(list(enumerate(axes))):
-        first = quanta.take([0], axis=position)
-        if np.array_equal(quanta, np.broadcast_to(first, quanta.shape)):
-            quanta = first.squeeze(axis=position)
-        else:
-            kept.append(axis)
-    return tuple(reversed(kept)), quanta
 
 
 def _require_finite(scene: ResolvedScene, axes: tuple[int, ...], output, array: np.ndarray) -> None:

@@ -14,10 +14,12 @@ import markdown
 from markdown.extensions import Extension
 from markdown.preprocessors import Preprocessor
 
+from ..accuracy.blocks import ReportBlock, parse_report_block
 from ..errors import AuthorError, SourceLoc
 from .scenes import SceneSpec, parse_scene_block
 
 _SCENE_FENCE = re.compile(r"^```\s*scene\s*$")
+_REPORT_FENCE = re.compile(r"^```\s*accuracy-report\s*$")
 _CODE_FENCE = re.compile(r"^(```|~~~)")
 _INLINE_MATH = re.compile(r"(?<![\\$\w])\$(?=[^\s$])(?P<tex>[^$\n]*?[^\s\\$])\$(?![\w$])")
 _SLOT = re.compile(r'<(div|span) data-(math|scene)-slot="(\d+)"></\1>')
@@ -42,6 +44,7 @@ class Extracted:
 
     maths: list[MathItem] = field(default_factory=list)
     scenes: list[SceneSpec] = field(default_factory=list)
+    reports: list[ReportBlock] = field(default_factory=list)  # accuracy-report blocks, filled at assembly
     errors: list[AuthorError] = field(default_factory=list)
     numbers: dict[str, int] = field(default_factory=dict)  # equation label -> its number on the page
     references: list[tuple[str, SourceLoc]] = field(default_factory=list)
@@ -61,6 +64,8 @@ class _SlotPreprocessor(Preprocessor):
             line = lines[i]
             if _SCENE_FENCE.match(line):
                 i = self._scene(lines, i, loc, out)
+            elif _REPORT_FENCE.match(line):
+                i = self._report(lines, i, loc, out)
             elif _CODE_FENCE.match(line):
                 i = self._copy_code(lines, i, out)
             elif line.lstrip().startswith("$$"):
@@ -86,6 +91,18 @@ class _SlotPreprocessor(Preprocessor):
             self.found.scenes.append(spec)
             slot = f'<div data-scene-slot="{len(self.found.scenes) - 1}"></div>'
             out.extend(["", slot, ""])
+        return end + 1
+
+    def _report(self, lines, i, loc, out) -> int:
+        end = next((j for j in range(i + 1, len(lines)) if lines[j].strip() == "```"), None)
+        if end is None:
+            self.found.errors.append(AuthorError(loc, "accuracy-report block is not closed; end it with a line '```'"))
+            return len(lines)
+        block, errors = parse_report_block(lines[i + 1 : end], loc)
+        self.found.errors.extend(errors)
+        if block is not None:
+            self.found.reports.append(block)
+            out.extend(["", f'<div data-report-slot="{len(self.found.reports) - 1}"></div>', ""])
         return end + 1
 
     def _copy_code(self, lines, i, out) -> int:

@@ -18,7 +18,7 @@ from decimal import Decimal, InvalidOperation
 
 from ..errors import AuthorError, SourceLoc
 
-KEYS = ("model", "id", "slider", "choice", "fix", "effects", "readouts", "figure", "caption", "animate")
+KEYS = ("model", "id", "slider", "choice", "fix", "effects", "readouts", "figure", "caption", "animate", "numerics")
 _LINE = re.compile(r"^(?P<key>[A-Za-z_]+)(?:\s+(?P<name>[A-Za-z_][A-Za-z0-9_]*))?\s*:\s*(?P<value>.*?)\s*$")
 # A number, or NaN/infinity, which are read as numbers so that the error can say what is wrong with them.
 _NUMBER = r"[-+]?(?:(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?|(?i:nan|inf(?:inity)?)(?!\w))"
@@ -33,6 +33,8 @@ SLIDER_FORM = (
     "or slider NAME: V1, V2, ... default VALUE"
 )
 CHOICE_FORM = "choice NAME: OPTION | OPTION ... default OPTION, e.g. 'choice force: spring | drag default spring'"
+NUMERICS_FORM = "numerics: KEY VALUE, KEY VALUE ..., e.g. 'numerics: method DOP853, rtol 1e-8, tolerance 1e-6'"
+_SETTING = re.compile(r"^(?P<key>[A-Za-z_]+)\s+(?P<value>[\w.+-]+)$")
 
 
 @dataclass(frozen=True)
@@ -81,6 +83,7 @@ class SceneSpec:
     figure: str | None = None
     caption: str = ""
     animate: str | None = None  # a slider stepped by a play button
+    numerics: tuple[tuple[str, str], ...] = ()  # (setting, value) as written, checked against the model later
     lines: tuple[tuple[str, SourceLoc], ...] = ()  # (key, place) of every line, to point errors at
 
     def loc_of(self, key: str) -> SourceLoc:
@@ -116,6 +119,7 @@ def parse_scene_block(body: list[str], fence: SourceLoc) -> tuple[SceneSpec | No
         figure=fields.get("figure"),
         caption=str(fields.get("caption", "")),
         animate=fields.get("animate"),
+        numerics=fields.get("numerics", ()),
         lines=tuple(fields["lines"]),
     )
     return spec, errors
@@ -146,6 +150,8 @@ def _parse_line(text: str, loc: SourceLoc, fields: dict) -> None:
         raise AuthorError(loc, f"scene id '{value}' must be lower-case letters, digits and '-', starting with a letter")
     elif key in fields:
         raise AuthorError(loc, f"'{key}' is given twice in one scene block")
+    elif key == "numerics":
+        fields[key] = _parse_numerics(value, loc)
     else:
         fields[key] = value
 
@@ -161,6 +167,19 @@ def _parse_slider(name: str, value: str, loc: SourceLoc) -> SliderSpec:
     words = {"lo": "min", "hi": "max", "step": "step", "default": "default"}
     lo, hi, step, default = (_decimal(match[k], loc, f"slider '{name}' {words[k]}") for k in words)
     return SliderSpec(name, lo, hi, step, default, loc)
+
+
+def _parse_numerics(value: str, loc: SourceLoc) -> tuple[tuple[str, str], ...]:
+    """(setting, value) pairs of a `numerics:` line, in the order written; the model checks them."""
+    pairs: list[tuple[str, str]] = []
+    for item in value.split(","):
+        match = _SETTING.match(item.strip())
+        if not match:
+            raise AuthorError(loc, f"malformed numerics setting '{item.strip()}'; write {NUMERICS_FORM}")
+        if match["key"] in dict(pairs):
+            raise AuthorError(loc, f"numerics setting '{match['key']}' is given twice")
+        pairs.append((match["key"], match["value"]))
+    return tuple(pairs)
 
 
 def _parse_choice(name: str, value: str, loc: SourceLoc) -> ChoiceSpec:

@@ -2,11 +2,14 @@
 vectorised evaluation. Physics only: nothing here knows about pages or plotting."""
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, replace
 from typing import ClassVar, Iterable, Mapping
 
 import numpy as np
+
+from .numerics import Measurement, Numerics
 
 
 @dataclass(frozen=True)
@@ -23,6 +26,8 @@ class Param:
     description: str = ""
     choices: tuple[str, ...] = ()  # a discrete parameter: its value is the index of one of these
     effect: str = ""  # the effect this parameter belongs to; usable only when the scene enables it
+    replaced_in: tuple[str, ...] = ()  # effects that take this parameter's place: with one on it is unused
+    wider: tuple[tuple[str, float], ...] = ()  # (effect, hi): a larger upper bound while that effect is on
 
     @classmethod
     def choice(cls, name: str, symbol: str, choices: tuple[str, ...], default: str, description: str = "") -> "Param":
@@ -32,6 +37,24 @@ class Param:
     def with_effect(self, effect: str) -> "Param":
         """The same parameter, marked as belonging to `effect`."""
         return replace(self, effect=effect)
+
+    def replaced_by(self, *effects: str) -> "Param":
+        """The same parameter, unused (and not to be given a control) when one of `effects` is on."""
+        return replace(self, replaced_in=self.replaced_in + effects)
+
+    def widened_by(self, effect: str, hi: float) -> "Param":
+        """The same parameter, allowed up to `hi` when `effect` is on (e.g. e > 1 when explosive)."""
+        return replace(self, wider=self.wider + ((effect, hi),))
+
+    def under(self, effects: Iterable[str]) -> "Param":
+        """The parameter with the domain it has when `effects` are enabled."""
+        on = set(effects)
+        his = [hi for effect, hi in self.wider if effect in on]
+        return replace(self, hi=max(his), wider=()) if his and max(his) > self.hi else self
+
+    def unused_under(self, effects: Iterable[str]) -> str:
+        """The enabled effect that replaces this parameter, or "" when the parameter is in use."""
+        return next((effect for effect in self.replaced_in if effect in set(effects)), "")
 
     def contains(self, value):
         """Whether `value` (a number or an array) lies in the model's domain; NaN and ±inf never do."""
@@ -54,6 +77,12 @@ class Param:
 class Output:
     """A computed quantity: its label, unit, the parameters it depends on and how it is shown.
 
+    `deps` are the parameters it depends on with no effect enabled (parameters that belong to an
+    effect may be listed too: they only get controls when their effect is on). `deps_with` adds
+    the parameters an effect brings in, e.g. the bar's mass to the lever's rotation outputs when
+    `bar_mass` is on; a parameter `replaced_by` an enabled effect drops out. `Model.deps_of` gives
+    the result for a scene's effects.
+
     A number output is shown with `decimals` digits; a text output is an index into `labels`.
     A vector output (`size` > 0) gives `size` numbers per parameter point, e.g. the geometry of a
     curve; a ragged one pads with NaN after its last element. Where the physics is singular (±inf)
@@ -71,11 +100,29 @@ class Output:
     ragged: bool = False
     special: str = ""
     effect: str = ""  # the effect this output belongs to; shown only when the scene enables it
+    deps_with: tuple[tuple[str, tuple[str, ...]], ...] = ()  # (effect, extra deps while it is on)
+    # Its exact form (physics/structure.py), or a function of the scene's effects giving it; None:
+    # the output is tabulated at every stop of its dependencies.
+    structure: object = None
+
+    def __reduce__(self):
+        # Pickled (to a worker process) without its structure, whose kernels are local functions: a
+        # worker only evaluates the model; structures are compiled and proven in the build's process.
+        fields = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        return _output_from_fields, ({**fields, "structure": None},)
+
+    def structure_for(self, effects: frozenset[str]):
+        """The declared exact form of this output under the scene's effects (None: tabulate per stop)."""
+        return self.structure(effects) if callable(self.structure) else self.structure
 
     @property
     def is_text(self) -> bool:
         """Whether the output is a choice among fixed phrases rather than a number."""
         return bool(self.labels)
+
+
+def _output_from_fields(fields: dict) -> Output:
+    return Output(**fields)
 
 
 class Model:
@@ -89,6 +136,15 @@ class Model:
     # Models that are costly per point (an ODE solve each) set this: their grids are split into
     # blocks of at most this many points, so that parallel builds can spread one scene's work.
     chunk_stops: ClassVar[int | None] = None
+    # A model that computes by a numerical method declares its default settings (physics.md §11),
+    # the methods a scene may choose with the settings each takes, and the error its check measures.
+    numerics: ClassVar[Numerics | None] = None
+    methods: ClassVar[dict[str, dict[str, object]]] = {}  # method: the settings it takes, at their defaults
+    error_metric: ClassVar[str] = ""
+    check_stops: ClassVar[int] = 16  # slider stops the build's check samples (fewer for an ODE solve per point)
+
+    def __init__(self, settings: Numerics | None = None):
+        self.settings = settings if settings is not None else self.numerics
 
     @classmethod
     def param(cls, name: str) -> Param:
@@ -99,6 +155,14 @@ class Model:
     def output(cls, name: str) -> Output:
         """The declared output called `name`."""
         return next(o for o in cls.outputs if o.name == name)
+
+    @classmethod
+    def deps_of(cls, name: str, effects: Iterable[str] = ()) -> tuple[str, ...]:
+        """The parameters output `name` depends on when `effects` are enabled."""
+        on = frozenset(effects)
+        output = cls.output(name)
+        extra = [dep for effect, deps in output.deps_with if effect in on for dep in deps]
+        return tuple(d for d in dict.fromkeys((*output.deps, *extra)) if not cls.param(d).unused_under(on))
 
     @classmethod
     def defaults(cls) -> dict[str, float]:
@@ -116,24 +180,39 @@ class Model:
         unknown = sorted(set(inputs) - known)
         if unknown:
             raise ValueError(f"unknown parameter(s) {unknown}; {self.name} takes {sorted(known)}")
+        effects = frozenset(effects)
+        offered = set(self.effects)
+        if effects - offered:
+            raise ValueError(f"unknown effect(s) {sorted(effects - offered)} of model {self.name}")
         values = {**self.defaults(), **inputs}
         arrays = dict(zip(values, np.broadcast_arrays(*(np.asarray(v, float) for v in values.values()))))
         for p in self.params:
-            if not np.all(p.contains(arrays[p.name])):
-                raise ValueError(f"`{p.name}` must satisfy {p.domain_text()}")
+            domain = p.under(effects)
+            if not np.all(domain.contains(arrays[p.name])):
+                raise ValueError(f"`{p.name}` must satisfy {domain.domain_text()}{_unless(p, domain)}")
         names = tuple(wanted) if wanted is not None else tuple(o.name for o in self.outputs)
         missing = sorted(set(names) - {o.name for o in self.outputs})
         if missing:
             raise ValueError(f"unknown output(s) {missing} of model {self.name}")
-        offered = set(self.effects)
-        if set(effects) - offered:
-            raise ValueError(f"unknown effect(s) {sorted(set(effects) - offered)} of model {self.name}")
-        return self._evaluate(arrays, names, frozenset(effects))
+        return self._evaluate(arrays, names, effects)
 
     def _evaluate(
         self, x: Mapping[str, np.ndarray], wanted: tuple[str, ...], effects: frozenset[str]
     ) -> dict[str, np.ndarray]:
         raise NotImplementedError
+
+    def is_numerical(self, effects: Iterable[str]) -> bool:
+        """Whether, with these effects, some output comes from a numerical method (and is checked)."""
+        return self.settings is not None
+
+    def measure_error(self, values: Mapping[str, float], effects: Iterable[str]) -> Measurement:
+        """The error of this model's numbers at one point with its settings, against its reference."""
+        raise NotImplementedError(f"model {self.name} declares no numerical check")
+
+
+def _unless(param: Param, domain: Param) -> str:
+    """How an effect would widen the domain, e.g. " (up to inf with effect explosive)"."""
+    return "".join(f" (up to {_num(hi)} with effect {effect})" for effect, hi in domain.wider)
 
 
 def _num(value: float) -> str:

@@ -13,7 +13,7 @@ import numpy as np
 from . import bubble_terms as terms
 from .bubble_solve import (
     ANALYTIC, CAP_NFEV, CAP_WALL, CORE, CURVE_POINTS, EXPLICIT_RTOL, FAILED, IMPLICIT_RTOL, KM_STOP, MACH,
-    POINT, UNBOUNDED_GROWTH, Run,
+    POINT, STIFF, UNBOUNDED_GROWTH, Run,
 )
 from .bubble_terms import P0, T0, Problem
 
@@ -37,7 +37,10 @@ FLAGS = (
     "solver failed: step size underflow",
 )
 _FLAG_OF_STATUS = {MACH: 2, KM_STOP: 3, POINT: 4, CORE: 5, UNBOUNDED_GROWTH: 6, CAP_NFEV: 7, CAP_WALL: 8, FAILED: 9}
-SOLVER_LABELS = ("analytic (betaincinv)", "DOP853, rtol 1e−6", "LSODA (stiff: 4µT/ρR₀² > 10³), rtol 1e−6", "other")
+# The default settings' three choices, then any method at the rtol a scene's `numerics:` line sets.
+SCENE_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
+SOLVER_LABELS = ("analytic (betaincinv)", "DOP853, rtol 1e−6", "LSODA (stiff: 4µT/ρR₀² > 10³), rtol 1e−6", "other") + tuple(
+    f"{method}, at the scene's rtol" for method in SCENE_METHODS)
 BLAKE_LABELS = ("bounded: R stayed below the Blake radius", "R passed R_B but stayed below 10 R_B", "unbounded: R reached 10 R_B")
 
 GUARDS = (MACH, KM_STOP, POINT, CORE)  # terminal events that end a run before its window does
@@ -146,7 +149,7 @@ def read_run(run: Run, pb: Problem, scales: Scales, effects) -> dict:
         "R_min": first["r_min"][1], "t_Rmin": scales.x(first["r_min"][0]),
         "mach": first["speed"] / pb.sound,
         "R_max2": second["r_max"][1], "R_min2": second["r_min"][1],
-        "flag": _flag(run, pb), "solver": _solver_label(run), "growth": _blake_state(run, pb),
+        "flag": _flag(run, pb), "solver": _solver_label(run, pb), "growth": _blake_state(run, pb),
     }
     out.update(_gas_peaks(pb, first["r_min"][1]))
     out.update(_figure_marks(run, scales, to_y, first))
@@ -258,10 +261,14 @@ def _flag(run: Run, pb: Problem) -> int:
     return _FLAG_OF_STATUS.get(run.status, 0)
 
 
-def _solver_label(run: Run) -> int:
-    """Index into SOLVER_LABELS."""
-    choices = {(ANALYTIC, 0.0): 0, ("DOP853", EXPLICIT_RTOL): 1, ("LSODA", IMPLICIT_RTOL): 2}
-    return choices.get((run.method, run.rtol), 3)
+def _solver_label(run: Run, pb: Problem) -> int:
+    """Index into SOLVER_LABELS (the stiff label only where the terms are stiff)."""
+    choices = {(ANALYTIC, 0.0): 0, ("DOP853", EXPLICIT_RTOL): 1}
+    if pb.stiffness > STIFF:
+        choices[("LSODA", IMPLICIT_RTOL)] = 2
+    if (run.method, run.rtol) in choices:
+        return choices[(run.method, run.rtol)]
+    return 4 + SCENE_METHODS.index(run.method) if run.method in SCENE_METHODS else 3
 
 
 def _blake_state(run: Run, pb: Problem) -> int:

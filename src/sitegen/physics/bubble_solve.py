@@ -27,11 +27,14 @@ from .bubble_terms import (
     rayleigh_radius,
     rayleigh_tau,
 )
+from .numerics import Numerics
 
 SOLVERS = {"RK45": RK45, "DOP853": DOP853, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
 ANALYTIC = "analytic"
 STIFF = 1e3  # 4µT/(ρR0²) above which explicit methods are stability-limited (physics.md §11.2 C)
 EXPLICIT_RTOL, IMPLICIT_RTOL = 1e-6, 1e-6  # physics.md §11.2 B and C verdicts
+AUTO = "auto"  # the method setting that lets the composed terms choose (analytic, DOP853 or LSODA)
+REFERENCE_RTOL, REFERENCE_STIFF = 1e-12, 1e-8  # the check's tight solutions (non-stiff, stiff)
 ATOL_PER_RTOL = 1e-3  # nondimensional: atol = 1e-3 rtol on r ~ 1 and ṙ ~ 1
 CURVE_POINTS = 401  # samples of R(t) over the run; the middle one is t = T for a two-period drive
 EPS = np.finfo(float).eps
@@ -54,6 +57,9 @@ class Caps:
 
     max_nfev: int = 200_000
     max_seconds: float = 10.0
+
+
+REFERENCE_CAPS = Caps(max_nfev=3_000_000, max_seconds=120.0)  # a reference may cost much more than the page's solve
 
 
 @dataclass(frozen=True, eq=False)
@@ -120,14 +126,37 @@ def choose_method(pb: Problem) -> tuple[str, float]:
     return "DOP853", EXPLICIT_RTOL
 
 
+def method_for(pb: Problem, settings: Numerics) -> tuple[str, float, float | None]:
+    """(method, rtol, atol) of a scene's settings at one problem: `auto` picks by the composed terms."""
+    if settings.method != AUTO:
+        return settings.method, settings.rtol, settings.atol
+    method, rtol = choose_method(pb)
+    return (ANALYTIC, 0.0, None) if method == ANALYTIC else (method, settings.rtol or rtol, settings.atol)
+
+
+def reference_for(pb: Problem, method: str) -> tuple[str, float]:
+    """The tight solution a point solved by `method` is checked against.
+
+    On stiff terms Radau at rtol 1e-8 (LSODA at 1e-12 for a point Radau itself solved): explicit
+    methods are stability-limited there, and Radau at 1e-10 takes minutes on a 0.1 µm nucleus
+    while at 1e-8 it agrees with LSODA and BDF at 1e-12 to 5e-9 R0 (measured). Otherwise DOP853 at
+    rtol 1e-12, which agrees with Radau at 1e-12 to about 1e-11 R0 on presets A–C at a thirtieth of
+    Radau's cost (measured; a second explicit method, RK45 at 1e-11, costs 2–9 s per driven point).
+    """
+    if pb.stiffness > STIFF:
+        return ("Radau", REFERENCE_STIFF) if method != "Radau" else ("LSODA", REFERENCE_RTOL)
+    return "DOP853", REFERENCE_RTOL
+
+
 @lru_cache(maxsize=4096)
-def solve(pb: Problem, method: str | None = None, rtol: float | None = None, caps: Caps = Caps()) -> Run:
+def solve(pb: Problem, method: str | None = None, rtol: float | None = None, caps: Caps = Caps(),
+          atol: float | None = None) -> Run:
     """Solve one bubble from rest at r = 1, with the chosen (or the given) method; cached."""
     if method is None:
         method, rtol = choose_method(pb)
     if method == ANALYTIC:
         return rayleigh_run(pb)
-    return integrate(pb, (1.0, 0.0), method, rtol, caps)
+    return integrate(pb, (1.0, 0.0), method, rtol, caps, atol=atol)
 
 
 def bubble_events(pb: Problem, fun) -> list[Event]:
@@ -151,24 +180,28 @@ def bubble_events(pb: Problem, fun) -> list[Event]:
     return events
 
 
-def integrate(pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), events=None) -> Run:
-    """Step `method` from y0 over [0, τ_end] with events and caps; always returns a Run."""
+def integrate(pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), events=None, atol: float | None = None) -> Run:
+    """Step `method` from y0 over [0, τ_end] with events and caps; always returns a Run.
+
+    atol defaults to 1e-3 rtol: r and ṙ are of order one in these units.
+    """
     start = time.perf_counter()
     budget = _Budget(make_rhs(pb), caps)
     stepper = _Stepper(bubble_events(pb, budget) if events is None else events, sample_grid(pb.tau_end), y0)
+    atol = rtol * ATOL_PER_RTOL if atol is None else atol
     with np.errstate(over="ignore", invalid="ignore"):  # wild trial stages may overflow; their steps are rejected
-        status, solver = _run_guarded(pb, y0, method, rtol, budget, stepper)
+        status, solver = _run_guarded(pb, y0, method, rtol, atol, budget, stepper)
     nfev = budget.calls if solver is None else solver.nfev
     return _make_run(status, method, rtol, stepper, nfev, time.perf_counter() - start)
 
 
-def _run_guarded(pb: Problem, y0, method: str, rtol: float, budget: _Budget, stepper: "_Stepper"):
+def _run_guarded(pb: Problem, y0, method: str, rtol: float, atol: float, budget: _Budget, stepper: "_Stepper"):
     """Create the solver and step it; a cap, an overflow or an invalid start becomes a status."""
     if pb.compressible == KELLER_MIKSIS and abs(y0[1]) >= pb.speed_limit:
         return KM_STOP, None  # already outside Keller–Miksis validity: nothing to integrate
     solver = None
     try:
-        solver = SOLVERS[method](budget, 0.0, np.asarray(y0, float), pb.tau_end, rtol=rtol, atol=rtol * ATOL_PER_RTOL)
+        solver = SOLVERS[method](budget, 0.0, np.asarray(y0, float), pb.tau_end, rtol=rtol, atol=atol)
         return stepper.run(solver), solver
     except _CapHit as cap:
         return cap.status, solver

@@ -13,6 +13,7 @@ import numpy as np
 import scipy.fft
 
 from .base import Model, Output, Param
+from .numerics import Measurement, Numerics
 
 LENGTH, SPEED, DENSITY = 1.0, 1.0, 1.0  # L (m), c (m/s), μ (kg/m)
 CENTRE = 0.3  # x0: where the pulse starts (m)
@@ -20,6 +21,7 @@ AMPLITUDE = 0.01  # A: the pulse height on the page (m); the model is linear, so
 MAX_N = 256  # the largest chain the page shows: vector outputs are padded to this length
 CONTINUUM_POINTS = 201  # the dashed curve's vertices; 2 px apart at the page's width, smooth at pixel level
 PULSE_WAVENUMBERS = 3.0  # the pulse's spectrum e^{−k²σ²/2} is below 1.1 % beyond k = 3/σ
+DRAWN_WALL = 0.025 * LENGTH  # figure geometry: how thick a fixed wall is drawn (m)
 ENDS = ("fixed", "free", "periodic")
 LAUNCHES = ("right-moving", "split")
 RIGHT_MOVING, SPLIT = 0, 1
@@ -123,6 +125,11 @@ def _oscillation(omega: np.ndarray, gamma: float, t: np.ndarray):
     if not gamma:
         phase = omega * t
         return np.cos(phase), _sine_over(phase, omega, t)
+    return _damped_oscillation(omega, gamma, t)
+
+
+def _damped_oscillation(omega: np.ndarray, gamma: float, t: np.ndarray):
+    """C(t) and S(t) of `_oscillation` for γ > 0: the on-site damping term, composed only when enabled."""
     squared = omega**2 - gamma**2 / 4
     rate = np.sqrt(np.abs(squared))
     decay = np.exp(-gamma * t / 2)
@@ -290,8 +297,29 @@ class Chain(Model):
         Output("log_k", "log<sub>10</sub> k<sub>n</sub>", "", ("N", "ends"), decimals=2, size=MAX_N, ragged=True),
         Output("log_omega", "log<sub>10</sub> ω<sub>n</sub>", "", ("N", "ends", "omega0"), decimals=2, size=MAX_N, ragged=True),
         Output("log_k_pulse", "log<sub>10</sub>(3/σ)", "", ("sigma",), decimals=2),
+        # The walls as drawn when the ends can change: DRAWN_WALL thick when fixed, nothing otherwise.
+        Output("wall_left", "figure: outer face of the left wall", "m", ("ends",), decimals=3, effect="boundary"),
+        Output("wall_right", "figure: outer face of the right wall", "m", ("ends",), decimals=3, effect="boundary"),
     )
     effects = ("boundary", "onsite_damping", "onsite_spring")
+    # physics.md §11.1: the exact modal solution beats every integrator by 25–4000×; time steppers are
+    # kept for comparison only (chain_integrators.py). Its error is the rounding of the transforms.
+    numerics = Numerics("DST", tolerance=1e-9)
+    methods = {"DST": {}}
+    error_metric = "max |Δuⱼ|/A at the frame"
+
+    def measure_error(self, values, effects) -> Measurement:
+        """The modal solution at one stop against the dense eigendecomposition (or expm when damped)."""
+        from .chain_integrators import dense_motion  # the comparison module imports this one
+
+        x = {k: np.asarray(v, float) for k, v in {**self.defaults(), **values}.items()}
+        (n,), terms_of, _ = _groups({k: v[None] for k, v in x.items()}, frozenset(effects))
+        terms = Terms(ENDS[int(terms_of[0, 0])], float(terms_of[0, 1]), float(terms_of[0, 2]))
+        u, _ = chain_motion(int(n), x["sigma"], x["t"], x["launch"], terms, amplitude=1.0)
+        u0, v0 = initial_state(positions(int(n), terms.ends), x["sigma"], x["launch"], amplitude=1.0)
+        reference, _ = dense_motion(u0, v0, float(x["t"]), terms)
+        name = "the dense chain's eigenmodes (numpy eigh)" if not terms.gamma else "the dense chain's matrix exponential (scipy expm)"
+        return Measurement(float(np.max(np.abs(u - reference))), 0, "exact DST", name)
 
     def _evaluate(self, x, wanted, effects):
         N, sigma, t, launch = (x[k] for k in self._motion[:4])
@@ -324,6 +352,8 @@ class Chain(Model):
             "log_k": modes(0),
             "log_omega": modes(1),
             "log_k_pulse": lambda: np.log10(PULSE_WAVENUMBERS / sigma),
+            "wall_left": lambda: np.where(ends == ENDS.index("fixed"), -DRAWN_WALL, 0.0),
+            "wall_right": lambda: np.where(ends == ENDS.index("fixed"), LENGTH + DRAWN_WALL, LENGTH),
         }
         return {name: formulas[name]() for name in wanted}
 

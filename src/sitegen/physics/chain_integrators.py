@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg
 from scipy.integrate import solve_ivp
 
 from .chain import BARE, Terms, mass_and_stiffness, mode_frequencies
@@ -89,3 +90,25 @@ def integrate_ivp(u0, v0, t_end: float, method: str = "DOP853", rtol: float = 1e
     final = solution.y[:, -1]
     return Integration(np.array([solution.t[-1]]), final[None, :n], final[None, n:], solution.nfev,
                        len(solution.t) - 1, solution.status, solution.message)
+
+
+def dense_motion(u0, v0, t: float, terms: Terms = BARE) -> tuple[np.ndarray, np.ndarray]:
+    """u(t), u̇(t) of one chain from its dense N×N force matrix (the second method, O(N³), for checks).
+
+    The matrix is assembled by applying the force law to each unit displacement, so it shares no
+    code with the transforms of the modal solution. Undamped: its eigendecomposition (numpy eigh);
+    damped: scipy.linalg.expm of the 2N×2N first-order system.
+    """
+    u0, v0 = np.asarray(u0, float), np.asarray(v0, float)
+    n = u0.shape[-1]
+    force = acceleration(np.eye(n), terms).T  # column j: the accelerations when mass j alone moves by 1
+    if terms.gamma:
+        system = np.block([[np.zeros((n, n)), np.eye(n)], [force, -terms.gamma * np.eye(n)]])
+        state = scipy.linalg.expm(system * t) @ np.concatenate([u0, v0])
+        return state[:n], state[n:]
+    squared, modes = np.linalg.eigh(-force)
+    omega = np.sqrt(np.maximum(squared, 0.0))  # a rigid mode's ω² may come out as −1e−13
+    a, b = modes.T @ u0, modes.T @ v0
+    phase = omega * t
+    sine = np.where(omega > 0, np.sin(phase) / np.where(omega > 0, omega, 1.0), t)
+    return modes @ (a * np.cos(phase) + b * sine), modes @ (b * np.cos(phase) - a * omega * np.sin(phase))

@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from .base import Model, Output, Param
+from .structure import Coord, Poly
 
 RHO_AIR = 1.204  # kg/m³, air at 20 °C (physics.md §0.1)
 C_AIR = 343.2  # m/s
@@ -41,6 +42,28 @@ WAVE_X = tuple(k / 48.0 for k in range(-48, 49))  # x/λ of the drawn wave: two 
 MIN_DRAWN_WIDTH = 0.025  # λ; a thinner slab is drawn this wide so that it stays visible
 
 
+# --- exact forms for the page: each output is a product of one-slider (or two-slider) factors ---------
+# P carries the level, k/ρₐ the frequency, and sin φ, sinc(kΔx/2) sin φ the geometry; a product of
+# coordinates is multilinear in them, so 2 nodes per coordinate reproduce it.
+_AMPLITUDE = Coord("P", ("spl",), lambda spl: pressure_amplitude(spl))
+_INV_AMPLITUDE = Coord("inv_P", ("spl",), lambda spl: 1.0 / pressure_amplitude(spl))
+_K_PER_RHO = Coord("k_per_rho", ("f",), lambda f: 2.0 * np.pi * f / (C_AIR * RHO_AIR))
+_INV_F = Coord("inv_f", ("f",), lambda f: 1.0 / f)
+_SIN_PHI = Coord("sin_phi", ("phi",), lambda phi: sin_pi(phi / 180.0))
+_FACES = Coord("faces", ("dx_l", "phi"), lambda dx_l, phi: 2.0 * sin_pi(dx_l) * sin_pi(phi / 180.0))
+_MEAN = Coord("sinc_sin_phi", ("dx_l", "phi"), lambda dx_l, phi: sin_pi(dx_l) / (np.pi * dx_l) * sin_pi(phi / 180.0))
+
+
+def _product(*coords: Coord, scale: float = 1.0) -> Poly:
+    """scale × the product of the coordinates (multilinear)."""
+    def kernel(c):
+        value = scale
+        for coord in coords:
+            value = value * c[coord.name]
+        return value
+    return Poly(kernel, tuple((coord, 1) for coord in coords))
+
+
 class EulerSlab(Model):
     """A slab of air Δx thick in a plane progressive wave of amplitude P and frequency f."""
 
@@ -56,15 +79,19 @@ class EulerSlab(Model):
     outputs = (
         Output("P", "pressure amplitude P", "Pa", ("spl",), decimals=5),
         Output("wavelength", "wavelength λ", "m", ("f",), decimals=5),
-        Output("net_force", "net force per area f", "Pa", ("spl", "dx_l", "phi"), decimals=5),
+        Output("net_force", "net force per area f", "Pa", ("spl", "dx_l", "phi"), decimals=5, structure=_product(_AMPLITUDE, _FACES)),
         Output("slab_mass", "slab mass per area ρ<sub>a</sub>Δx", "g/m²", ("f", "dx_l"), decimals=3),
-        Output("a_slab", "slab acceleration ā = f/(ρ<sub>a</sub>Δx)", "m/s²", _all, decimals=3),
-        Output("a_point", "Euler's point value a<sub>m</sub>", "m/s²", ("spl", "f", "phi"), decimals=3),
+        Output("a_slab", "slab acceleration ā = f/(ρ<sub>a</sub>Δx)", "m/s²", _all, decimals=3,
+               structure=_product(_AMPLITUDE, _K_PER_RHO, _MEAN)),
+        Output("a_point", "Euler's point value a<sub>m</sub>", "m/s²", ("spl", "f", "phi"), decimals=3,
+               structure=_product(_AMPLITUDE, _K_PER_RHO, _SIN_PHI)),
         Output("sinc", "ratio ā/a<sub>m</sub> = sinc(kΔx/2)", "", ("dx_l",), decimals=6),
         Output("U", "particle velocity U", "mm/s", ("spl",), decimals=4),
-        Output("xi", "displacement ξ", "nm", ("spl", "f"), decimals=2),
+        Output("xi", "displacement ξ", "nm", ("spl", "f"), decimals=2,
+               structure=_product(_AMPLITUDE, _INV_F, scale=1e9 / (RHO_AIR * C_AIR * 2.0 * np.pi))),
         Output("mach", "acoustic Mach U/c<sub>a</sub>", "× 10⁻⁶", ("spl",), decimals=3),
-        Output("shock_distance", "shock-formation distance", "m", ("spl", "f"), decimals=1),
+        Output("shock_distance", "shock-formation distance", "m", ("spl", "f"), decimals=1,
+               structure=_product(_INV_AMPLITUDE, _INV_F, scale=RHO_AIR * C_AIR**3 / (BETA_AIR * 2.0 * np.pi))),
         Output("regime", "validity", "", ("spl",), labels=(
             "linear acoustics valid",
             "linear acoustics invalid (U/c > 0.01 or P > 0.1 p₀)",

@@ -8,9 +8,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.integrate import solve_ivp
 from scipy.special import ellipk, ellipkinc
 
 from .base import Model, Output, Param
+from .numerics import Measurement, Numerics
+from .structure import Choose, Coord, Poly, Threshold, param
 
 G = 9.81  # physics.md §0.1 requires 9.81: the seed's 2 kg · 9.81 m/s² · 1 m = 19.62 N·m (9.80665 shows 19.61)
 LENGTH = 2.0  # ℓ, the bar's length (m)
@@ -35,19 +38,64 @@ _TILT = _POSITION + ("balance_tolerance",)
 _WITH_BAR = ("m_L", "m_R", "x_p", "m_b")
 _TILT_WITH_BAR = _WITH_BAR + ("balance_tolerance",)
 _ROTATION = _POSITION + ("theta_s",)
+_BAR_TURNS_TOO = (("bar_mass", ("m_b",)),)  # with bar_mass the rotation feels the bar's weight and inertia
+
+
+# --- exact forms for the page (physics.md I4 "structure") -----------------------------------
+# Torques are multilinear in (m_L, m_R, x_p). With s = 1/(m_L + m_R) as a coordinate (one table
+# along m_L + m_R) the balance point x* = ℓ m_R s is bilinear, and the state is a threshold on
+# (x_p − x*)/tolerance. The drawn tilt is one of three polynomials chosen by that state.
+_X_P, _M_L, _M_R = param("x_p"), param("m_L"), param("m_R")
+INV_TOTAL = Coord("inv_total_mass", ("m_L", "m_R"), lambda m_L, m_R: 1.0 / (m_L + m_R))
+INV_TOLERANCE = Coord("inv_tolerance", ("balance_tolerance",),
+                      lambda balance_tolerance: 1.0 / (balance_tolerance * (1.0 + BALANCE_SLACK)))
+SIDE = {side: Coord(f"side_{side}", (f"m_{side}",), lambda **m: _block_side(next(iter(m.values()))))
+        for side in ("L", "R")}
+
+
+def _offset_in_tolerances(c):
+    """(x_p − x*) in units of the (slackened) balance tolerance."""
+    return (c["x_p"] - LENGTH * c["m_R"] * c["inv_total_mass"]) * c["inv_tolerance"]
+
+
+_STATE = Threshold(Poly(_offset_in_tolerances, ((_X_P, 1), (_M_R, 1), (INV_TOTAL, 1), (INV_TOLERANCE, 1))),
+                   (-1.0, 1.0), (TIPS_RIGHT, BALANCED, TIPS_LEFT))
+_BALANCE_POINT = ((_M_R, 1), (INV_TOTAL, 1))
+
+
+def _shifted_balance_point(shift: float) -> Poly:
+    return Poly(lambda c: LENGTH * c["m_R"] * c["inv_total_mass"] + shift, _BALANCE_POINT)
+
+
+def _tilted_height(at: float, block: str = "", edge: float = 0.0, top: bool = False) -> Choose:
+    """A drawn height slope·(x − x_p) (+ the block's side for its top), x = at + edge·side."""
+    coords = ((_X_P, 1),) + (((SIDE[block], 1),) if block else ())
+
+    def kernel(slope):
+        def height(c):
+            side = c[f"side_{block}"] if block else 0.0
+            return slope * (at + edge * side - c["x_p"]) + (side if top else 0.0)
+        return Poly(height, coords)
+
+    by_state = {BALANCED: kernel(0.0), TIPS_LEFT: kernel(DRAWN_SLOPE), TIPS_RIGHT: kernel(-DRAWN_SLOPE)}
+    return Choose(_STATE, tuple(by_state[k] for k in range(3)))
 
 
 def _tilt_outputs(suffix: str, deps: tuple[str, ...], effect: str = "") -> tuple[Output, ...]:
     """The heights of the drawn bar's ends and of the blocks' corners, which follow the tilt."""
     described = ", with the bar's mass" if effect else ""
-    names = [("y_left", "height of the bar's left end"), ("y_right", "height of the bar's right end")]
-    for block in ("left", "right"):
-        for edge, where in (("0", "left"), ("1", "right")):
-            names.append((f"{block}_block_bottom{edge}", f"height of the {block} block's bottom {where} corner"))
-            names.append((f"{block}_block_top{edge}", f"height of the {block} block's top {where} corner"))
+    names = [("y_left", "height of the bar's left end", _tilted_height(0.0)),
+             ("y_right", "height of the bar's right end", _tilted_height(LENGTH))]
+    for block, side, centre in (("left", "L", 0.0), ("right", "R", LENGTH)):
+        for edge, where, sign in (("0", "left", -0.5), ("1", "right", 0.5)):
+            names.append((f"{block}_block_bottom{edge}", f"height of the {block} block's bottom {where} corner",
+                          _tilted_height(centre, side, sign)))
+            names.append((f"{block}_block_top{edge}", f"height of the {block} block's top {where} corner",
+                          _tilted_height(centre, side, sign, top=True)))
     return tuple(
-        Output(f"{name}{suffix}", f"{label} (as drawn{described})", "m", deps, decimals=3, effect=effect)
-        for name, label in names
+        Output(f"{name}{suffix}", f"{label} (as drawn{described})", "m", deps, decimals=3, effect=effect,
+               structure=None if effect else form)
+        for name, label, form in names
     )
 
 
@@ -71,21 +119,28 @@ class Lever(Model):
         ).with_effect("rotation_dynamics"),
     )
     outputs = (
-        Output("tau_L", "τ<sub>L</sub>", "N·m", ("m_L", "x_p"), decimals=2),
-        Output("tau_R", "τ<sub>R</sub>", "N·m", ("m_R", "x_p"), decimals=2),
-        Output("tau_net", "net τ", "N·m", _POSITION, decimals=2),
+        Output("tau_L", "τ<sub>L</sub>", "N·m", ("m_L", "x_p"), decimals=2,
+               structure=Poly(lambda c: c["m_L"] * G * c["x_p"], ((_M_L, 1), (_X_P, 1)))),
+        Output("tau_R", "τ<sub>R</sub>", "N·m", ("m_R", "x_p"), decimals=2,
+               structure=Poly(lambda c: c["m_R"] * G * (LENGTH - c["x_p"]), ((_M_R, 1), (_X_P, 1)))),
+        Output("tau_net", "net τ", "N·m", _POSITION, decimals=2,
+               structure=Poly(lambda c: G * (c["m_L"] * c["x_p"] - c["m_R"] * (LENGTH - c["x_p"])), ((_M_L, 1), (_M_R, 1), (_X_P, 1)))),
         Output("MA", "MA = L<sub>L</sub>/L<sub>R</sub>", "×", ("x_p",), decimals=2, special="∞ (pivot at the end)"),
-        Output("state", "the bar", "", _TILT, labels=STATES),
-        Output("x_star", "balance point x*", "m", ("m_L", "m_R"), decimals=3),
+        Output("state", "the bar", "", _TILT, labels=STATES, structure=_STATE),
+        Output("x_star", "balance point x*", "m", ("m_L", "m_R"), decimals=3, structure=_shifted_balance_point(0.0)),
         # Figure geometry: the fulcrum, the blocks' sides and the balance-point marker.
-        Output("fulcrum_x0", "left foot of the fulcrum (as drawn)", "m", ("x_p",), decimals=3),
-        Output("fulcrum_x1", "right foot of the fulcrum (as drawn)", "m", ("x_p",), decimals=3),
+        Output("fulcrum_x0", "left foot of the fulcrum (as drawn)", "m", ("x_p",), decimals=3,
+               structure=Poly(lambda c: c["x_p"] - FULCRUM_HALF_WIDTH, ((_X_P, 1),))),
+        Output("fulcrum_x1", "right foot of the fulcrum (as drawn)", "m", ("x_p",), decimals=3,
+               structure=Poly(lambda c: c["x_p"] + FULCRUM_HALF_WIDTH, ((_X_P, 1),))),
         Output("left_block_x0", "left side of the left block (as drawn)", "m", ("m_L",), decimals=3),
         Output("left_block_x1", "right side of the left block (as drawn)", "m", ("m_L",), decimals=3),
         Output("right_block_x0", "left side of the right block (as drawn)", "m", ("m_R",), decimals=3),
         Output("right_block_x1", "right side of the right block (as drawn)", "m", ("m_R",), decimals=3),
-        Output("marker_x0", "left foot of the balance-point marker (as drawn)", "m", ("m_L", "m_R"), decimals=3),
-        Output("marker_x1", "right foot of the balance-point marker (as drawn)", "m", ("m_L", "m_R"), decimals=3),
+        Output("marker_x0", "left foot of the balance-point marker (as drawn)", "m", ("m_L", "m_R"), decimals=3,
+               structure=_shifted_balance_point(-MARKER_HALF_WIDTH)),
+        Output("marker_x1", "right foot of the balance-point marker (as drawn)", "m", ("m_L", "m_R"), decimals=3,
+               structure=_shifted_balance_point(MARKER_HALF_WIDTH)),
         *_tilt_outputs("", _TILT),
         # bar_mass: the same picture with the bar's own weight acting at its middle.
         Output("tau_b", "τ<sub>b</sub> (bar)", "N·m", ("x_p", "m_b"), decimals=2, effect="bar_mass"),
@@ -96,18 +151,41 @@ class Lever(Model):
         Output("marker_x1_bar", "right foot of the balance-point marker (as drawn, with the bar)", "m", ("m_L", "m_R", "m_b"), decimals=3, effect="bar_mass"),
         *_tilt_outputs("_bar", _TILT_WITH_BAR, "bar_mass"),
         # rotation_dynamics: released from rest, horizontal, the bar turns until it hits the stop.
-        Output("inertia", "I (about the pivot)", "kg·m²", _POSITION, decimals=3, effect="rotation_dynamics"),
-        Output("t_stop", "time to hit the stop", "s", _ROTATION, decimals=3, special="∞ (no net torque)", effect="rotation_dynamics"),
-        Output("omega_stop", "ω at the stop", "rad/s", _ROTATION, decimals=3, effect="rotation_dynamics"),
+        Output("inertia", "I (about the pivot)", "kg·m²", _POSITION, decimals=3, effect="rotation_dynamics",
+               deps_with=_BAR_TURNS_TOO),
+        Output("t_stop", "time to hit the stop", "s", _ROTATION, decimals=3, special="∞ (no net torque)", effect="rotation_dynamics",
+               deps_with=_BAR_TURNS_TOO),
+        Output("omega_stop", "ω at the stop", "rad/s", _ROTATION, decimals=3, effect="rotation_dynamics",
+               deps_with=_BAR_TURNS_TOO),
     )
     effects = ("bar_mass", "rotation_dynamics")
+    # The tipping bar's time to the stop is an incomplete elliptic integral F(ψ | ½) (scipy's ellipkinc),
+    # checked against a tight numerical solution of I θ'' = τ cos θ.
+    numerics = Numerics("elliptic", tolerance=1e-9)
+    methods = {"elliptic": {}}
+    error_metric = "relative error of the time to the stop"
+
+    def is_numerical(self, effects) -> bool:
+        """Only the rotation to the stop is computed by a special function; the statics are closed forms."""
+        return "rotation_dynamics" in effects
+
+    def measure_error(self, values, effects) -> Measurement:
+        """t_stop by the elliptic integral against DOP853 at rtol 1e-12 with a terminal event at θ_s."""
+        x = {k: np.asarray(v, float) for k, v in {**self.defaults(), **values}.items()}
+        elliptic = float(_time_to_stop(x))
+        torque, inertia, stop = abs(float(_moving_torque(x))), float(_inertia(x)), math.radians(float(x["theta_s"]))
+        if torque == 0.0:  # the bar never moves: both say ∞
+            return Measurement(0.0 if math.isinf(elliptic) else math.inf, 0, "elliptic integral", "DOP853 at rtol 1e-12")
+        hit = lambda t, y: y[0] - stop  # noqa: E731
+        hit.terminal, hit.direction = True, 1
+        horizon = 4.0 * elliptic + 1.0
+        run = solve_ivp(lambda t, y: (y[1], torque * math.cos(y[0]) / inertia), (0.0, horizon), (0.0, 0.0),
+                        method="DOP853", rtol=1e-12, atol=1e-14 * stop, events=hit)
+        reference = float(run.t_events[0][0]) if len(run.t_events[0]) else math.inf
+        return Measurement(abs(elliptic - reference) / reference, 0, "elliptic integral", "DOP853 at rtol 1e-12")
 
     def _evaluate(self, x, wanted, effects):
-        if "bar_mass" in effects and "rotation_dynamics" in effects and any(n in _ROTATION_OUTPUTS for n in wanted):
-            raise ValueError(
-                "effects bar_mass and rotation_dynamics cannot be combined yet: the rotation outputs "
-                "would need m_b among their deps only when bar_mass is on"
-            )
+        bar = "bar_mass" in effects  # the rotation includes the bar's weight and inertia only then
         x_p, m_L, m_R = x["x_p"], x["m_L"], x["m_R"]
         side_L, side_R = _block_side(m_L), _block_side(m_R)
         formulas = {
@@ -131,16 +209,13 @@ class Lever(Model):
             "x_star_bar": lambda: _balance_point(x, with_bar=True),
             "marker_x0_bar": lambda: _balance_point(x, with_bar=True) - MARKER_HALF_WIDTH,
             "marker_x1_bar": lambda: _balance_point(x, with_bar=True) + MARKER_HALF_WIDTH,
-            "inertia": lambda: _inertia(x),
-            "t_stop": lambda: _time_to_stop(x),
-            "omega_stop": lambda: _angular_velocity_at_stop(x),
+            "inertia": lambda: _inertia(x, bar),
+            "t_stop": lambda: _time_to_stop(x, bar),
+            "omega_stop": lambda: _angular_velocity_at_stop(x, bar),
         }
         for suffix, with_bar in (("", False), ("_bar", True)):
             formulas.update(_tilt_formulas(x, suffix, with_bar, side_L, side_R))
         return {name: formulas[name]() for name in wanted}
-
-
-_ROTATION_OUTPUTS = {o.name for o in Lever.outputs if o.effect == "rotation_dynamics"}
 
 
 def _torque_per_g(x, with_bar: bool = False):
@@ -203,9 +278,10 @@ def _tilt_formulas(x, suffix: str, with_bar: bool, side_L, side_R) -> dict:
     return formulas
 
 
-def _inertia(x):
-    """Moment of inertia of the two point masses about the pivot."""
-    return x["m_L"] * x["x_p"] ** 2 + x["m_R"] * (LENGTH - x["x_p"]) ** 2
+def _inertia(x, with_bar: bool = False):
+    """Moment of inertia about the pivot: the two point masses [+ the uniform bar, m_b(ℓ²/12 + (ℓ/2 − x_p)²)]."""
+    masses = x["m_L"] * x["x_p"] ** 2 + x["m_R"] * (LENGTH - x["x_p"]) ** 2
+    return masses + x["m_b"] * (LENGTH**2 / 12.0 + (0.5 * LENGTH - x["x_p"]) ** 2) if with_bar else masses
 
 
 def _tipping_integral(theta):
@@ -218,30 +294,32 @@ def _tipping_integral(theta):
     return math.sqrt(2.0) * ellipkinc(psi, 0.5)
 
 
-def _moving_torque(x):
+def _moving_torque(x, with_bar: bool = False):
     """The net torque that sets the bar turning, with the roundoff of an exact balance set to 0.
 
     m_L x_p − m_R (ℓ − x_p) carries at most about 3ε (m_L x_p + m_R (ℓ − x_p)) of rounding; a
     residue that small is a balance (e.g. 0.3 kg · 0.5 m against 0.1 kg · 1.5 m), not a slow tip
-    that would take 10⁷ s. On the slider grids a true imbalance is at least 0.001 kg·m.
+    that would take 10⁷ s. On the slider grids a true imbalance is at least 0.001 kg·m. The bar's
+    own weight acts at its middle: m_b (x_p − ℓ/2), a torque that also scales with cos θ.
     """
-    per_g = _torque_per_g(x)
-    roundoff = 4.0 * EPS * (x["m_L"] * x["x_p"] + x["m_R"] * (LENGTH - x["x_p"]))
+    per_g = _torque_per_g(x, with_bar)
+    arms = x["m_L"] * x["x_p"] + x["m_R"] * (LENGTH - x["x_p"])
+    roundoff = 4.0 * EPS * (arms + x["m_b"] * np.abs(x["x_p"] - 0.5 * LENGTH) if with_bar else arms)
     return np.where(np.abs(per_g) <= roundoff, 0.0, G * per_g)
 
 
-def _time_to_stop(x):
+def _time_to_stop(x, with_bar: bool = False):
     """Time from rest to the stop: I θ'' = τ cos θ has the first integral ½ I θ'² = τ sin θ, so
     t = √(I / 2|τ|) ∫₀^θs dφ/√(sin φ); ∞ when there is no net torque (the bar never moves)."""
-    torque = np.abs(_moving_torque(x))
-    scale = np.divide(_inertia(x), 2.0 * torque, out=np.full(np.shape(torque), np.inf), where=torque > 0)
+    torque = np.abs(_moving_torque(x, with_bar))
+    scale = np.divide(_inertia(x, with_bar), 2.0 * torque, out=np.full(np.shape(torque), np.inf), where=torque > 0)
     # θ_s takes a handful of values over a whole grid: evaluate the elliptic integral once for each.
     angles, where = np.unique(np.radians(x["theta_s"]), return_inverse=True)
     return np.sqrt(scale) * _tipping_integral(angles)[where].reshape(scale.shape)
 
 
-def _angular_velocity_at_stop(x):
+def _angular_velocity_at_stop(x, with_bar: bool = False):
     """ω at the stop from ½ I ω² = τ sin θs; positive when the bar turns counter-clockwise (left end down)."""
-    torque = _moving_torque(x)
-    speed = np.sqrt(2.0 * np.abs(torque) * np.sin(np.radians(x["theta_s"])) / _inertia(x))
+    torque = _moving_torque(x, with_bar)
+    speed = np.sqrt(2.0 * np.abs(torque) * np.sin(np.radians(x["theta_s"])) / _inertia(x, with_bar))
     return np.copysign(speed, torque) + 0.0  # + 0.0: no signed zero when the bar stays put

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from .base import Model, Output, Param
+from .structure import Coord, Log10, Poly, Ratio, param
 
 P_REF = 20e-6  # Pa rms, the reference of SPL
 Z_AIR = 1.204 * 343.2  # ρ_a c_a at 20 °C: 413.2 Pa·s/m
@@ -21,6 +22,38 @@ MM2 = 1e-6  # m² per mm²
 FULCRUM_HALF_WIDTH = 0.05  # of the drawn fulcrum, in lengths of the whole bar (malleus + incus arm)
 LOADS = ("water", "cochlea")
 WATER, COCHLEA = 0, 1
+
+
+# --- exact forms for the page (physics.md §12: "3 separable 1-D dB tables") --------------------
+# With all three effects on, every output over more than two sliders is a low-degree polynomial in
+# small one- or two-slider coordinate tables: decibels add, and the load referred to the eardrum is
+# a product u Z_a with u = (Z_c A_FP / Z_a) (1/ℓ²) (1/A_TM), so T₁ = 4u/(1 + u)² is a ratio of two
+# polynomials in those three coordinates.
+ALL_EFFECTS = frozenset({"lever", "area_ratio", "load_model"})
+_ELL, _A_TM = param("ell"), param("A_TM")
+_INV_A_FP = Coord("inv_A_FP", ("A_FP",), lambda A_FP: 1.0 / A_FP)
+_P_TM = Coord("p_TM", ("SPL",), lambda SPL: _pressure(SPL))
+_DB = {name: Coord(f"dB_{name}", (name,), lambda **v: 20.0 * np.log10(next(iter(v.values())))) for name in ("ell", "A_TM", "A_FP")}
+_LOAD_PER_Z_AIR = Coord("load_per_Z_air", ("load", "A_FP"), lambda load, A_FP: load_impedance(load, A_FP) * A_FP / Z_AIR)
+_INV_ELL_SQUARED = Coord("inv_ell_squared", ("ell",), lambda ell: 1.0 / ell**2)
+_INV_A_TM = Coord("inv_A_TM", ("A_TM",), lambda A_TM: 1.0 / A_TM)
+_SQRT_LOAD = Coord("sqrt_load_per_Z_air", ("load", "A_FP"), lambda load, A_FP: np.sqrt(load_impedance(load, A_FP) * A_FP / Z_AIR))
+_INV_SQRT_A_TM = Coord("inv_sqrt_A_TM", ("A_TM",), lambda A_TM: 1.0 / np.sqrt(A_TM))
+_REFERRED = ((_LOAD_PER_Z_AIR, 1), (_INV_ELL_SQUARED, 1), (_INV_A_TM, 1))
+_REFERRED_SQUARED = ((_LOAD_PER_Z_AIR, 2), (_INV_ELL_SQUARED, 2), (_INV_A_TM, 2))
+
+
+def _referred(c):
+    """u = Z_ref / Z_a."""
+    return c["load_per_Z_air"] * c["inv_ell_squared"] * c["inv_A_TM"]
+
+
+def _with_every_effect(form):
+    """The exact form, for a scene with the lever, the area ratio and the load model on (else per stop)."""
+    return lambda effects: form if effects == ALL_EFFECTS else None
+
+
+_T1 = Ratio(Poly(lambda c: 4.0 * _referred(c), _REFERRED), Poly(lambda c: (1.0 + _referred(c)) ** 2, _REFERRED_SQUARED))
 
 
 class Ossicles(Model):
@@ -38,18 +71,27 @@ class Ossicles(Model):
     _gain = ("ell", "A_TM", "A_FP")
     _load = ("load", "ell", "A_TM", "A_FP")
     outputs = (
-        Output("A_r", "area ratio A<sub>r</sub>", "", ("A_TM", "A_FP"), decimals=2),
-        Output("G", "pressure gain G = ℓA<sub>r</sub>", "×", _gain, decimals=2),
-        Output("G_dB", "pressure gain 20 log₁₀ G", "dB", _gain, decimals=2),
+        Output("A_r", "area ratio A<sub>r</sub>", "", ("A_TM", "A_FP"), decimals=2,
+               structure=_with_every_effect(Poly(lambda c: c["A_TM"] * c["inv_A_FP"], ((_A_TM, 1), (_INV_A_FP, 1))))),
+        Output("G", "pressure gain G = ℓA<sub>r</sub>", "×", _gain, decimals=2,
+               structure=_with_every_effect(Poly(lambda c: c["ell"] * c["A_TM"] * c["inv_A_FP"], ((_ELL, 1), (_A_TM, 1), (_INV_A_FP, 1))))),
+        Output("G_dB", "pressure gain 20 log₁₀ G", "dB", _gain, decimals=2,
+               structure=_with_every_effect(Poly(lambda c: c["dB_ell"] + c["dB_A_TM"] - c["dB_A_FP"], tuple((d, 1) for d in _DB.values())))),
         Output("p_TM", "p at the eardrum", "Pa rms", ("SPL",), decimals=4),
-        Output("p_OW", "p at the oval window", "Pa rms", ("SPL", *_gain), decimals=3),
+        Output("p_OW", "p at the oval window", "Pa rms", ("SPL", *_gain), decimals=3,
+               structure=_with_every_effect(Poly(lambda c: c["ell"] * c["A_TM"] * c["inv_A_FP"] * c["p_TM"],
+                                                 ((_ELL, 1), (_A_TM, 1), (_INV_A_FP, 1), (_P_TM, 1))))),
         Output("Z_c", "load Z<sub>c</sub> at the footplate", "Pa·s/m", ("load", "A_FP"), decimals=0),
-        Output("Z_ref", "load seen at the eardrum Z<sub>c</sub>/(ℓ²A<sub>r</sub>)", "Pa·s/m", _load, decimals=0),
+        Output("Z_ref", "load seen at the eardrum Z<sub>c</sub>/(ℓ²A<sub>r</sub>)", "Pa·s/m", _load, decimals=0,
+               structure=_with_every_effect(Poly(lambda c: Z_AIR * _referred(c), _REFERRED))),
         Output("T0", "power in, no transformer T<sub>0</sub>", "%", ("load", "A_FP"), decimals=4),
         Output("T0_dB", "10 log₁₀ T<sub>0</sub>", "dB", ("load", "A_FP"), decimals=2),
-        Output("T1", "power in, with transformer T<sub>1</sub>", "%", _load, decimals=2),
-        Output("T1_dB", "10 log₁₀ T<sub>1</sub>", "dB", _load, decimals=2),
-        Output("ell_match", "ℓ for a perfect match", "", ("load", "A_TM", "A_FP"), decimals=2),
+        Output("T1", "power in, with transformer T<sub>1</sub>", "%", _load, decimals=2,
+               structure=_with_every_effect(Ratio(_T1.numerator, _T1.denominator, scale=100.0))),
+        Output("T1_dB", "10 log₁₀ T<sub>1</sub>", "dB", _load, decimals=2, structure=_with_every_effect(Log10(_T1, 10.0))),
+        Output("ell_match", "ℓ for a perfect match", "", ("load", "A_TM", "A_FP"), decimals=2,
+               structure=_with_every_effect(Poly(lambda c: c["sqrt_load_per_Z_air"] * c["inv_sqrt_A_TM"],
+                                                 ((_SQRT_LOAD, 1), (_INV_SQRT_A_TM, 1))))),
         # Figure geometry: where the pivot sits on a bar of unit length, and the pistons' effective diameters.
         Output("pivot", "malleus arm / (malleus + incus arm)", "", ("ell",), decimals=3),
         Output("fulcrum_x0", "left foot of the fulcrum (as drawn)", "", ("ell",), decimals=3),

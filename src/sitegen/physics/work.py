@@ -10,6 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from .base import Model, Output, Param
+from .numerics import Measurement, Numerics
+from .structure import ChoiceOf, Choose, Coord, Poly, param
 
 G = 9.81  # m/s², the book's value (physics.md §0.1)
 HALF_CHORD = 1.0  # A = (-1, 0), B = (1, 0): both on the line y = 0
@@ -20,6 +22,7 @@ DIRECT, ARC = 0, 1
 LINEAR, QUADRATIC = 0, 1
 CONSERVATIVE, PATH_DEPENDENT = 0, 1
 GAUSS_NODES = 32  # per smooth piece; 16 is not enough near the rest-length singularity (physics.md I3)
+CLOSED_FORM = "closed-form"  # the only method: every readout is exact
 
 
 def arc_half_angle(h):
@@ -49,6 +52,30 @@ WEDGE_VERTICES = 6  # per arrow drawn by `wedges`
 JOIN_Y = GRID_Y.min() - 2.0 * ARROW_MAX  # below every arrow and below the figure's axes: joins run here
 
 
+# --- exact forms for the page (physics.md I3 "structure"), for the base law without effects --------
+# The spring's work 2 k x_c is bilinear (|x_c| <= c/2 on the slider); drag's is -b s L, bilinear in s
+# and the path length L, which one small table over (path, h) provides.
+PATH_LENGTH = Coord("path_length", ("path", "h"), lambda path, h: path_length(path == ARC, h))
+
+
+def _spring_work(c):
+    return 2.0 * c["k"] * c["x_c"]
+
+
+def _drag_work(c):
+    return -c["b"] * c["s"] * c["path_length"]
+
+
+def _by_force(spring: Poly, drag: Poly):
+    """The output as one polynomial per force, for a scene without effects (else per stop)."""
+    form = Choose(ChoiceOf("force"), (spring, drag))
+    return lambda effects: None if effects else form
+
+
+_SPRING_WORK = Poly(_spring_work, ((param("k"), 1), (param("x_c"), 1)))
+_DRAG_WORK = Poly(_drag_work, ((param("s"), 1), (param("b"), 1), (PATH_LENGTH, 1)))
+
+
 class Work(Model):
     """A point moved from A to B at constant speed s, pulled by a spring to C = (x_c, 0) or slowed by drag."""
 
@@ -73,11 +100,11 @@ class Work(Model):
     _field_size = WEDGE_VERTICES * GRID_X.size * GRID_Y.size
     _drag_size = WEDGE_VERTICES * MOST_DRAG_ARROWS
     outputs = (
-        Output("W", "W along path", "J", ("force", "path", "h", *_spring, *_drag)),
+        Output("W", "W along path", "J", ("force", "path", "h", *_spring, *_drag), structure=_by_force(_SPRING_WORK, _DRAG_WORK)),
         # U of the conservative forces acting (spring, gravity). Drag has no potential at all, so with
         # drag alone there is no U to speak of: NaN, shown as "—".
         Output("dU", "U(A) − U(B)", "J", ("force", *_spring), special="—"),
-        Output("W_drag", "W by drag", "J", ("force", "path", "h", *_drag)),
+        Output("W_drag", "W by drag", "J", ("force", "path", "h", *_drag), structure=_by_force(Poly(lambda c: 0.0, ()), _DRAG_WORK)),
         Output("verdict", "path-independent?", "", ("force",), labels=("yes — conservative", "no — depends on the path")),
         Output("L", "path length", "m", ("path", "h")),
         Output("W_g", "W by gravity", "J", (), effect="gravity"),
@@ -99,6 +126,24 @@ class Work(Model):
         Output("rest_y", "rest-length circle, y", "m", ("force", "ell0"), decimals=2, size=ARC_POINTS, ragged=True, effect="spring_rest_length"),
     )
     effects = ("spring_rest_length", "drag_law", "gravity")
+    # The readouts are closed forms (exact, and bitwise the same on both paths): no numerical method
+    # computes them. The build still checks them against the line integral by Gauss–Legendre,
+    # n = 32 per smooth piece (physics.md I3), so that a wrong closed form cannot reach a page.
+    numerics = Numerics(CLOSED_FORM, tolerance=1e-12)
+    methods = {CLOSED_FORM: {}}
+    error_metric = "|ΔW| in J"
+
+    def measure_error(self, values, effects) -> Measurement:
+        """The closed-form W at one point against the adaptive line integral.
+
+        Gauss–Legendre n = 32 with pieces halved until they agree to 1e-15 J: a fixed n = 32 is not
+        enough on a shallow arc passing close to a rest-length spring's anchor (6e-5 J at
+        h = 0.05 m, x_c = -0.95 m, measured).
+        """
+        x = {k: np.asarray(v, float) for k, v in {**self.defaults(), **values}.items()}
+        closed = float(self.evaluate(x, ["W"], effects)["W"])
+        reference = _adaptive_work(x, frozenset(effects))
+        return Measurement(abs(reference - closed), 0, "closed form", f"Gauss–Legendre n = {GAUSS_NODES}, halved to 1e-15 J")
 
     def _evaluate(self, x, wanted, effects):
         spring = x["force"] == SPRING
@@ -262,6 +307,18 @@ def line_integral_work(force, path, h, *, k=1.0, x_c=0.0, ell0=None, drag=1.0, m
     edges = (0.0, 1.0) if cut is None else (0.0, cut, 1.0)
     nodes, weights = np.polynomial.legendre.leggauss(n)
     return sum(_gauss_piece(integrand, lo, hi, nodes, weights, tol) for lo, hi in zip(edges[:-1], edges[1:]))
+
+
+def _adaptive_work(x, effects) -> float:
+    """The line integral at one point (scalar inputs) by adaptive Gauss–Legendre, to 1e-15 J per piece."""
+    force, path, h = int(x["force"]), int(x["path"]), float(x["h"])
+    drag = float(_drag_force(x, effects))
+    ell0 = float(x["ell0"]) if "spring_rest_length" in effects else None
+    mass = float(x["m_g"]) if "gravity" in effects else None
+    if force == SPRING:
+        return line_integral_work(SPRING, path, h, k=float(x["k"]), x_c=float(x["x_c"]), ell0=ell0, mass=mass, tol=1e-15)
+    gravity = 0.0 if mass is None else line_integral_work(SPRING, path, h, k=0.0, mass=mass, tol=1e-15)
+    return line_integral_work(DRAG, path, h, drag=drag, tol=1e-15) + gravity
 
 
 def _gauss_piece(integrand, lo, hi, nodes, weights, tol, depth=0):

@@ -4,7 +4,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..compute.scenes import ResolvedScene
-from ..compute.tabulate import Table
+from ..compute.table import Table
 
 Ref = float | str  # a number, "out:NAME" (a tabulated output) or "in:NAME" (a parameter's value)
 KINDS = ("polyline", "polygon", "dots")

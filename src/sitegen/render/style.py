@@ -46,3 +46,14 @@ def new_figure(height_in: float, ncols: int = 1, **kwargs):
     with plt.rc_context(RC):
         fig, axes = plt.subplots(1, ncols, figsize=(WIDTH_IN, height_in), **kwargs)
     return fig, list(axes) if ncols > 1 else [axes]
+
+
+def new_mosaic(height_in: float, layout, **kwargs):
+    """A figure whose named axes follow `layout` (matplotlib's subplot_mosaic), in the house style.
+
+    The axes are created, and so numbered in `fig.axes` (what a layer's `axes` counts), in the order
+    their names first appear in `layout`, row by row.
+    """
+    with plt.rc_context(RC):
+        fig, named = plt.subplot_mosaic(layout, figsize=(WIDTH_IN, height_in), **kwargs)
+    return fig, named

@@ -7,6 +7,8 @@ from decimal import Decimal
 import numpy as np
 
 from ..compute.quantize import format_quantum
+from ..compute.structure import Structured, shown
+from ..compute.table import Table
 
 
 @dataclass(frozen=True)
@@ -80,16 +82,29 @@ def _with_unit(text: str, unit: str) -> str:
     return f"{text} {unit}".strip() if unit not in ("×", "°") else text + unit
 
 
-def decode(data: dict, name: str) -> Decoded:
-    """One table of a scene's data, decoded (aliases followed, differences summed, specials as inf)."""
+EVALUATED_UP_TO = 500_000  # an expression over more stops is compared as an expression only
+
+
+def decode(data: dict, name: str) -> Decoded | None:
+    """One table of a scene's data, decoded (aliases followed, differences summed, specials as inf);
+    an output the page computes from an expression is evaluated at every stop of the sliders it
+    reads, or None when they are more than EVALUATED_UP_TO."""
     tables, seen = data["tables"], set()
     entry = tables[name]
     while "same" in entry and entry["same"] not in seen:
         seen.add(entry["same"])
         entry = tables[entry["same"]]
+    if "expr" in entry:
+        return _evaluated(data, entry)
     params = tuple(data["sliders"][a]["param"] for a in entry["axes"])
     shape, d, q = tuple(entry["shape"]), entry["d"], entry["q"]
     delta = entry.get("enc") == "delta"
+    if entry.get("sum"):  # stored along the sum of its axes' stops: spread it over the grid
+        counts = tuple(data["sliders"][a]["count"] for a in entry["axes"])
+        values = np.asarray(q, dtype=float)[sum(np.indices(counts))]
+        return Decoded(params, values if entry.get("raw") else values / 10.0**d, d, False, False)
+    if entry.get("raw"):
+        return Decoded(params, np.asarray(q, dtype=float).reshape(shape), d, False, False)
     if "labels" in entry:
         labels = np.array(entry["labels"], dtype=object)
         return Decoded(params, labels[np.asarray(q, dtype=np.int64)].reshape(shape), d, True, False)
@@ -116,7 +131,12 @@ def compare_table(name: str, unit: str, old: dict | None, new: dict | None) -> T
         return TableChange(name, unit, "added", notes=(_describe_new(new, name),))
     if new is None or name not in new.get("tables", {}):
         return TableChange(name, unit, "removed")
+    expressions = _expression(old, name), _expression(new, name)
+    if expressions[0] == expressions[1] and expressions[0] is not None:
+        return None
     a, b = decode(old, name), decode(new, name)
+    if a is None or b is None:  # an expression over too many stops to evaluate them all
+        return _compare_expressions(name, unit, *expressions)
     axes_old, axes_new = scene_axes(old), scene_axes(new)
     params, index_old, index_new, texts = _common_stops(a.params, b.params, axes_old, axes_new)
     va, vb = _expand(a, params, index_old), _expand(b, params, index_new)
@@ -138,6 +158,74 @@ def compare_table(name: str, unit: str, old: dict | None, new: dict | None) -> T
         example = Extreme("", str(va[first]), str(vb[first]), _stop_text(first, params, texts))
         change = replace(change, largest_abs=example)
     return change
+
+
+def _evaluated(data: dict, entry: dict) -> Decoded | None:
+    """An expression's shown values over the grid of the sliders it reads (the script's arithmetic)."""
+    names = _leaves(entry["expr"], "t")
+    parts = {n: _as_table(n, data["tables"][n]) for n in names}
+    axes = sorted(_leaves(entry["expr"], "x") | {a for t in parts.values() for a in t.axes})
+    counts = [data["sliders"][a]["count"] for a in axes]
+    if int(np.prod(counts)) > EVALUATED_UP_TO:
+        return None
+    stops = np.zeros((int(np.prod(counts)), len(data["sliders"])), dtype=np.int64)
+    for column, index in zip(axes, np.indices(counts).reshape(len(axes), -1)):
+        stops[:, column] = index
+    table = Structured("", entry["expr"], entry["d"], tuple(entry.get("labels", ())), entry.get("n", 0), "", parts,
+                       tuple(_slider_values(s) for s in data["sliders"]))
+    values = shown(table, stops)
+    params = tuple(data["sliders"][a]["param"] for a in axes)
+    grid = tuple(counts) + ((table.width,) if table.width else ())
+    if table.labels:
+        return Decoded(params, np.array(table.labels, dtype=object)[values].reshape(grid), table.decimals, True, False)
+    return Decoded(params, (values / 10.0**table.decimals).reshape(grid), table.decimals, False, bool(table.width))
+
+
+def _leaves(expr, key: str) -> set:
+    """Every value under `key` in an expression: the tables ("t") or sliders ("x") it reads."""
+    if isinstance(expr, dict):
+        return ({expr[key]} if key in expr else set()).union(*(_leaves(v, key) for v in expr.values()))
+    if isinstance(expr, list):
+        return set().union(*(_leaves(v, key) for v in expr))
+    return set()
+
+
+def _as_table(name: str, entry: dict) -> Table:
+    """A scalar table of the page's data as the build held it (differences summed)."""
+    quanta = np.asarray(entry["q"], dtype=float if entry.get("raw") else np.int64)
+    if entry.get("enc") == "delta":
+        quanta = np.cumsum(quanta)
+    return Table(name, tuple(entry["axes"]), tuple(entry["shape"]), quanta, entry["d"], tuple(entry.get("labels", ())),
+                 summed_axes=bool(entry.get("sum")), raw=bool(entry.get("raw")))
+
+
+def _slider_values(slider: dict) -> np.ndarray:
+    """A control's value at each stop, as the page's script computes it."""
+    if slider["kind"] == "choice":
+        return np.arange(slider["count"], dtype=float)
+    if "values" in slider:
+        return np.asarray(slider["values"], dtype=float)
+    return np.array([(slider["lo"] + k * slider["step"]) / 10.0 ** slider["d"] for k in range(slider["count"])])
+
+
+def _expression(data: dict, name: str) -> dict | None:
+    """The expression an output is computed from (None for a table of values)."""
+    entry = data["tables"][name]
+    while "same" in entry:
+        entry = data["tables"][entry["same"]]
+    return entry if "expr" in entry else None
+
+
+def _compare_expressions(name: str, unit: str, old: dict | None, new: dict | None) -> TableChange | None:
+    """An output computed by the page from a proven expression: changed when the expression (its
+    nodes, node values or digits) changed; the coordinate tables it reads ("~…") are compared as
+    tables of their own."""
+    if old == new:
+        return None
+    if old is None or new is None:
+        was, now = ("a table", "an expression") if old is None else ("an expression", "a table")
+        return TableChange(name, unit, "changed", notes=(f"now computed from {now} (was {was})",))
+    return TableChange(name, unit, "changed", notes=("its exact expression changed (nodes, values or digits)",))
 
 
 def _common_stops(pa, pb, axes_old: dict[str, Axis], axes_new: dict[str, Axis]):
@@ -257,4 +345,4 @@ def _describe_new(data: dict | None, name: str) -> str:
     if not data:
         return "new output"
     table = decode(data, name)
-    return f"new output over {_names(table.params)}"
+    return f"new output over {_names(table.params)}" if table is not None else "new output, computed from an expression"

@@ -11,7 +11,8 @@ import jinja2
 from ..compute.grid import CHOICE, RANGE
 from ..compute.quantize import MINUS, SPECIAL, format_quantum
 from ..compute.scenes import ResolvedScene
-from ..compute.tabulate import Table
+from ..compute.structure import Structured
+from ..compute.table import Table
 from ..content.pages import Page
 from ..render.layers import Layer
 
@@ -139,7 +140,10 @@ def _tables_json(tables: dict[str, Table]) -> dict:
     """Every table once: an output whose table equals an earlier one's refers to it by name."""
     out, first_of = {}, {}
     for name, table in sorted(tables.items()):
-        key = (table.axes, table.decimals, table.labels, table.quanta.tobytes())
+        if isinstance(table, Structured):
+            out[name] = _structured_json(table)
+            continue
+        key = (table.axes, table.decimals, table.labels, table.quanta.tobytes(), table.summed_axes, table.raw)
         out[name] = {"same": first_of[key]} if key in first_of else _table_json(table)
         first_of.setdefault(key, name)
     return out
@@ -150,13 +154,27 @@ def _table_json(table: Table) -> dict:
     if table.special:  # the marker becomes null, shown as the output's phrase
         rows = [None if q == SPECIAL else q for q in rows]
     out = {"axes": list(table.axes), "shape": list(table.shape), "d": table.decimals, "q": rows}
-    deltas = None if table.special or table.labels else _deltas(rows)
+    if table.summed_axes:  # indexed by the sum of the axes' stops
+        out["sum"] = 1
+    if table.raw:  # the values themselves (a coordinate of an expression), not counts of a digit
+        out["raw"] = 1
+    deltas = None if table.special or table.labels or table.raw else _deltas(rows)
     if deltas is not None and _packed_size(deltas) < _packed_size(rows):
         out.update(q=deltas, enc="delta")
     if table.labels:
         out["labels"] = list(table.labels)
     if table.special:
         out["special"] = table.special
+    return out
+
+
+def _structured_json(table: Structured) -> dict:
+    """An output the script computes: its expression, digits, and phrases if it is text."""
+    out = {"expr": table.expr, "d": table.decimals}
+    if table.labels:
+        out["labels"] = list(table.labels)
+    if table.width:
+        out["n"] = table.width
     return out
 
 

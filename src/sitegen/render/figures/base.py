@@ -4,7 +4,7 @@ from __future__ import annotations
 from typing import Protocol
 
 from ...compute.scenes import ResolvedScene
-from ...compute.tabulate import Table
+from ...compute.table import Table
 from ..layers import Layer
 
 
@@ -16,6 +16,13 @@ class FigureView(Protocol):
     def layers(self, scene: ResolvedScene) -> list[Layer]: ...
 
     def draw(self, scene: ResolvedScene, tables: dict[str, Table]): ...
+
+
+def figure_label(view: FigureView, scene: ResolvedScene) -> str:
+    """The figure's description for screen readers: per scene when the view says what the scene's
+    effects add (`describe(scene)`), else the view's label."""
+    describe = getattr(view, "describe", None)
+    return describe(scene) if describe else view.label
 
 
 def param_range(scene: ResolvedScene, name: str) -> tuple[float, float]:
@@ -30,5 +37,4 @@ def param_range(scene: ResolvedScene, name: str) -> tuple[float, float]:
 
 def table_range(table: Table) -> tuple[float, float]:
     """The smallest and largest value in a table, in display units."""
-    scale = 10.0**-table.decimals
-    return float(table.quanta.min()) * scale, float(table.quanta.max()) * scale
+    return table.value_range()

@@ -5,12 +5,13 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
 
-from ...physics.chain import LENGTH, SPEED, continuum_grid
+from ...physics.chain import DRAWN_WALL, LENGTH, SPEED, continuum_grid
 from .. import style as s
 from ..layers import Layer
 from .base import table_range
 
 LOG_LO, LOG_HI = 0.3, 3.0  # the dispersion panel spans 2 … 1000 in k and ω: the modes of N = 1 … 256 all fit
+TALL = 1e3  # the walls drawn as layers reach beyond the panel, which clips them
 
 
 class ChainFigure:
@@ -22,6 +23,12 @@ class ChainFigure:
         "against its wavenumber, with the straight line ω = ck of the string and, shaded, the wavenumbers the pulse contains."
     )
 
+    def describe(self, scene) -> str:
+        """The label; with the boundary effect the ends may be fixed to walls or free."""
+        if "boundary" not in scene.effects:
+            return self.label
+        return self.label.replace("between two fixed walls", "whose ends are either fixed to walls or free")
+
     def layers(self, scene):
         # Inline style: matplotlib's SVG sheet sets * {stroke-linecap: butt}, which would hide zero-length dots.
         dots = {"stroke": s.BLUE, "stroke-width": "5", "fill": "none", "style": "stroke-linecap: round"}
@@ -32,17 +39,26 @@ class ChainFigure:
             Layer("string", "polyline", 0, xs=tuple(float(x) for x in continuum_grid()), ys="out:u_continuum",
                   style={"stroke": s.ORANGE, "stroke-width": "1.8", "stroke-dasharray": "6 4", "fill": "none"}),
             Layer("modes", "dots", 1, xs="out:log_k", ys="out:log_omega", style={**dots, "stroke-width": "4"}),
-        ]
+        ] + (_wall_layers() if "boundary" in scene.effects else [])
 
     def draw(self, scene, tables):
         fig, (ax, ax_w) = s.new_figure(2.6, ncols=2, gridspec_kw={"width_ratios": [2.5, 1]})
-        _draw_string_axes(ax, tables)
+        _draw_string_axes(ax, tables, static_walls="boundary" not in scene.effects)
         _draw_dispersion_axes(ax_w)
         fig.tight_layout(pad=0.4, w_pad=1.4)
         return fig
 
 
-def _draw_string_axes(ax, tables) -> None:
+def _wall_layers() -> list[Layer]:
+    """The walls as moving shapes: DRAWN_WALL thick with fixed ends, of zero width (unseen) with free ends."""
+    wall = {"fill": s.LOST, "stroke": "none"}
+    return [
+        Layer("left-wall", "polygon", 0, (("out:wall_left", -TALL), (0.0, -TALL), (0.0, TALL), ("out:wall_left", TALL)), style=wall),
+        Layer("right-wall", "polygon", 0, ((LENGTH, -TALL), ("out:wall_right", -TALL), ("out:wall_right", TALL), (LENGTH, TALL)), style=wall),
+    ]
+
+
+def _draw_string_axes(ax, tables, static_walls: bool = True) -> None:
     """Fixed walls, the rest line, and u limits that fit the string and every resolved chain.
 
     The limits leave 20 % above the string's range: a chain with σ/a ≥ 1 overshoots it by at most
@@ -51,10 +67,10 @@ def _draw_string_axes(ax, tables) -> None:
     """
     low, high = table_range(tables["u_continuum"])
     top = 1.2 * max(1.0, -low, high)
-    wall = 0.025 * LENGTH
+    wall = DRAWN_WALL
     ax.set_xlim(-wall, LENGTH + wall)
     ax.set_ylim(-top, top)
-    for x in (-wall, LENGTH):
+    for x in (-wall, LENGTH) if static_walls else ():
         ax.add_patch(Rectangle((x, -top), wall, 2 * top, facecolor=s.LOST, edgecolor=s.MUTED, hatch="////", linewidth=0.8, zorder=3))
     ax.axhline(0.0, color=s.MUTED, lw=0.6)
     ax.set_xlabel("position x (m)")

@@ -1,9 +1,11 @@
-"""I2: velocities before and after contact, and the kinetic-energy ledger."""
+"""I2: velocities before and after contact, and the kinetic-energy ledger; with the spring–dashpot
+contact, also the contact force F(t) with the impulse shaded under it (the impulse picture of I1)."""
 from __future__ import annotations
 
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
+from ...physics.collision import CONTACT
 from .. import style as s
 from ..layers import Layer
 from .base import param_range, table_range
@@ -16,6 +18,13 @@ class CollisionFigure:
         "Left: velocity of each body against time, with the contact at t = 0 and the centre-of-mass velocity dashed. "
         "Right: kinetic energy after the impact as a percentage of the energy before; the grey part is the energy lost."
     )
+
+    def describe(self, scene) -> str:
+        """The label, with the contact-force panel when the scene has the spring–dashpot contact."""
+        if CONTACT not in scene.effects:
+            return self.label
+        return self.label + (" Bottom: the force between the bodies during the contact against time; "
+                             "the shaded area under it is the impulse J given to body 2.")
 
     def layers(self, scene):
         def step(body):
@@ -31,10 +40,15 @@ class CollisionFigure:
             Layer("body-2", "polyline", 0, step(2), style={**line, "stroke": s.ORANGE}),
             Layer("K-after", "polygon", 1, bar(1.0, 0.0, "out:K_kept_pct"), style={"fill": s.FILL_BLUE, "stroke": s.BLUE, "stroke-width": "1.2"}),
             Layer("K-lost", "polygon", 1, bar(1.0, "out:K_kept_pct", 100.0), style={"fill": s.LOST, "fill-opacity": "0.6", "stroke": s.MUTED, "stroke-width": "1", "stroke-dasharray": "3 2"}),
-        ]
+        ] + (_contact_layers() if CONTACT in scene.effects else [])
 
     def draw(self, scene, tables):
-        fig, (ax_v, ax_k) = s.new_figure(3.0, ncols=2, gridspec_kw={"width_ratios": [3, 2]})
+        if CONTACT in scene.effects:
+            fig, named = s.new_mosaic(4.9, [["v", "K"], ["F", "F"]], gridspec_kw={"width_ratios": [3, 2], "height_ratios": [3, 1.9]})
+            ax_v, ax_k = named["v"], named["K"]
+            _draw_force_axes(named["F"], tables)
+        else:
+            fig, (ax_v, ax_k) = s.new_figure(3.0, ncols=2, gridspec_kw={"width_ratios": [3, 2]})
         lows, highs = zip(*(table_range(tables[n]) for n in ("v1f", "v2f", "v_cm")), param_range(scene, "v1i"), param_range(scene, "v2i"))
         v_lo, v_hi = min(lows), max(highs)
         pad = 0.06 * (v_hi - v_lo or 1.0)
@@ -67,3 +81,30 @@ class CollisionFigure:
         ax_k.legend(handles=[Patch(facecolor=s.LOST, edgecolor=s.MUTED, ls="--", label="lost")], loc="upper right", frameon=False, fontsize=9)
         fig.tight_layout(pad=0.4, w_pad=1.2)
         return fig
+
+
+def _contact_layers() -> list[Layer]:
+    """The contact force F(t) and the impulse under it, drawn over the third axes."""
+    return [
+        Layer("contact-area", "polygon", 2, xs="out:contact_t", ys="out:contact_F",
+              style={"fill": s.FILL_ORANGE, "fill-opacity": "0.8", "stroke": "none"}),
+        Layer("contact-force", "polyline", 2, xs="out:contact_t", ys="out:contact_F",
+              style={"fill": "none", "stroke": s.ORANGE, "stroke-width": "2.2"}),
+    ]
+
+
+def _draw_force_axes(ax, tables) -> None:
+    """Time and force limits that fit the contact at every stop (its force ends briefly negative: tension)."""
+    t_hi = table_range(tables["contact_t"])[1]
+    f_lo, f_hi = table_range(tables["contact_F"])
+    span = (f_hi - min(f_lo, 0.0)) or 1.0
+    ax.set_xlim(0, 1.02 * (t_hi or 1.0))
+    ax.set_ylim(min(f_lo, 0.0) - 0.06 * span, f_hi + 0.12 * span)
+    ax.axhline(0, color=s.MUTED, lw=0.6)
+    ax.set_xlabel("time since first touch (ms)")
+    ax.set_ylabel("force on body 2 (N)", fontsize=9)
+    ax.legend(
+        handles=[Line2D([], [], color=s.ORANGE, lw=2.2, label="contact force F(t)"),
+                 Patch(color=s.FILL_ORANGE, label="area = impulse J")],
+        loc="upper right", frameon=False, fontsize=9,
+    )

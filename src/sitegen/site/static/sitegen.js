@@ -20,11 +20,19 @@
     return unit ? text + (unit === "\u00d7" || unit === "\u00b0" ? "" : " ") + unit : text;
   }
 
-  /* The entry of a table at the current stops (row-major over the table's own axes). */
+  /* The entry of a table at the current stops: row-major over the table's own axes, or (for a
+   * table marked "sum") at the sum of their stops. */
   function lookup(table, stops) {
     var flat = 0;
-    for (var k = 0; k < table.axes.length; k++) flat = flat * table.shape[k] + stops[table.axes[k]];
+    for (var k = 0; k < table.axes.length; k++) {
+      flat = table.sum ? flat + stops[table.axes[k]] : flat * table.shape[k] + stops[table.axes[k]];
+    }
     return table.q[flat];
+  }
+
+  /* Rounded to d digits as an integer count of 10^-d units, half up (the build rounds the same way). */
+  function toQuantum(v, d) {
+    return Math.floor(v * Math.pow(10, d) + 0.5);
   }
 
   /* Tables may be stored as differences between neighbours (within each vector): add them up. */
@@ -95,15 +103,81 @@
     return s.texts ? s.texts[k] : withUnit(formatQuantum(s.lo + k * s.step, s.d), s.unit);
   };
 
-  /* A layer reference: a number, [number, ...], ["i", control] or ["o", table] (a number or a list). */
+  /* A control's value at stop k. */
+  Scene.prototype.sliderValue = function (i, k) {
+    var s = this.data.sliders[i];
+    return s.values ? s.values[k] : (s.lo + k * s.step) / Math.pow(10, s.d);
+  };
+
+  /* What an output shows at the stops: a phrase's index, null (shown in words), or an integer
+   * count of its last digit (a list of them for a vector). A table is looked up; an expression
+   * (an output the build proved exact in a few pieces) is evaluated and rounded. */
+  Scene.prototype.quantum = function (name, stops) {
+    var table = this.data.tables[name];
+    if (!table.expr) return lookup(table, stops);
+    var v = this.compute(table.expr, stops);
+    if (table.labels) return v;
+    return Array.isArray(v) ? v.map(function (x) { return toQuantum(x, table.d); }) : toQuantum(v, table.d);
+  };
+
+  /* An expression of the build (compute/structure.py evaluates the same, in the same order):
+   * a constant, a control's value, a table's value, a polynomial through nodes, a branch, a
+   * threshold, a ratio or a logarithm. */
+  Scene.prototype.compute = function (e, stops) {
+    if ("c" in e) return e.c;
+    if ("x" in e) return this.sliderValue(e.x, stops[e.x]);
+    if ("t" in e) {
+      var table = this.data.tables[e.t], q = lookup(table, stops);
+      return table.labels || table.raw ? q : q / Math.pow(10, table.d);
+    }
+    if ("poly" in e) return this.poly(e, stops);
+    if ("sel" in e) return this.compute(e.of[this.compute(e.sel, stops)], stops);
+    if ("cut" in e) {
+      var v = this.compute(e.cut, stops), above = 0;
+      for (var i = 0; i < e.edges.length; i++) if (v > e.edges[i]) above++;
+      return e.map[above];
+    }
+    if ("log10" in e) return e.k * Math.log10(this.compute(e.log10, stops));
+    var top = this.compute(e.ratio[0], stops), bottom = this.compute(e.ratio[1], stops);
+    return bottom === 0 ? e.zero : e.k * top / bottom;
+  };
+
+  /* Lagrange interpolation through the nodes of each coordinate (tensor product, row-major values). */
+  Scene.prototype.poly = function (e, stops) {
+    var weights = [], index = [], total = null, k, j, m;
+    for (k = 0; k < e.poly.length; k++) {
+      var c = this.compute(e.poly[k], stops), nodes = e.nodes[k], w = [];
+      for (j = 0; j < nodes.length; j++) {
+        var wj = 1;
+        for (m = 0; m < nodes.length; m++) if (m !== j) wj = wj * (c - nodes[m]) / (nodes[j] - nodes[m]);
+        w.push(wj);
+      }
+      weights.push(w);
+      index.push(0);
+    }
+    for (var flat = 0; flat < e.v.length; flat++) {
+      var product = 1, v = e.v[flat];
+      for (k = 0; k < index.length; k++) product = product * weights[k][index[k]];
+      if (Array.isArray(v)) {
+        if (!total) total = v.map(function () { return 0; });
+        for (j = 0; j < v.length; j++) total[j] = total[j] + v[j] * product;
+      } else {
+        total = (total || 0) + v * product;
+      }
+      for (k = index.length - 1; k >= 0; k--) {
+        if (++index[k] < e.nodes[k].length) break;
+        index[k] = 0;
+      }
+    }
+    return total;
+  };
+
+  /* A layer reference: a number, [number, ...], ["i", control] or ["o", output] (a number or a list). */
   Scene.prototype.value = function (ref, stops) {
     if (typeof ref === "number") return ref;
     if (typeof ref[0] === "number") return ref;
-    if (ref[0] === "i") {
-      var s = this.data.sliders[ref[1]], k = stops[ref[1]];
-      return s.values ? s.values[k] : (s.lo + k * s.step) / Math.pow(10, s.d);
-    }
-    var table = this.data.tables[ref[1]], q = lookup(table, stops), scale = Math.pow(10, -table.d);
+    if (ref[0] === "i") return this.sliderValue(ref[1], stops[ref[1]]);
+    var q = this.quantum(ref[1], stops), scale = Math.pow(10, -this.data.tables[ref[1]].d);
     return Array.isArray(q) ? q.map(function (v) { return v * scale; }) : q * scale;
   };
 
@@ -127,7 +201,7 @@
       if (self.valueTexts[i]) self.valueTexts[i].textContent = text;
     });
     data.readouts.forEach(function (r, i) {
-      var table = data.tables[r.out], q = lookup(table, stops), text;
+      var table = data.tables[r.out], q = self.quantum(r.out, stops), text;
       if (table.labels) text = table.labels[q];
       else if (q === null) text = table.special;
       else text = withUnit(formatQuantum(q, table.d), r.unit);

@@ -1,0 +1,1 @@
+"""Accuracy and cost: declared numerical settings, in-build reference checks, and the report page."""

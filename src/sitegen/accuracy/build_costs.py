@@ -1,0 +1,73 @@
+"""What building the book costs: cold tabulation time per scene and the bytes of each page.
+
+"Cold" means no table cache and no model-level memo (the bubble keeps an LRU of solved points):
+each timed run tabulates the scene from nothing, as a first build on a fresh checkout would.
+"""
+from __future__ import annotations
+
+import gzip
+import re
+import sys
+import tempfile
+from math import prod
+from pathlib import Path
+
+from ..build import BuildConfig, BuildReport, build, read_pages, resolve_scenes, tabulate_scenes
+from ..errors import ErrorLog
+from .timing import time_medians
+
+
+def clear_model_caches() -> None:
+    """Forget every memo of the physics modules (e.g. the bubble's solved points), so a run starts cold."""
+    for name, module in list(sys.modules.items()):
+        if name.startswith("sitegen.physics") and module is not None:
+            for value in list(vars(module).values()):
+                if callable(getattr(value, "cache_clear", None)):
+                    value.cache_clear()
+
+
+def scene_cold_times(root: Path, repeats: int = 3, progress=None) -> dict[str, dict]:
+    """Median seconds to tabulate each scene of the book from nothing, serially, with its stop count."""
+    config = BuildConfig.at(root, cache=None)
+    log = ErrorLog()
+    scenes = resolve_scenes(read_pages(config, log), log)
+    log.raise_if_any()
+    jobs = {scene_key(item): (lambda item=item: _tabulate_cold(item, config)) for item in scenes}
+    timed = time_medians(jobs, repeats)
+    times = {}
+    for item in scenes:
+        name = scene_key(item)
+        times[name] = {"seconds": timed[name].seconds, "repeats": timed[name].repeats, "model": item.scene.model.name,
+                       "stops": prod(axis.count for axis in item.scene.axes)}
+        if progress:
+            progress(f"  {name:<40} {timed[name].seconds:8.3f} s (median of {timed[name].repeats})")
+    return times
+
+
+def scene_key(item) -> str:
+    """How the bench and the accuracy page name a scene: "page#scene"."""
+    return f"{item.page.slug}#{item.scene.id}"
+
+
+def _tabulate_cold(item, config: BuildConfig) -> None:
+    clear_model_caches()
+    log = ErrorLog()
+    tabulate_scenes([item], None, config, BuildReport(), log)
+    log.raise_if_any()
+
+
+def page_sizes(root: Path) -> dict[str, dict]:
+    """Raw and gzip bytes of each built page, alone and with every asset it loads."""
+    with tempfile.TemporaryDirectory() as folder:
+        site = Path(folder) / "build"
+        build(BuildConfig.at(root, site), progress=None)
+        return {page.name: _page_bytes(site, page) for page in sorted(site.glob("*.html"))}
+
+
+def _page_bytes(site: Path, page: Path) -> dict:
+    html = page.read_text()
+    assets = sorted(set(re.findall(r'(?:href|src)="(assets/[^"]+)"', html)))
+    files = [page, *(site / a for a in assets if (site / a).is_file())]
+    packed = [len(gzip.compress(f.read_bytes(), 9, mtime=0)) for f in files]
+    return {"html_raw": page.stat().st_size, "html_gzip": packed[0],
+            "total_raw": sum(f.stat().st_size for f in files), "total_gzip": sum(packed)}

@@ -1,0 +1,30 @@
+"""What the build measured about one scene's numerics, as the accuracy page and captions show it."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class SceneAccuracy:
+    """One numerically computed scene: its settings, the reference it was checked against, and the result.
+
+    Every field is deterministic (no wall-clock times): the built site must be byte-identical
+    from build to build. Times come from `make bench`, which records them separately.
+    """
+
+    page: str  # slug of the page the scene is on, e.g. "newtons-laws"
+    scene: str  # the scene's id; its row on the accuracy page has the HTML id f"acc-{page}-{scene}"
+    model: str
+    method: str  # e.g. "DOP853", "exact DST", "Gauss–Legendre n = 32", "analytic"
+    settings: str  # e.g. "rtol 1e-6, atol 1e-9" (as an author would write them)
+    tolerance: float  # the declared tolerance the measured error must not exceed
+    error: float  # the largest error measured against the reference over the sampled stops
+    metric: str  # what `error` is, e.g. "max |ΔR|/R₀ over one period"
+    reference: str  # e.g. "Radau rtol 1e-12", "closed form"
+    stops_checked: int
+    evaluations: int  # function evaluations (nfev) summed over the checked stops
+
+    @property
+    def anchor(self) -> str:
+        """The id of this scene's row on the accuracy page."""
+        return f"acc-{self.page}-{self.scene}"

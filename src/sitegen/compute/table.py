@@ -1,0 +1,83 @@
+"""A table: one output over the stops of the sliders it depends on, as integers of its last digit."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Table:
+    """One output over the stops of the sliders it depends on, as integers of its last digit."""
+
+    output: str
+    axes: tuple[int, ...]  # positions in the scene's sliders, in slider order
+    shape: tuple[int, ...]
+    quanta: np.ndarray  # int64, C order over `axes` (a row of `width` per point for a vector)
+    decimals: int
+    labels: tuple[str, ...] = ()  # for text outputs: quanta index these phrases
+    width: int = 0  # 0 for a scalar output, else the (longest) vector length
+    lengths: np.ndarray | None = None  # for a ragged vector: the length at each point
+    special: str = ""  # how to show a SPECIAL quantum
+    summed_axes: bool = False  # one index, the sum of the axes' stops (a function of, e.g., m1 + m2)
+    raw: bool = False  # `quanta` holds the values themselves as doubles (a coordinate of an expression)
+
+    def flat_index(self, stops: tuple[int, ...]) -> int:
+        """Row of the table at a full slider position (one stop per scene slider)."""
+        return int(self.flat_indices(np.asarray([stops], dtype=np.int64))[0])
+
+    def flat_indices(self, stops: np.ndarray) -> np.ndarray:
+        """Rows of the table at many slider positions (n × sliders)."""
+        if not self.axes:
+            return np.zeros(len(stops), dtype=np.int64)
+        if self.summed_axes:
+            return stops[:, list(self.axes)].sum(axis=1)
+        return np.ravel_multi_index(tuple(stops[:, a] for a in self.axes), self.shape)
+
+    def stored_values(self) -> int:
+        """How many numbers the table ships."""
+        return int(self.quanta.size)
+
+    def value_range(self) -> tuple[float, float]:
+        """Smallest and largest value the table holds (for a figure's axis limits)."""
+        scale = 1.0 if self.raw else 10.0**-self.decimals
+        return float(self.quanta.min()) * scale, float(self.quanta.max()) * scale
+
+    def at(self, stops: tuple[int, ...]):
+        """The quantum (or, for a vector, the quanta) at a full slider position."""
+        row = self.flat_index(stops)
+        if not self.width:
+            return int(self.quanta[row])
+        values = self.quanta.reshape(-1, self.width)[row]
+        return values[: self.lengths[row]] if self.lengths is not None else values
+
+    def rows(self) -> list:
+        """Every entry in order, vectors trimmed to their length (for the page's JSON)."""
+        if not self.width:
+            return self.quanta.tolist()
+        matrix = self.quanta.reshape(-1, self.width).tolist()
+        if self.lengths is None:
+            return matrix
+        return [row[:n] for row, n in zip(matrix, self.lengths.tolist())]
+
+
+def grid_table(name: str, axes: tuple[int, ...], quanta: np.ndarray, decimals: int) -> Table:
+    """A scalar table of quanta over the stops of `axes`, without the axes it is constant along."""
+    kept, quanta = drop_constant_axes(axes, quanta)
+    return Table(name, kept, quanta.shape, quanta.reshape(-1), decimals)
+
+
+def drop_constant_axes(axes: tuple[int, ...], quanta: np.ndarray) -> tuple[tuple[int, ...], np.ndarray]:
+    """Remove the axes along which the displayed value never changes (checked at every stop).
+
+    A declared dependency can vanish at display precision, e.g. the momentum after a collision
+    equals the momentum before whatever the restitution; the page then needs no table along it.
+    """
+    kept = []
+    for position, axis in reversed(list(enumerate(axes))):
+        first = quanta.take([0], axis=position)
+        if np.array_equal(quanta, np.broadcast_to(first, quanta.shape)):
+            quanta = first.squeeze(axis=position)
+        else:
+            kept.append(axis)
+    return tuple(reversed(kept)), quanta

@@ -1,0 +1,280 @@
+"""The accuracy–cost experiments (`sitegen bench`) and the "Accuracy and cost" page.
+
+The experiments are checked on their error measurements — against closed forms, a second exact
+method, and known perturbations — never on their timings. The page is checked in the built book.
+"""
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sitegen.accuracy import summary
+from sitegen.accuracy.blocks import PARTS
+from sitegen.accuracy.experiments import (
+    CHAIN_T, bubble_problem, case_errors, chain_by_eigh, chain_error, chain_exact, collapse_errors, extrema,
+    run_chain_ivp, run_verlet, skip_reason, solve_case, verlet_steps,
+)
+from sitegen.accuracy.page import fill_reports, sci
+from sitegen.accuracy.resolution import LINES, interpolation_error, resolution_experiment
+from sitegen.accuracy.results import BENCH_NAME, load_results
+from sitegen.cli import main
+from sitegen.content.pages import read_page
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+# --- the chain ----------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("n", [16, 64], ids=["N=16", "N=64"])
+def test_verlet_error_falls_fourfold_per_halving_of_the_step(n):
+    """Velocity Verlet is second order: ν 0.2 → 0.1 divides max|u − u_DST| by 4 (within 10 %)."""
+    exact = chain_exact(n)
+    coarse, fine = (chain_error(run_verlet(n, nu).u[-1], exact) for nu in (0.2, 0.1))
+    assert 3.6 <= coarse / fine <= 4.4
+
+
+def test_verlet_steps_hit_the_courant_number():
+    """N = 64 (a = 1/65), ν = 0.5 over T = 2: 260 steps, as in physics.md §11.1."""
+    assert verlet_steps(64, 0.5) == 260 and math.isclose(CHAIN_T, 2.0)
+
+
+@pytest.mark.parametrize("n", [8, 64, 256], ids=["N=8", "N=64", "N=256"])
+def test_dst_reference_agrees_with_a_dense_eigendecomposition(n):
+    """The chain's reference (DST) and an independent eigh solution agree to 1e-11 of the amplitude."""
+    assert chain_error(chain_by_eigh(n), chain_exact(n)) <= 1e-11
+
+
+@pytest.mark.parametrize("rtol, bound", [(1e-6, 1e-4), (1e-9, 1e-7)], ids=["rtol=1e-6", "rtol=1e-9"])
+def test_dop853_chain_error_follows_its_tolerance(rtol, bound):
+    """DOP853 on N = 64 over one round trip: error below 100·rtol (measured 3.2e-6 and 2.6e-9)."""
+    result = run_chain_ivp(64, "DOP853", rtol)
+    assert result.status == 0 and chain_error(result.u[-1], chain_exact(64)) <= bound
+
+
+def test_chain_error_measures_a_known_offset():
+    """Negative control: the exact answer shifted by 1e-3 at one mass measures exactly 1e-3."""
+    exact = chain_exact(32)
+    shifted = exact.copy()
+    shifted[5] += 1e-3
+    assert chain_error(shifted, exact) == pytest.approx(1e-3, rel=1e-9)
+
+
+# --- the bubble ---------------------------------------------------------------------------------------------
+
+
+def test_dop853_preset_A_at_rtol_1e_9_is_within_1e_7_of_the_analytic_collapse():
+    """Case A, DOP853 rtol 1e-9: max |ΔR|/R0 ≤ 1e-7 against betaincinv (measured 3.5e-10), stop time ≤ 1e-8 rel."""
+    run = solve_case("A", "DOP853", 1e-9)
+    errors = collapse_errors(run, bubble_problem("A"))
+    assert errors["curve"] <= 1e-7 and errors["t_stop"] <= 1e-8
+
+
+def test_analytic_collapse_has_no_error_against_itself():
+    """The closed-form run measured against the closed form: 0 up to rounding (≤ 1e-14)."""
+    errors = collapse_errors(solve_case("A", "analytic", 0.0), bubble_problem("A"))
+    assert errors["curve"] <= 1e-14 and errors["t_stop"] <= 1e-14
+
+
+def test_collapse_error_measures_a_known_offset():
+    """Negative control: the analytic curve raised by 2e-4 R0 measures 2e-4."""
+    run = solve_case("A", "analytic", 0.0)
+    raised = dataclasses.replace(run, r=run.r + 2e-4)
+    assert collapse_errors(raised, bubble_problem("A"))["curve"] == pytest.approx(2e-4, rel=1e-6)
+
+
+def test_driven_readout_errors_measure_known_perturbations():
+    """Case B readouts: a run whose R_max is 1e-5 larger (relative) than the reference measures exactly that."""
+    reference = solve_case("B", "DOP853", 1e-8)
+    period = 2 * math.pi / bubble_problem("B").omega
+    r_max = extrema(reference, period)[0]
+    maxima = reference.maxima.copy()
+    maxima[np.argmax(maxima[:, 1]), 1] = r_max * (1 + 1e-5)
+    errors = case_errors("B", dataclasses.replace(reference, maxima=maxima), reference)
+    assert errors["R_max"] == pytest.approx(1e-5, rel=1e-6) and errors["R_min"] == 0 and errors["curve"] == 0
+
+
+def test_driven_bubble_extrema_are_the_reference_readouts():
+    """Case B (one period): R_max/R0 = 6.8115 and R_min/R0 = 0.17624 at t/T = 0.51661 (physics.md K4 preset B)."""
+    r_max, r_min, t_min = extrema(solve_case("B", "DOP853", 1e-10), 2 * math.pi / bubble_problem("B").omega)
+    assert f"{r_max:.4f}" == "6.8115" and f"{r_min:.5f}" == "0.17624" and f"{t_min:.5f}" == "0.51661"
+
+
+@pytest.mark.parametrize(
+    "case, method, rtol, skipped",
+    [("C", "RK45", 1e-9, True), ("C", "DOP853", 1e-12, True), ("C", "RK45", 1e-6, False), ("C", "LSODA", 1e-12, False),
+     ("B", "Radau", 1e-12, True), ("B", "Radau", 1e-9, False), ("B", "DOP853", 1e-12, False)],
+    ids=["C-RK45-1e-9", "C-DOP853-1e-12", "C-RK45-1e-6", "C-LSODA-1e-12", "B-Radau-1e-12", "B-Radau-1e-9", "B-DOP853-1e-12"],
+)
+def test_hopeless_combinations_are_skipped_with_a_reason(case, method, rtol, skipped):
+    """Explicit methods on stiff C beyond two tolerances and Radau beyond 1e-10 on B are skipped, with a reason."""
+    reason = skip_reason(case, method, rtol)
+    assert (reason is not None) == skipped and (reason is None or len(reason) > 20)
+
+
+# --- interpolation error against bytes ---------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "line, axis, nodes",
+    [("v1f", "w1", 2), ("dv", "inverse", 2), ("K_after", "quadratic", 3)],
+    ids=["v1f-in-w1", "dv-in-1/m", "K_after-quadratic-in-e"],
+)
+def test_exactly_structured_axes_interpolate_to_round_off(line, axis, nodes):
+    """Along w1 = m1/(m1+m2), 1/m and quadratically in e, 2–3 nodes reproduce the model at every stop to 1e-12."""
+    error, _ = interpolation_error(LINES[line], axis, nodes)
+    assert error <= 1e-12
+
+
+def test_two_node_line_in_e_misses_the_parabola_by_its_sagitta():
+    """K_after(e) = K_before − ½µΔ²(1 − e²) with µ = 2/3, Δ = 4: a chord through e = 0, 1 misses by 16/3 · ¼ = 4/3 at e = ½."""
+    error, _ = interpolation_error(LINES["K_after"], "linear", 2)
+    assert error == pytest.approx(4 / 3, abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    "line, axis, nodes, expected",
+    [("v1f", "linear", 17, 0.11), ("v1f", "log", 65, 4.9e-4), ("dv", "linear", 65, 1.29), ("dv", "log", 65, 3.6e-3),
+     ("MA", "linear", 65, 51.0)],
+    ids=["v1f-linear-17", "v1f-log-65", "dv-linear-65", "dv-log-65", "MA-linear-65"],
+)
+def test_plain_axes_reproduce_the_measured_table(line, axis, nodes, expected):
+    """The errors of physics.md §12 for linear and log axes (to the two digits it quotes)."""
+    error, _ = interpolation_error(LINES[line], axis, nodes)
+    assert error == pytest.approx(expected, rel=0.05)
+
+
+def test_every_stop_row_stores_each_stop_at_four_bytes():
+    """The 'every stop' rows: no interpolation error, 4 bytes per stop (201 for MA over x_p 0..2)."""
+    rows = {row["line"]: row for row in resolution_experiment() if row["axis"] == "per stop"}
+    assert rows["MA"]["bytes_float32"] == 804 and all(row["error"] == 0 for row in rows.values())
+
+
+# --- the headline figures -----------------------------------------------------------------------------------
+
+
+def _runs(points, method="m"):
+    return [{"method": method, "rtol": 10.0**-k, "error": e, "time_s": t, "status": "ok"} for k, (t, e) in enumerate(points, 3)]
+
+
+def test_per_digit_cost_of_a_second_order_method_is_root_ten():
+    """Error ∝ h², time ∝ 1/h: each extra digit multiplies the time by √10."""
+    steps = [0.1 / 2**k for k in range(5)]
+    assert summary.per_digit_cost(_runs([(1 / h, h**2) for h in steps])) == pytest.approx(math.sqrt(10), rel=1e-9)
+
+
+def test_pareto_front_keeps_only_runs_nothing_beats():
+    """Of (1 s, 1e-3), (2 s, 1e-2), (3 s, 1e-6), (4 s, 1e-5): the first and the third."""
+    runs = _runs([(1, 1e-3), (2, 1e-2), (3, 1e-6), (4, 1e-5)])
+    assert [r["time_s"] for r in summary.pareto(runs)] == [1, 3]
+
+
+@pytest.mark.parametrize(
+    "value, text",
+    [(2.1e-7, "2.1 × 10<sup>−7</sup>"), (1e-12, "10<sup>−12</sup>"), (3.6e4, "3.6 × 10<sup>4</sup>"), (1.333, "1.3"),
+     (51.3, "51"), (267.0, "270"), (0.0832, "0.083"), (0.0, "0"), (None, "—")],
+    ids=["mantissa", "power", "large", "one", "tens", "hundreds", "hundredths", "zero", "missing"],
+)
+def test_numbers_are_written_as_the_captions_write_them(value, text):
+    """sci(): two significant digits, as a power of ten outside 0.01…10⁴; 0 and a dash for none."""
+    assert sci(value) == text
+
+
+# --- the command and the JSON -------------------------------------------------------------------------------
+
+
+def test_quick_bench_writes_strict_json_with_the_expected_keys(tmp_path):
+    """`sitegen bench --quick` on a one-scene book writes strict, sorted JSON with every section."""
+    root = tmp_path / "book"
+    (root / "content").mkdir(parents=True)
+    (root / "node_modules").symlink_to(ROOT / "node_modules")
+    (root / "content" / "index.md").write_text('+++\ntitle = "Try"\n+++\n\n```scene\nmodel: impulse\nid: pulse\n'
+                                               "slider m: 1..4 step 1 default 2\n```\n")
+    out = tmp_path / "bench.json"
+    assert main(["bench", "--quick", "--root", str(root), "--out", str(out)]) == 0
+    text = out.read_text()
+    data = json.loads(text, parse_constant=lambda name: pytest.fail(f"non-finite {name}"))
+    assert text == json.dumps(data, indent=1, sort_keys=True, allow_nan=False, ensure_ascii=False) + "\n"
+    assert {"schema", "machine", "plan", "chain", "bubble", "resolution", "build", "seconds"} <= set(data)
+    assert {"cpu", "cores", "python", "numpy", "scipy", "date"} <= set(data["machine"])
+    assert {r["method"] for r in data["chain"]["runs"]} == {"exact DST", "velocity Verlet", "RK45", "DOP853"}
+    assert data["bubble"]["A"]["chosen"]["method"] == "analytic" and data["bubble"]["A"]["runs"]
+    assert set(data["build"]["scenes"]) == {"index#pulse"} and "index.html" in data["build"]["pages"]
+    assert all(run["error"] >= 0 and run["time_s"] > 0 for run in data["chain"]["runs"])
+
+
+def test_committed_bench_results_cover_every_experiment():
+    """content/accuracy/bench.json (the page's source) holds a full run: chain N = 64 and 256, cases A, B, C."""
+    data = load_results(ROOT / "content" / BENCH_NAME)
+    assert data is not None, "run `make bench` to write content/accuracy/bench.json"
+    assert {r["N"] for r in data["chain"]["runs"]} == {64, 256} and set(data["bubble"]) == {"A", "B", "C"}
+    assert {r["method"] for r in data["bubble"]["B"]["runs"]} == {"RK45", "DOP853", "Radau", "BDF", "LSODA"}
+
+
+# --- the report blocks --------------------------------------------------------------------------------------
+
+
+def _page_with(tmp_path: Path, block: str):
+    (tmp_path / "content").mkdir(exist_ok=True)
+    path = tmp_path / "content" / "accuracy.md"
+    path.write_text(f'+++\ntitle = "Accuracy"\n+++\n\nText.\n\n```accuracy-report\n{block}\n```\n')
+    return read_page(path, tmp_path)
+
+
+def test_unknown_report_part_is_an_author_error_at_its_line(tmp_path):
+    """`show: nope` names the file, the line and the parts there are."""
+    _, errors = _page_with(tmp_path, "show: nope")
+    assert [str(e) for e in errors] == [f"content/accuracy.md:8: accuracy-report: unknown part 'nope'; parts: {', '.join(PARTS)}"]
+
+
+@pytest.mark.parametrize("part, text", [("chain", "No benchmark results yet"), ("scenes", "No numerical scenes were checked")],
+                         ids=["chain-without-bench", "scenes-without-records"])
+def test_report_blocks_say_clearly_when_there_is_nothing_to_show(tmp_path, part, text):
+    """Without bench.json a bench part says how to get one; with no records the scene table says so."""
+    page, errors = _page_with(tmp_path, f"show: {part}")
+    assert not errors
+    files = fill_reports({"accuracy.html": page.html.encode()}, [page], [], [], tmp_path / "missing.json")
+    html = files["accuracy.html"].decode()
+    assert text in html and "data-report-slot" not in html
+
+
+# --- the page in the built book ------------------------------------------------------------------------------
+
+
+def test_accuracy_page_is_built_and_linked_from_the_home_page(built_site):
+    """build/accuracy.html exists, the home page links to it, and no report slot is left unfilled."""
+    assert (built_site / "accuracy.html").is_file()
+    assert 'href="accuracy.html"' in (built_site / "index.html").read_text()
+    assert not any("data-report-slot" in p.read_text() for p in built_site.glob("*.html"))
+
+
+@pytest.mark.parametrize("figure", ["chain", "bubble-A", "bubble-B", "bubble-C", "resolution"])
+def test_accuracy_page_has_each_diagram_with_its_numbers(built_site, figure):
+    """Each diagram: an inline SVG with a label, a caption and a table of the numbers behind it."""
+    html = (built_site / "accuracy.html").read_text()
+    found = re.search(rf'<figure class="report-figure" id="fig-{figure}">(.*?)</figure>\s*<details class="report-data">(.*?)</details>',
+                      html, re.S)
+    assert found and '<svg' in found[1] and 'role="img"' in found[1] and "<figcaption>" in found[1] and "<table" in found[2]
+    if figure != "resolution":
+        assert "chosen:" in found[1], "the chosen setting is marked"
+
+
+def test_every_checked_scene_has_its_row_and_its_caption_links_to_it(built_site):
+    """Each caption link to accuracy.html#acc-… lands on a table row of the accuracy page, and each row is linked."""
+    accuracy = (built_site / "accuracy.html").read_text()
+    rows = set(re.findall(r'<tr id="(acc-[^"]+)"', accuracy))
+    links = {anchor for page in built_site.glob("*.html") for anchor in re.findall(r'href="accuracy\.html#(acc-[^"]+)"', page.read_text())}
+    assert rows and rows == links
+
+
+def test_accuracy_page_quotes_the_machine_and_date_of_the_bench_run(built_site):
+    """The page names the date and CPU of the committed bench run (the source of its timings)."""
+    machine = load_results(ROOT / "content" / BENCH_NAME)["machine"]
+    html = (built_site / "accuracy.html").read_text()
+    assert machine["date"] in html and machine["cpu"] in html

@@ -61,7 +61,9 @@ def rebuild_times(runs: int = 3) -> dict:
             colds.append(timed(config))
         noops = [timed(config) for _ in range(runs)]
         page = root / "content" / "newtons-laws.md"
-        page.write_text(page.read_text().replace("slider F_pk: 0..50 step 0.5 default 12", "slider F_pk: 0..50 step 1 default 12"))
+        text = page.read_text()
+        assert "slider F_pk: 0..50 step 0.5 default 12" in text, "the impulse scene's F_pk slider changed: update bench/run.py"
+        page.write_text(text.replace("slider F_pk: 0..50 step 0.5 default 12", "slider F_pk: 0..50 step 1 default 12"))
         one_scene = timed(config)
         result = {
             "cold_s": statistics.median(t for t, _ in colds),

@@ -23,7 +23,6 @@ OUT = ROOT / "build-bench"
 sys.path.insert(0, str(ROOT / "src"))
 
 from sitegen.build import BuildConfig, build  # noqa: E402
-from scenes import print_rows, scene_figures  # noqa: E402  (bench/scenes.py)
 
 
 def build_times(runs: int = 3) -> dict:
@@ -113,7 +112,9 @@ def main() -> int:
         "rebuilds": rebuild_times(),
         "pages": page_sizes(site),
     }
-    report["scenes"] = scene_figures(site)
+    scenes_file = OUT / "scenes.json"
+    subprocess.run([sys.executable, str(ROOT / "bench" / "scenes.py"), "--site", str(site), "--out", str(scenes_file)], check=True)
+    report["scenes"] = json.loads(scenes_file.read_text())
     latency_file = OUT / "latency.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "latency.py"), "--site", str(site), "--out", str(latency_file)], check=True)
     report["latency"] = json.loads(latency_file.read_text())
@@ -128,7 +129,6 @@ def main() -> int:
     for name, s in report["pages"].items():
         print(f"{name:<22} html {s['html_raw'] / 1024:7.1f} KB raw {s['html_gzip'] / 1024:6.1f} KB gzip | "
               f"with assets {s['total_raw'] / 1024:7.1f} KB raw {s['total_gzip'] / 1024:6.1f} KB gzip")
-    print_rows(report["scenes"])
     print(f"wrote {OUT / 'report.json'}")
     return 0
 

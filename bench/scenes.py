@@ -1,7 +1,9 @@
 """Per scene: the states of the full cross product of its controls, the values the page actually
 stores, the bytes of its inline data (raw and gzip) and its cold tabulation time (median).
 
-Run by bench/run.py (`make bench`); also runnable alone: `python bench/scenes.py`.
+Run by bench/run.py (`make bench`) in a fresh process, so that no solve is reused from an earlier
+build in the same process (the bubble model memoises its solves); also runnable alone:
+`python bench/scenes.py [--site build] [--out scenes.json]`.
 """
 from __future__ import annotations
 
@@ -73,5 +75,22 @@ def print_rows(rows: list[dict]) -> None:
               f"{r['tabulate_s_median']:>8.2f}s")
 
 
+def main() -> int:
+    """Print the rows for the site in build/ (or --site DIR) and write them as JSON when --out is given."""
+    import argparse
+    import json
+
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--site", type=Path, default=ROOT / "build")
+    parser.add_argument("--out", type=Path)
+    parser.add_argument("--runs", type=int, default=3)
+    args = parser.parse_args()
+    rows = scene_figures(args.site, args.runs)
+    print_rows(rows)
+    if args.out:
+        args.out.write_text(json.dumps(rows, indent=1, sort_keys=True))
+    return 0
+
+
 if __name__ == "__main__":
-    print_rows(scene_figures(ROOT / "build", runs=1))
+    sys.exit(main())

@@ -4,11 +4,9 @@ Timings are medians over repeated runs on this machine; treat them as ratios, no
 """
 from __future__ import annotations
 
-import gzip
 import json
 import os
 import platform
-import re
 import shutil
 import statistics
 import subprocess
@@ -23,6 +21,7 @@ OUT = ROOT / "build-bench"
 sys.path.insert(0, str(ROOT / "src"))
 
 from sitegen.build import BuildConfig, build  # noqa: E402
+from sitegen.accuracy.build_costs import page_bytes  # noqa: E402
 
 
 def build_times(runs: int = 3) -> dict:
@@ -87,18 +86,7 @@ def rebuild_times(runs: int = 3) -> dict:
 
 def page_sizes(site: Path) -> dict:
     """Raw and gzip bytes of each page and of everything it loads."""
-    sizes = {}
-    for page in sorted(site.glob("*.html")):
-        html = page.read_text()
-        assets = sorted(set(re.findall(r'(?:href|src)="(assets/[^"]+)"', html)) | {"assets/latinmodern-math.woff2"})
-        files = [page, *(site / a for a in assets)]
-        sizes[page.name] = {
-            "html_raw": page.stat().st_size,
-            "html_gzip": len(gzip.compress(page.read_bytes(), 9, mtime=0)),
-            "total_raw": sum(f.stat().st_size for f in files),
-            "total_gzip": sum(len(gzip.compress(f.read_bytes(), 9, mtime=0)) for f in files),
-        }
-    return sizes
+    return {page.name: page_bytes(site, page) for page in sorted(site.glob("*.html"))}
 
 
 def main() -> int:
@@ -112,9 +100,6 @@ def main() -> int:
         "rebuilds": rebuild_times(),
         "pages": page_sizes(site),
     }
-    scenes_file = OUT / "scenes.json"
-    subprocess.run([sys.executable, str(ROOT / "bench" / "scenes.py"), "--site", str(site), "--out", str(scenes_file)], check=True)
-    report["scenes"] = json.loads(scenes_file.read_text())
     latency_file = OUT / "latency.json"
     subprocess.run([sys.executable, str(ROOT / "bench" / "latency.py"), "--site", str(site), "--out", str(latency_file)], check=True)
     report["latency"] = json.loads(latency_file.read_text())

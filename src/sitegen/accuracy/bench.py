@@ -7,7 +7,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 from . import summary
-from .build_costs import page_sizes, scene_cold_times
+from .build_costs import scene_cold_times, site_sizes
 from .experiments import FULL, Plan, bubble_experiment, chain_experiment
 from .resolution import resolution_experiment
 from .results import SCHEMA
@@ -30,8 +30,10 @@ def run_bench(root: Path, plan: Plan = FULL, progress=print) -> dict:
             results["bubble"][case] = bubble_experiment(case, plan)
     with _section(sections, "resolution", progress, "interpolation error against bytes"):
         results["resolution"] = resolution_experiment()
-    with _section(sections, "build", progress, "cold tabulation time per scene, bytes per page"):
-        results["build"] = {"scenes": scene_cold_times(root, plan.scene_repeats, progress), "pages": page_sizes(root)}
+    with _section(sections, "build", progress, "per scene: cold tabulation time, states, stored values, bytes; bytes per page"):
+        pages, data = site_sizes(root)
+        scenes = scene_cold_times(root, plan.scene_repeats, progress)
+        results["build"] = {"scenes": {name: {**row, "data": data.get(name)} for name, row in scenes.items()}, "pages": pages}
     results["section_seconds"] = sections
     results["seconds"] = time.perf_counter() - start
     return results
@@ -63,9 +65,11 @@ def summary_lines(results: dict) -> list[str]:
     for row in results["resolution"]:
         lines.append(f"  {row['output']:<24} {row['axis_text']:<18} {row['nodes']:>4} nodes  "
                      f"{row['error'] / row['display_resolution']:9.3g}×  {row['bytes_float32']:>5} B")
-    lines.append("build: cold tabulation per scene (median):")
+    lines.append("build, per scene: cold tabulation (median), full-product slider states, stored values, inline data:")
     for name, scene in results["build"]["scenes"].items():
-        lines.append(f"  {name:<40} {scene['seconds']:8.3f} s over {scene['repeats']} run(s), {scene['stops']:,} stops")
+        data = scene.get("data") or {"raw": 0, "gzip": 0}
+        lines.append(f"  {name:<40} {scene['seconds']:8.3f} s over {scene['repeats']} run(s), {scene['stops']:>17,} states, "
+                     f"{scene.get('stored_values', 0):>10,} values, {data['raw'] / 1024:7.1f} KiB raw {data['gzip'] / 1024:6.1f} KiB gzip")
     for name, page in results["build"]["pages"].items():
         lines.append(f"  {name:<28} {page['html_gzip'] / 1024:7.1f} KiB gzip, with assets {page['total_gzip'] / 1024:7.1f} KiB")
     return lines

@@ -1,4 +1,5 @@
-"""What building the book costs: cold tabulation time per scene and the bytes of each page.
+"""What building the book costs: per scene its cold tabulation time, the slider states of its full
+cross product, the values it stores and the bytes of its inline data; per page its bytes.
 
 "Cold" means no table cache and no model-level memo (the bubble keeps an LRU of solved points):
 each timed run tabulates the scene from nothing, as a first build on a fresh checkout would.
@@ -14,6 +15,8 @@ from pathlib import Path
 
 from ..build import BuildConfig, BuildReport, build, read_pages, resolve_scenes, tabulate_scenes
 from ..errors import ErrorLog
+from ..review.tree import parse_page
+from .page import scene_data
 from .timing import time_medians
 
 
@@ -27,7 +30,8 @@ def clear_model_caches() -> None:
 
 
 def scene_cold_times(root: Path, repeats: int = 3, progress=None) -> dict[str, dict]:
-    """Median seconds to tabulate each scene of the book from nothing, serially, with its stop count."""
+    """Median seconds to tabulate each scene of the book from nothing, serially, with its count of
+    slider states (the full cross product) and of the values its tables store."""
     config = BuildConfig.at(root, cache=None)
     log = ErrorLog()
     scenes = resolve_scenes(read_pages(config, log), log)
@@ -38,7 +42,7 @@ def scene_cold_times(root: Path, repeats: int = 3, progress=None) -> dict[str, d
     for item in scenes:
         name = scene_key(item)
         times[name] = {"seconds": timed[name].seconds, "repeats": timed[name].repeats, "model": item.scene.model.name,
-                       "stops": prod(axis.count for axis in item.scene.axes)}
+                       "stops": prod(axis.count for axis in item.scene.axes), "stored_values": timed[name].result}
         if progress:
             progress(f"  {name:<40} {timed[name].seconds:8.3f} s (median of {timed[name].repeats})")
     return times
@@ -49,25 +53,39 @@ def scene_key(item) -> str:
     return f"{item.page.slug}#{item.scene.id}"
 
 
-def _tabulate_cold(item, config: BuildConfig) -> None:
+def _tabulate_cold(item, config: BuildConfig) -> int:
+    """Tabulate one scene from nothing; the number of values its tables store."""
     clear_model_caches()
     log = ErrorLog()
-    tabulate_scenes([item], None, config, BuildReport(), log)
+    tables = tabulate_scenes([item], None, config, BuildReport(), log)
     log.raise_if_any()
+    return sum(t.stored_values() for scene_tables in tables.values() for t in scene_tables.values())
 
 
-def page_sizes(root: Path) -> dict[str, dict]:
-    """Raw and gzip bytes of each built page, alone and with every asset it loads."""
+def site_sizes(root: Path) -> tuple[dict[str, dict], dict[str, dict]]:
+    """The book built once: raw and gzip bytes of each page (alone and with every asset it loads),
+    and of each scene's inline data by "page#scene"."""
     with tempfile.TemporaryDirectory() as folder:
         site = Path(folder) / "build"
         build(BuildConfig.at(root, site), progress=None)
-        return {page.name: _page_bytes(site, page) for page in sorted(site.glob("*.html"))}
+        pages, data = {}, {}
+        for page in sorted(site.glob("*.html")):
+            pages[page.name] = page_bytes(site, page)
+            html = page.read_bytes()
+            for scene in parse_page(page.name, html.decode()).scenes:
+                payload = scene_data(html, scene.id) or b""
+                data[f"{page.stem}#{scene.id}"] = {"raw": len(payload), "gzip": len(gzip.compress(payload, 9, mtime=0))}
+        return pages, data
 
 
-def _page_bytes(site: Path, page: Path) -> dict:
+def page_bytes(site: Path, page: Path) -> dict:
+    """Raw and gzip bytes of a built page, alone and with every asset it loads (the stylesheet's
+    font included)."""
     html = page.read_text()
-    assets = sorted(set(re.findall(r'(?:href|src)="(assets/[^"]+)"', html)))
-    files = [page, *(site / a for a in assets if (site / a).is_file())]
+    assets = set(re.findall(r'(?:href|src)="(assets/[^"]+)"', html))
+    for sheet in [a for a in assets if a.endswith(".css")]:
+        assets |= {f"assets/{u}" for u in re.findall(r'url\("?([^")]+)"?\)', (site / sheet).read_text())}
+    files = [page, *(site / a for a in sorted(assets) if (site / a).is_file())]
     packed = [len(gzip.compress(f.read_bytes(), 9, mtime=0)) for f in files]
     return {"html_raw": page.stat().st_size, "html_gzip": packed[0],
             "total_raw": sum(f.stat().st_size for f in files), "total_gzip": sum(packed)}

@@ -415,14 +415,18 @@ def _scene_link(context: ReportContext, slug: str, scene: str) -> str:
             f'<span class="report-note">{escape(title)}</span>')
 
 
-def _scene_bytes(files: dict, slug: str, scene: str, remember) -> tuple[int, int]:
-    """Raw and gzip bytes of a scene's inline tables in this build (0, 0 when not found)."""
-    html = files.get(f"{slug}.html", b"")
+def scene_data(html: bytes, scene: str) -> bytes | None:
+    """The inline tables (JSON) of scene `scene` in a built page, or None when it is not there."""
     start = html.find(f'id="scene-{scene}"'.encode())
     found = _SCENE_DATA.search(html, start) if start >= 0 else None
-    if not found:
+    return found[1] if found else None
+
+
+def _scene_bytes(files: dict, slug: str, scene: str, remember) -> tuple[int, int]:
+    """Raw and gzip bytes of a scene's inline tables in this build (0, 0 when not found)."""
+    payload = scene_data(files.get(f"{slug}.html", b""), scene)
+    if payload is None:
         return 0, 0
-    payload = found[1]
     packed = remember("report-gzip", hashlib.sha256(payload).hexdigest(), lambda: str(len(gzip.compress(payload, 9, mtime=0))).encode())
     return len(payload), int(packed)
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import hashlib
 import itertools
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -290,7 +290,9 @@ def prove(scene: ResolvedScene, table: Structured, stops: np.ndarray) -> tuple[f
         inputs[axis.param] = axis.values()[stops[:, i]]
     direct = np.asarray(scene.model.evaluate(inputs, [table.output], scene.effects)[table.output], dtype=float)
     direct = np.broadcast_to(direct, (len(stops),) + ((output.size,) if output.size else ()))
-    _require_showable(scene, output, direct, stops)
+    deps = scene.model.deps_of(output.name, scene.effects)
+    dep_axes = tuple(i for i, a in enumerate(scene.axes) if a.param in deps)
+    require_showable(scene, output, direct, lambda index: stop_text(scene, dep_axes, stops[index[0], list(dep_axes)]))
     page = shown(table, stops)
     if output.is_text:
         wrong = page != direct.astype(np.int64)
@@ -301,10 +303,10 @@ def prove(scene: ResolvedScene, table: Structured, stops: np.ndarray) -> tuple[f
         wrong = wrong.any(axis=tuple(range(1, wrong.ndim)))
     if wrong.any():
         k = int(np.argmax(wrong))
-        where = ", ".join(f"{a.param}={a.stop(int(s))}" for a, s in zip(scene.axes, stops[k])) or "the fixed values"
         raise AuthorError(
             scene.spec.loc,
-            f"output '{table.output}': its declared structure gives {_text(page[k], output)} at {where}, "
+            f"output '{table.output}': its declared structure gives {_text(page[k], output)} "
+            f"{stop_text(scene, tuple(range(len(scene.axes))), stops[k])}, "
             f"but the model gives {_text(direct[k], output, raw=True)}; the structure declared in model "
             f"'{scene.model.name}' is wrong for this scene (remove it to tabulate per stop)",
             scene.id,
@@ -313,24 +315,27 @@ def prove(scene: ResolvedScene, table: Structured, stops: np.ndarray) -> tuple[f
     return float(page.min()) * scale, float(page.max()) * scale
 
 
-def _require_showable(scene: ResolvedScene, output, direct: np.ndarray, stops: np.ndarray) -> None:
-    """Fail on a value too large to count exactly in units of its last digit (2**53 in the script)."""
+def require_showable(scene: ResolvedScene, output, values: np.ndarray, where) -> None:
+    """Fail on a number too large to be counted exactly in units of its last digit: the page's
+    script reads the counts as JavaScript numbers, exact only up to 2**53 (past 2**63 the count
+    would even wrap around). `where(index)` says where the value at that index of `values` is."""
     if output.is_text:
         return
     limit = 2.0**53 / 10.0**output.decimals
-    large = np.abs(direct) >= limit
-    if large.any():
-        k = int(np.argmax(large.reshape(len(stops), -1).any(axis=1)))
-        deps = scene.model.deps_of(output.name, scene.effects)
-        where = ", ".join(f"{a.param}={a.stop(int(s))}" for a, s in zip(scene.axes, stops[k]) if a.param in deps)
-        values = np.ravel(direct[k])
+    bad = np.argwhere(np.isfinite(values) & (np.abs(values) >= limit))
+    if len(bad):
         raise AuthorError(
             scene.spec.loc,
-            f"output '{output.name}' is {values[np.argmax(np.abs(values))]:.6g} "
-            f"at {where or 'the fixed values'}, too large to show with {output.decimals} decimals (at most {limit:.6g}); "
-            "narrow the sliders' ranges",
+            f"output '{output.name}' is {values[tuple(bad[0])]:.6g} {where(bad[0])}, too large to show "
+            f"with {output.decimals} decimals (at most {limit:.6g}); narrow the sliders' ranges",
             scene.id,
         )
+
+
+def stop_text(scene: ResolvedScene, axes: tuple[int, ...], index) -> str:
+    """Where a value is: "at m1=0.1, e=1.00" for the stops `index` of the sliders `axes`."""
+    stop = ", ".join(f"{scene.axes[a].param}={scene.axes[a].stop(int(k))}" for a, k in zip(axes, index))
+    return f"at {stop}" if stop else "at the scene's fixed values"
 
 
 def _ties(direct: np.ndarray, decimals: int, page: np.ndarray, expected: np.ndarray) -> np.ndarray:
@@ -376,6 +381,6 @@ def compile_structured(scene: ResolvedScene, pieces: dict[str, object], per_stop
         table = Structured(name, expr, output.decimals, output.labels, output.size, output.special,
                            dict(compiler.parts), compiler.sliders)
         bounds = prove(scene, table, stops)
-        out[name] = Structured(**{**table.__dict__, "bounds": bounds})
+        out[name] = replace(table, bounds=bounds)
     out.update({n: t for n, t in compiler.parts.items() if n not in out})
     return out

@@ -10,7 +10,7 @@ from ..errors import AuthorError
 from ..physics.structure import outputs_read
 from .quantize import SPECIAL, quantize
 from .scenes import ResolvedScene
-from .structure import compile_structured, structured_pieces
+from .structure import compile_structured, require_showable, stop_text, structured_pieces
 from .table import Table, drop_constant_axes
 
 
@@ -122,7 +122,7 @@ def _finish_table(scene: ResolvedScene, axes: tuple[int, ...], name: str, array:
     if lengths is not None:
         array = np.nan_to_num(array, nan=0.0)  # the padding; the lengths say where rows end
     _require_finite(scene, axes, output, array)
-    _require_showable(scene, axes, output, array)
+    require_showable(scene, output, array, lambda index: stop_text(scene, axes, index))
     quanta = array.astype(np.int64) if output.is_text else quantize(array, output.decimals, special=bool(output.special))
     if lengths is not None:  # drop axes only where the lengths are constant too
         quanta = np.concatenate([quanta, lengths[..., None]], axis=-1)
@@ -143,7 +143,7 @@ def _ragged_lengths(scene: ResolvedScene, axes, output, array: np.ndarray) -> np
     padded_at_end = np.arange(output.size) < lengths[..., None]
     if not np.array_equal(finite, padded_at_end):
         bad = np.argwhere(~np.all(finite == padded_at_end, axis=-1))[0]
-        raise AuthorError(scene.spec.loc, f"output '{output.name}' has NaN inside its values {_stop_text(scene, axes, bad)}", scene.id)
+        raise AuthorError(scene.spec.loc, f"output '{output.name}' has NaN inside its values {stop_text(scene, axes, bad)}", scene.id)
     return lengths
 
 
@@ -154,29 +154,7 @@ def _require_finite(scene: ResolvedScene, axes: tuple[int, ...], output, array: 
     if len(bad):
         raise AuthorError(
             scene.spec.loc,
-            f"output '{output.name}' is not finite ({array[tuple(bad[0])]}) {_stop_text(scene, axes, bad[0])}; "
+            f"output '{output.name}' is not finite ({array[tuple(bad[0])]}) {stop_text(scene, axes, bad[0])}; "
             "the model must return finite numbers",
             scene.id,
         )
-
-
-def _require_showable(scene: ResolvedScene, axes: tuple[int, ...], output, array: np.ndarray) -> None:
-    """Fail on a number too large to be counted exactly in units of its last digit: the page's
-    script reads the counts as JavaScript numbers, exact only up to 2**53 (past 2**63 the count
-    would even wrap around)."""
-    if output.is_text:
-        return
-    limit = 2.0**53 / 10.0**output.decimals
-    bad = np.argwhere(np.isfinite(array) & (np.abs(array) >= limit))
-    if len(bad):
-        raise AuthorError(
-            scene.spec.loc,
-            f"output '{output.name}' is {array[tuple(bad[0])]:.6g} {_stop_text(scene, axes, bad[0])}, too large to show "
-            f"with {output.decimals} decimals (at most {limit:.6g}); narrow the sliders' ranges",
-            scene.id,
-        )
-
-
-def _stop_text(scene: ResolvedScene, axes: tuple[int, ...], index) -> str:
-    stop = ", ".join(f"{scene.axes[a].param}={scene.axes[a].stop(int(k))}" for a, k in zip(axes, index))
-    return f"at {stop}" if stop else "at the scene's fixed values"

@@ -22,6 +22,7 @@ import re
 import threading
 from dataclasses import dataclass
 from decimal import Decimal
+from fractions import Fraction
 from pathlib import Path
 from typing import Mapping
 
@@ -411,8 +412,9 @@ def accepted_readouts(scene: BookScene, stops) -> dict[str, tuple[str, ...]]:
 
 def expected_control_text(scene: BookScene, param: str, index: int) -> str:
     """A control's value as the page must announce it (aria-valuetext) and show it beside it:
-    an evenly spaced slider's stop with the decimals every stop needs, a listed stop as the author
-    wrote it, a choice's option name; numbers with the parameter's unit."""
+    an evenly spaced slider's stop with the decimals every stop needs (rounded when a step such
+    as 1/60 has no finite decimal), a listed stop as the author wrote it, a choice's option name;
+    numbers with the parameter's unit."""
     axis = scene.axis(param)
     if axis.kind == CHOICE:
         return axis.labels[index]
@@ -422,6 +424,10 @@ def expected_control_text(scene: BookScene, param: str, index: int) -> str:
         text = fmt(float(value), axis.decimals)
         # fmt goes through a float; make sure that cannot have changed the exact decimal written.
         assert Decimal(text.replace(MINUS, "-")) == value, (text, value)
+    elif axis.has_fractions:
+        text = fmt(float(value), axis.decimals)
+        # the shown text is the exact stop to within half its last digit
+        assert abs(Fraction(Decimal(text.replace(MINUS, "-"))) - Fraction(value)) <= Fraction(1, 2 * 10**axis.decimals), (text, value)
     else:
         text = plain(value).replace("-", MINUS)
     return with_unit(text, unit)
@@ -467,7 +473,10 @@ def describe_stop(scene: BookScene, param: str, k: int | None) -> str:
     if k is None:
         return "?"
     axis = scene.axis(param)
-    return axis.labels[k] if axis.kind == CHOICE else plain(axis.stop(k))
+    if axis.kind == CHOICE:
+        return axis.labels[k]
+    stop = axis.stop(k)
+    return plain(stop) if isinstance(stop, Decimal) else str(stop)  # a fraction such as 13/60 as itself
 
 
 # --- layers -----------------------------------------------------------------------------------------

@@ -14,9 +14,15 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 @pytest.fixture(scope="session")
 def built_site(tmp_path_factory) -> Path:
-    """The book under content/, built into a temporary folder (build/ is left alone)."""
+    """The book under content/, built into a temporary folder (build/ is left alone).
+
+    It uses the project's cache (.cache/), as `make site` does: on a fresh clone this is the one
+    build of the book that computes everything (the bubble scenes take minutes), and the other
+    builds of the book in the suite reuse its tables. tests/test_build.py checks computing from
+    nothing separately.
+    """
     folder = tmp_path_factory.mktemp("site")
-    build(BuildConfig.at(ROOT, folder / "build", cache=folder / ".cache"), progress=None)
+    build(BuildConfig.at(ROOT, folder / "build"), progress=None)
     return folder / "build"
 
 

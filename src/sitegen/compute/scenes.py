@@ -4,12 +4,13 @@ from __future__ import annotations
 import difflib
 from dataclasses import dataclass
 from decimal import Decimal
+from fractions import Fraction
 
 from ..content.scenes import CHOICE_FORM, ChoiceSpec, SceneSpec, SliderSpec
 from ..errors import AuthorError
 from ..physics import Model, Output
 from ..physics.numerics import configure
-from .grid import CHOICE, LIST, Axis
+from .grid import CHOICE, LIST, Axis, as_decimal
 
 MAX_STOPS = 100_001  # per slider; more is almost certainly a typo in the step
 
@@ -135,7 +136,7 @@ def _slider_axis(s: SliderSpec, model: Model, seen: set[str], effects: frozenset
         return None, problem
     if s.listed:
         return Axis(s.param, s.listed, LIST), None
-    return Axis.evenly(s.param, s.lo, s.step, int((s.hi - s.lo) / s.step) + 1), None
+    return Axis.evenly(s.param, s.lo, s.step, int((Fraction(s.hi) - Fraction(s.lo)) / Fraction(s.step)) + 1), None
 
 
 def _choice_axis(c: ChoiceSpec, model: Model, seen: set[str]) -> tuple[Axis | None, str | None]:
@@ -190,20 +191,29 @@ def _range_problem(s: SliderSpec, model: Model, effects: frozenset[str]) -> str 
         return f"step {s.step} must be positive"
     if s.lo >= s.hi:
         return f"min {s.lo} must be below max {s.hi}"
-    count = (s.hi - s.lo) / s.step
-    if count != count.to_integral_value():
-        return f"range {s.lo}..{s.hi} is not a whole number of steps of {s.step}; max {s.lo + s.step * int(count)} would be"
+    lo, step = Fraction(s.lo), Fraction(s.step)  # exact, whether the step is a decimal or a fraction like 1/60
+    count = (Fraction(s.hi) - lo) / step
+    if count.denominator != 1:
+        return f"range {s.lo}..{s.hi} is not a whole number of steps of {s.step}; max {_stop(s, int(count))} would be"
     if count + 1 > MAX_STOPS:  # (the count itself can have hundreds of digits: not worth printing)
         return f"has more than {MAX_STOPS} stops from {s.lo} to {s.hi} in steps of {s.step}; use a larger step"
     for bound, value in (("min", s.lo), ("max", s.hi)):
         if problem := _domain_problem(model, s.param, value, bound, effects):
             return problem
-    k = (s.default - s.lo) / s.step
-    if not (s.lo <= s.default <= s.hi) or k != k.to_integral_value():
-        below = s.lo + s.step * max(0, min(int(k), int(count)))
-        near = sorted({below, min(below + s.step, s.hi)})
-        return f"default {s.default} is not a stop of {s.lo}..{s.hi} step {s.step}; nearest stops: {', '.join(map(str, near))}"
+    k = (Fraction(s.default) - lo) / step
+    if not (s.lo <= s.default <= s.hi) or k.denominator != 1:
+        below = max(0, min(int(k), int(count)))
+        near = sorted({below, min(below + 1, int(count))})
+        return f"default {s.default} is not a stop of {s.lo}..{s.hi} step {s.step}; nearest stops: {', '.join(_stop(s, n) for n in near)}"
     return None
+
+
+def _stop(s: SliderSpec, k: int) -> str:
+    """Stop k of an evenly spaced slider as an author would write it (to 6 decimals and '…' if no decimal holds it)."""
+    if isinstance(s.step, Decimal):
+        return str(s.lo + s.step * k)
+    exact = as_decimal(Fraction(s.lo) + s.step * k)
+    return str(exact) if isinstance(exact, Decimal) else f"{float(exact):.6f}…"
 
 
 def _no_such_param(name: str, model: Model) -> str:

@@ -15,6 +15,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
+from fractions import Fraction
 
 from ..errors import AuthorError, SourceLoc
 
@@ -23,14 +24,14 @@ _LINE = re.compile(r"^(?P<key>[A-Za-z_]+)(?:\s+(?P<name>[A-Za-z_][A-Za-z0-9_]*))
 # A number, or NaN/infinity, which are read as numbers so that the error can say what is wrong with them.
 _NUMBER = r"[-+]?(?:(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?|(?i:nan|inf(?:inity)?)(?!\w))"
 _SLIDER = re.compile(
-    rf"^(?P<lo>{_NUMBER})\s*\.\.\s*(?P<hi>{_NUMBER})\s+step\s+(?P<step>{_NUMBER})\s+default\s+(?P<default>{_NUMBER})$"
+    rf"^(?P<lo>{_NUMBER})\s*\.\.\s*(?P<hi>{_NUMBER})\s+step\s+(?P<step>{_NUMBER}(?:\s*/\s*\d+)?)\s+default\s+(?P<default>{_NUMBER})$"
 )
 _LIST = re.compile(rf"^(?P<values>{_NUMBER}(?:\s*,\s*{_NUMBER})+)\s+default\s+(?P<default>{_NUMBER})$")
 _CHOICE = re.compile(r"^(?P<options>[\w-]+(?:\s*\|\s*[\w-]+)+)\s+default\s+(?P<default>[\w-]+)$")
 _ID = re.compile(r"^[a-z][a-z0-9-]*$")
 SLIDER_FORM = (
-    "slider NAME: MIN..MAX step STEP default VALUE, e.g. 'slider m1: 0.5..5 step 0.5 default 1', "
-    "or slider NAME: V1, V2, ... default VALUE"
+    "slider NAME: MIN..MAX step STEP default VALUE, e.g. 'slider m1: 0.5..5 step 0.5 default 1' "
+    "(a step may be a fraction: 'step 1/60'), or slider NAME: V1, V2, ... default VALUE"
 )
 CHOICE_FORM = "choice NAME: OPTION | OPTION ... default OPTION, e.g. 'choice force: spring | drag default spring'"
 NUMERICS_FORM = "numerics: KEY VALUE, KEY VALUE ..., e.g. 'numerics: method DOP853, rtol 1e-8, tolerance 1e-6'"
@@ -44,7 +45,7 @@ class SliderSpec:
     param: str
     lo: Decimal
     hi: Decimal
-    step: Decimal
+    step: Decimal | Fraction  # a Fraction when the author wrote one, e.g. 1/60 (frames of an animation)
     default: Decimal
     loc: SourceLoc
     listed: tuple[Decimal, ...] = ()  # the stops, when the author listed them
@@ -164,9 +165,20 @@ def _parse_slider(name: str, value: str, loc: SourceLoc) -> SliderSpec:
     match = _SLIDER.match(value)
     if not match:
         raise AuthorError(loc, f"malformed slider '{name}': '{value}'; write {SLIDER_FORM}")
-    words = {"lo": "min", "hi": "max", "step": "step", "default": "default"}
-    lo, hi, step, default = (_decimal(match[k], loc, f"slider '{name}' {words[k]}") for k in words)
-    return SliderSpec(name, lo, hi, step, default, loc)
+    words = {"lo": "min", "hi": "max", "default": "default"}
+    lo, hi, default = (_decimal(match[k], loc, f"slider '{name}' {words[k]}") for k in words)
+    return SliderSpec(name, lo, hi, _step(match["step"], name, loc), default, loc)
+
+
+def _step(text: str, name: str, loc: SourceLoc) -> Decimal | Fraction:
+    """A slider's step: a decimal, or a fraction such as 1/60 whose stops no decimal can hold."""
+    number, _, divisor = text.partition("/")
+    step = _decimal(number.strip(), loc, f"slider '{name}' step")
+    if not divisor:
+        return step
+    if int(divisor) == 0:
+        raise AuthorError(loc, f"slider '{name}' step '{text}' divides by zero")
+    return Fraction(step) / int(divisor)
 
 
 def _parse_numerics(value: str, loc: SourceLoc) -> tuple[tuple[str, str], ...]:

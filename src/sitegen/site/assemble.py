@@ -85,8 +85,8 @@ def slider_text(scene: ResolvedScene, index: int, stop: int) -> str:
     if axis.kind == CHOICE:
         return axis.labels[stop]
     unit = scene.model.param(axis.param).unit
-    if axis.kind == RANGE:  # evenly spaced: every stop with the same number of decimals
-        text = format_quantum(int(axis.stop(stop).scaleb(axis.decimals)), axis.decimals)
+    if axis.kind == RANGE or axis.has_fractions:  # every stop with the same number of decimals
+        text = format_quantum(axis.quantum(stop), axis.decimals)
     else:  # listed: each stop as the author wrote it
         text = _plain(axis.stop(stop)).replace("-", MINUS)
     return with_unit(text, unit)

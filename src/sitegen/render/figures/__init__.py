@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from .acoustic_energy import AcousticEnergyFigure
 from .base import FigureView
-from .bubble import BubbleFigure
+from .bubble import BubbleEventsFigure, BubbleFigure
 from .chain import ChainFigure
 from .collision import CollisionFigure
 from .euler_slab import EulerSlabFigure
@@ -24,6 +24,7 @@ FIGURES: dict[str, FigureView] = {
     "euler_slab": EulerSlabFigure(),
     "chain": ChainFigure(),
     "bubble": BubbleFigure(),
+    "bubble_events": BubbleEventsFigure(),
 }
 
 __all__ = ["FIGURES", "FigureView"]

@@ -162,3 +162,14 @@ def test_changed_default_redraws_the_figure(book, tmp_path):
     fresh = BuildConfig(book.root, book.content, tmp_path / "fresh", book.node_modules, cache=None)
     build(fresh, progress=None)
     assert (book.out / CHAPTER.replace(".md", ".html")).read_bytes() == (fresh.out / CHAPTER.replace(".md", ".html")).read_bytes()
+
+
+def test_a_scene_key_reads_its_own_model_and_not_the_others():
+    """The chain's key hashes chain.py and what it imports (base, numerics) and the tabulator, but
+    not the other models that the physics registry gathers: editing one model's file recomputes
+    only that model's scenes (tests/test_review.py checks it on the whole book)."""
+    from sitegen.compute.cache import TABULATOR_MODULES, source_hashes
+
+    modules = set(source_hashes(frozenset({"sitegen.physics.chain", *TABULATOR_MODULES})))
+    assert {"sitegen.physics.chain", "sitegen.physics.base", "sitegen.physics.numerics", "sitegen.compute.grid"} <= modules
+    assert not modules & {"sitegen.physics.ossicles", "sitegen.physics.bubble", "sitegen.physics.collision"}

@@ -170,7 +170,10 @@ def two_builds(tmp_path_factory) -> tuple[Path, Path]:
     text = model.read_text()
     assert CONSTANT[0] in text, f"update CONSTANT: {MODEL_FILE} no longer has {CONSTANT[0]!r}"
     model.write_text(text.replace(CONSTANT[0], CONSTANT[1], 1))
-    return old, _build_copy(root, root / "new")
+    new = _build_copy(root, root / "new")
+    # Editing one model's file recomputes that model's scenes only (here the one ossicles scene).
+    assert (root / "new.log").read_text().count(" computed\n") == 1, (root / "new.log").read_text()
+    return old, new
 
 
 def _build_copy(root: Path, out: Path) -> Path:
@@ -178,6 +181,7 @@ def _build_copy(root: Path, out: Path) -> Path:
     done = subprocess.run([sys.executable, "-m", "sitegen.cli", "build", "--root", str(root), "--out", str(out)],
                           cwd=root, env=env, capture_output=True, text=True, check=False)
     assert done.returncode == 0, done.stderr
+    out.with_suffix(".log").write_text(done.stdout)
     return out
 
 

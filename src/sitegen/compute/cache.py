@@ -28,6 +28,10 @@ from .table import Table
 PACKAGE_ROOT = Path(__file__).resolve().parents[1]  # src/sitegen
 TABULATOR_MODULES = ("sitegen.compute.tabulate", "sitegen.compute.structure", "sitegen.compute.table", "sitegen.compute.quantize", "sitegen.compute.grid", "sitegen.compute.scenes")
 LIBRARIES = ("numpy", "scipy", "matplotlib")
+# Packages whose __init__ only gathers the models into a registry: the tabulator reaches them for
+# `Model` and `Output`, but what their imports bring in is every other model. Their own text counts
+# (adding a model changes it); their imports do not, so editing one model recomputes only its scenes.
+REGISTRIES = frozenset({"sitegen.physics"})
 
 
 @dataclass(frozen=True)
@@ -61,6 +65,12 @@ def scene_key(scene: ResolvedScene, outputs: list[str]) -> CacheKey:
 
 def source_digest(modules: frozenset[str]) -> str:
     """Hash of the source of `modules` and every sitegen module they import, transitively."""
+    seen = source_hashes(modules)
+    return _sha("".join(f"{n}:{seen[n]}\n" for n in sorted(seen)))
+
+
+def source_hashes(modules: frozenset[str]) -> dict[str, str]:
+    """{module: hash of its source} for `modules` and the sitegen modules they import, transitively."""
     seen: dict[str, str] = {}
     pending = sorted(modules)
     while pending:
@@ -68,8 +78,8 @@ def source_digest(modules: frozenset[str]) -> str:
         if name in seen or not name.startswith("sitegen"):
             continue
         seen[name], imports = _module_record(name)
-        pending.extend(imports)
-    return _sha("".join(f"{n}:{seen[n]}\n" for n in sorted(seen)))
+        pending.extend(() if name in REGISTRIES else imports)
+    return seen
 
 
 def forget_sources() -> None:

@@ -86,15 +86,6 @@ class BubbleEventsFigure(BubbleFigure):
         layers = [layer for layer in super().layers(scene) if layer.name != "radius"]
         return [replace(layer, style={**layer.style, "stroke-width": "11"}) if layer.name == "extrema" else layer for layer in layers]
 
-    def draw(self, scene, tables):
-        fig = super().draw(scene, tables)
-        fig.axes[0].legend(
-            handles=[Line2D([], [], color=s.INK, marker="o", ls="none", ms=8, label="R$_{max}$, R$_{min}$ (events)"),
-                     Line2D([], [], color=s.ORANGE, marker="o", ls="none", ms=6, label="stopped by an event")],
-            frameon=False, fontsize=9, loc="upper right",
-        )
-        return fig
-
 
 def _two_rows(height_in: float):
     """A figure with a tall and a short panel sharing the time axis (style.new_figure makes one row)."""
@@ -107,10 +98,11 @@ def _legend(ax, handles, **where) -> None:
     ax.legend(handles=handles, frameon=False, fontsize=9, **where)
 
 
-def _model_handles(stop_label: str, extrema_label: str | None = None) -> list:
-    handles = [Line2D([], [], color=s.BLUE, lw=2.2, label="model R(t)")]
+def _model_handles(stop_label: str, extrema_label: str | None = None, curve: bool = True) -> list:
+    """The legend of the model's layers; without the curve (bubble_events) its event dots are drawn larger."""
+    handles = [Line2D([], [], color=s.BLUE, lw=2.2, label="model R(t)")] if curve else []
     if extrema_label:
-        handles.append(Line2D([], [], color=s.INK, marker="o", ls="none", ms=5, label=extrema_label))
+        handles.append(Line2D([], [], color=s.INK, marker="o", ls="none", ms=5 if curve else 8, label=extrema_label))
     handles.append(Line2D([], [], color=s.ORANGE, marker="o", ls="none", ms=6, label=stop_label))
     return handles
 
@@ -136,7 +128,8 @@ def _draw_driven(ax, ax_p, scene, tables) -> None:
     _log_ticks(ax)
     ax.axhline(0.0, color=s.MUTED, lw=0.8)
     ax.set_ylabel("radius R / R$_0$ (log scale)")
-    _legend(ax, _model_handles("stopped by an event", "R$_{max}$, R$_{min}$ (events)"), loc="upper right")
+    curve = "driven_curve_y" in tables  # the bubble_events view does not tabulate the curve
+    _legend(ax, _model_handles("stopped by an event", "R$_{max}$, R$_{min}$ (events)", curve), loc="upper right")
     amplitude = max(param_range(scene, "p_a")[1], 0.1)
     ax_p.set_ylim(1.0 - 1.15 * amplitude, 1.0 + 1.15 * amplitude)
     ax_p.axhline(0.0, color=s.MUTED, lw=0.8)

@@ -267,7 +267,30 @@
     this.scene.update();
   };
 
+  /* A box that scrolls sideways (an equation wider than the text) must be reachable by keyboard
+   * and say that it scrolls; which boxes overflow depends on the font and the width, so it is
+   * decided here, on load and on every resize, rather than at build time. */
+  function markScrollers() {
+    var boxes = document.querySelectorAll(".equation");
+    for (var i = 0; i < boxes.length; i++) {
+      var box = boxes[i], scrolls = box.scrollWidth > box.clientWidth + 1;
+      box.classList.toggle("scrolls", scrolls);
+      if (scrolls) {
+        box.setAttribute("tabindex", "0");
+        box.setAttribute("role", "group");
+        box.setAttribute("aria-label", "equation, scrolls sideways");
+      } else {
+        box.removeAttribute("tabindex");
+        box.removeAttribute("role");
+        box.removeAttribute("aria-label");
+      }
+    }
+  }
+
   function start() {
+    markScrollers();
+    window.addEventListener("resize", markScrollers);
+    if (document.fonts && document.fonts.ready) document.fonts.ready.then(markScrollers);
     var elements = document.querySelectorAll("[data-scene]"), scenes = [];
     for (var i = 0; i < elements.length; i++) scenes.push(new Scene(elements[i]));
     // Going Back restores the controls' positions after load without an input event: redraw.

@@ -81,10 +81,9 @@ class _SlotPreprocessor(Preprocessor):
         return out
 
     def _scene(self, lines, i, loc, out) -> int:
-        end = next((j for j in range(i + 1, len(lines)) if lines[j].strip() == "```"), None)
+        end = self._block_end(lines, i, loc, "scene")
         if end is None:
-            self.found.errors.append(AuthorError(loc, "scene block is not closed; end it with a line '```'"))
-            return len(lines)
+            return self._after_unclosed(lines, i)
         spec, errors = parse_scene_block(lines[i + 1 : end], loc)
         self.found.errors.extend(errors)
         if spec is not None:
@@ -94,16 +93,38 @@ class _SlotPreprocessor(Preprocessor):
         return end + 1
 
     def _report(self, lines, i, loc, out) -> int:
-        end = next((j for j in range(i + 1, len(lines)) if lines[j].strip() == "```"), None)
+        end = self._block_end(lines, i, loc, "accuracy-report")
         if end is None:
-            self.found.errors.append(AuthorError(loc, "accuracy-report block is not closed; end it with a line '```'"))
-            return len(lines)
+            return self._after_unclosed(lines, i)
         block, errors = parse_report_block(lines[i + 1 : end], loc)
         self.found.errors.extend(errors)
         if block is not None:
             self.found.reports.append(block)
             out.extend(["", f'<div data-report-slot="{len(self.found.reports) - 1}"></div>', ""])
         return end + 1
+
+    def _block_end(self, lines, i, loc, kind: str) -> int | None:
+        """The closing fence of the block opened at line i, or None (one error at the opening line).
+
+        A block that runs into the next fence was never closed: reading on to that block's closing
+        fence would swallow it and set every later fence off by one, so the error is reported once,
+        here, where the author can fix it.
+        """
+        for j in range(i + 1, len(lines)):
+            if lines[j].strip() == "```":
+                return j
+            if _CODE_FENCE.match(lines[j].lstrip()):
+                line = self.first_line + j
+                self.found.errors.append(AuthorError(
+                    loc, f"{kind} block is not closed: line {line} opens another block; end this one with a line '```' before it"))
+                return None
+        self.found.errors.append(AuthorError(loc, f"{kind} block is not closed; end it with a line '```'"))
+        return None
+
+    @staticmethod
+    def _after_unclosed(lines, i) -> int:
+        """Where reading goes on after an unclosed block: at the next fence, or at the end of the page."""
+        return next((j for j in range(i + 1, len(lines)) if _CODE_FENCE.match(lines[j].lstrip())), len(lines))
 
     def _copy_code(self, lines, i, out) -> int:
         fence = lines[i][:3]

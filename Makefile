@@ -9,13 +9,18 @@ PORT   ?= 8000
 export OPENBLAS_NUM_THREADS := 1
 export DEBIAN_FRONTEND := noninteractive
 
-.PHONY: site test serve bench clean tools-node tools-chromium tools-java review accept-figures
+.PHONY: site test check serve bench clean tools-node tools-chromium tools-java review accept-figures
 
 site: $(VENV)/.site-installed node_modules/.installed
 	$(BIN)/sitegen build
 
 test: $(VENV)/.test-installed node_modules/.installed tools-chromium tools-java
 	$(BIN)/pytest
+
+# The inner loop: every test but those that drive Chromium or build the project's own book
+# (the end-to-end tests run on the tiny book in tests/book/).
+check: $(VENV)/.test-installed node_modules/.installed
+	$(BIN)/pytest -q -m "not browser and not slow"
 
 serve: site
 	$(BIN)/sitegen serve --dir build --port $(PORT)

@@ -1,7 +1,15 @@
-"""Shared fixtures: the project's own book built once per test session."""
+"""Shared fixtures: the tiny test book (tests/book/) and the project's own book, each built once per
+session, and the markers that pick a fast subset (`make check` runs everything but `browser` and
+`slow`).
+
+A test that asks for `built_site` (the real book) is marked `slow`; one that asks for `chromium`,
+or lives in a browser module, is marked `browser`: the marks follow from what a test uses, so a
+new test cannot forget them.
+"""
 from __future__ import annotations
 
 import os
+import shutil
 from pathlib import Path
 
 import pytest
@@ -9,7 +17,48 @@ import pytest
 from sitegen.build import BuildConfig, build
 
 ROOT = Path(__file__).resolve().parents[1]
+BOOK = Path(__file__).resolve().parent / "book"  # the tiny book: a few pages, one scene per model family
+BROWSER_MODULES = {"test_browser", "test_accessibility"}
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+
+def pytest_collection_modifyitems(items) -> None:
+    """Mark what builds the real book `slow` and what drives Chromium `browser`."""
+    for item in items:
+        names = set(getattr(item, "fixturenames", ()))
+        if "built_site" in names:
+            item.add_marker(pytest.mark.slow)
+        if "chromium" in names or item.module.__name__ in BROWSER_MODULES:
+            item.add_marker(pytest.mark.browser)
+
+
+def copy_book(root: Path, cache: Path | None = None) -> BuildConfig:
+    """A copy of the tiny book at `root` (node_modules linked in), with a copy of `cache` when given."""
+    shutil.copytree(BOOK / "content", root / "content")
+    (root / "node_modules").symlink_to(ROOT / "node_modules")
+    if cache is not None:
+        shutil.copytree(cache, root / ".cache")
+    return BuildConfig.at(root)
+
+
+@pytest.fixture(scope="session")
+def tiny_built(tmp_path_factory) -> BuildConfig:
+    """The tiny book built once from nothing (its own cache, filled by this build)."""
+    config = copy_book(tmp_path_factory.mktemp("tiny"))
+    build(config, progress=None)
+    return config
+
+
+@pytest.fixture(scope="session")
+def tiny_site(tiny_built) -> Path:
+    """The tiny book's build/ (read it, do not change it)."""
+    return tiny_built.out
+
+
+@pytest.fixture
+def tiny_book(tmp_path, tiny_built) -> BuildConfig:
+    """A fresh copy of the tiny book for one test, with a warm copy of its cache and no build/ yet."""
+    return copy_book(tmp_path / "book", tiny_built.cache)
 
 
 @pytest.fixture(scope="session")
@@ -17,9 +66,8 @@ def built_site(tmp_path_factory) -> Path:
     """The book under content/, built into a temporary folder (build/ is left alone).
 
     It uses the project's cache (.cache/), as `make site` does: on a fresh clone this is the one
-    build of the book that computes everything (the bubble scenes take minutes), and the other
-    builds of the book in the suite reuse its tables. tests/test_build.py checks computing from
-    nothing separately.
+    build of the book that computes everything, and the other builds of the book in the suite
+    reuse its tables.
     """
     folder = tmp_path_factory.mktemp("site")
     build(BuildConfig.at(ROOT, folder / "build"), progress=None)

@@ -28,7 +28,7 @@ from typing import Mapping
 
 import numpy as np
 
-from sitegen.build import BuildConfig, read_pages, resolve_scenes
+from sitegen.build import BuildConfig, resolve_book
 from sitegen.compute.grid import CHOICE, LIST, RANGE
 from sitegen.compute.quantize import MINUS, fmt
 from sitegen.compute.scenes import ResolvedScene
@@ -102,11 +102,9 @@ class BookScene:
 
 def book() -> tuple[list[Page], list[BookScene]]:
     """Every page of the book and every scene on it, read and resolved as the build does."""
-    log = ErrorLog()
-    pages = read_pages(BuildConfig.at(ROOT), log)
-    resolved = resolve_scenes(pages, log)
-    log.raise_if_any()
-    scenes = [BookScene(item.page, item.scene) for item in resolved]
+    resolved = resolve_book(BuildConfig.at(ROOT))
+    pages = list(resolved.pages)
+    scenes = [BookScene(item.page, item.scene) for item in resolved.scenes]
     declared = sum(len(p.found.scenes) for p in pages)
     assert len(scenes) == declared, f"{declared} scene blocks, {len(scenes)} resolved"
     return pages, scenes

@@ -14,17 +14,18 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from sitegen.accuracy import summary
-from sitegen.accuracy.blocks import PARTS
+from sitegen.build import BuildConfig, build
+from sitegen.errors import BuildFailed
+from sitegen.physics import MODELS
+from sitegen.site.report import report_parts, summary
 from sitegen.accuracy.experiments import (
     CHAIN_T, bubble_problem, case_errors, chain_by_eigh, chain_error, chain_exact, collapse_errors, extrema,
     run_chain_ivp, run_verlet, skip_reason, solve_case, verlet_steps,
 )
-from sitegen.accuracy.page import fill_reports, sci
+from sitegen.site.report.html import sci
 from sitegen.accuracy.resolution import LINES, interpolation_error, resolution_experiment
-from sitegen.accuracy.results import BENCH_NAME, load_results
 from sitegen.cli import main
-from sitegen.content.pages import read_page
+from sitegen.content.bench_results import BENCH_NAME, load_results
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -220,27 +221,31 @@ def test_committed_bench_results_cover_every_experiment():
 # --- the report blocks --------------------------------------------------------------------------------------
 
 
-def _page_with(tmp_path: Path, block: str):
-    (tmp_path / "content").mkdir(exist_ok=True)
-    path = tmp_path / "content" / "accuracy.md"
-    path.write_text(f'+++\ntitle = "Accuracy"\n+++\n\nText.\n\n```accuracy-report\n{block}\n```\n')
-    return read_page(path, tmp_path)
+def _book_with(tmp_path: Path, block: str) -> BuildConfig:
+    """A home page and an accuracy page holding one report block (no bench.json, no scenes)."""
+    content = tmp_path / "content"
+    content.mkdir(exist_ok=True)
+    (content / "index.md").write_text('+++\ntitle = "Book"\n+++\n\nHome.\n')
+    (content / "accuracy.md").write_text(f'+++\ntitle = "Accuracy"\n+++\n\nText.\n\n```accuracy-report\n{block}\n```\n')
+    return BuildConfig(tmp_path, content, tmp_path / "build", ROOT / "node_modules", cache=None)
 
 
 def test_unknown_report_part_is_an_author_error_at_its_line(tmp_path):
-    """`show: nope` names the file, the line and the parts there are."""
-    _, errors = _page_with(tmp_path, "show: nope")
-    assert [str(e) for e in errors] == [f"content/accuracy.md:8: accuracy-report: unknown part 'nope'; parts: {', '.join(PARTS)}"]
+    """`show: nope` names the file, the line and the parts there are (the book's and the models')."""
+    with pytest.raises(BuildFailed) as failure:
+        build(_book_with(tmp_path, "show: nope"), progress=None)
+    parts = ", ".join(report_parts(MODELS))
+    assert "chain, bubble-A, bubble-B, bubble-C" in parts  # declared by the chain and bubble models
+    assert [str(e) for e in failure.value.errors] == [f"content/accuracy.md:8: accuracy-report: unknown part 'nope'; parts: {parts}"]
 
 
 @pytest.mark.parametrize("part, text", [("chain", "No benchmark results yet"), ("scenes", "No numerical scenes were checked")],
                          ids=["chain-without-bench", "scenes-without-records"])
 def test_report_blocks_say_clearly_when_there_is_nothing_to_show(tmp_path, part, text):
     """Without bench.json a bench part says how to get one; with no records the scene table says so."""
-    page, errors = _page_with(tmp_path, f"show: {part}")
-    assert not errors
-    files = fill_reports({"accuracy.html": page.html.encode()}, [page], [], [], tmp_path / "missing.json")
-    html = files["accuracy.html"].decode()
+    config = _book_with(tmp_path, f"show: {part}")
+    build(config, progress=None)
+    html = (config.out / "accuracy.html").read_text()
     assert text in html and "data-report-slot" not in html
 
 

@@ -6,7 +6,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from sitegen.accuracy.check import caption_sentence, check_scenes, sample_stops
+from sitegen.compute.check import caption_sentence, check_scenes, sample_stops
 from sitegen.build import BuildConfig, build
 from sitegen.compute.scenes import resolve_scene
 from sitegen.content.scenes import parse_scene_block

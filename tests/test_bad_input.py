@@ -193,12 +193,14 @@ def test_output_that_cannot_be_written(tmp_path):
 
 
 def test_internal_error_is_reported_without_traceback(tmp_path, register, capsys):
-    """A bug (an exception no author can cause) is one line naming it, exit 3; --debug shows the traceback."""
+    """A bug (an exception no author can cause) is one line naming it and where it struck (page, line,
+    scene, phase), exit 3; --debug shows the traceback."""
     register("buggy", _raise(KeyError("oops")))
     make_book(tmp_path, {"bug": SCENE.format(name="buggy")})
     assert cli.main(["build", "--root", str(tmp_path), "--no-cache"]) == 3
     err = capsys.readouterr().err
-    assert "sitegen: internal error: KeyError: 'oops'" in err and "--debug" in err and "Traceback" not in err
+    assert "sitegen: content/bug.md:5: scene 'buggy': internal error while tabulating: KeyError: 'oops'" in err
+    assert "--debug" in err and "Traceback" not in err
     assert not (tmp_path / "build").exists()
     with pytest.raises(KeyError):
         cli.main(["build", "--root", str(tmp_path), "--no-cache", "--debug"])

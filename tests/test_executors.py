@@ -89,12 +89,10 @@ def test_chunked_scene_gives_the_same_tables(tmp_path, monkeypatch):
 def test_plan_splits_only_heavy_models(tmp_path, monkeypatch):
     """Blocks of at most `max_stops` points (or one row) cover every row of the grid exactly once."""
     _every_output_per_stop(monkeypatch)
-    from sitegen.build import needed_outputs, read_pages, resolve_scenes
-    from sitegen.errors import ErrorLog
+    from sitegen.build import needed_outputs, resolve_book
 
-    log = ErrorLog()
     config = _book(tmp_path, "plan")
-    scene = next(s.scene for s in resolve_scenes(read_pages(config, log), log) if s.scene.model.name == "collision")
+    scene = next(s.scene for s in resolve_book(config).scenes if s.scene.model.name == "collision")
     units = plan_scene(scene, needed_outputs(scene), max_stops=5000)
     full = [u for u in units if u.axes == (0, 1, 2, 3, 4)]
     one_row = 60_500 // scene.axes[0].count  # a block is whole rows of the first slider

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from sitegen.build import BuildConfig, needed_outputs, read_pages, resolve_scenes
+from sitegen.build import BuildConfig, needed_outputs, resolve_book
 from sitegen.compute.quantize import SPECIAL
 from sitegen.compute.structure import Structured, shown
 from sitegen.compute.tabulate import tabulate_scene
@@ -59,11 +59,7 @@ SAMPLE = 20_000
 
 
 def _book_scenes():
-    log = ErrorLog()
-    config = BuildConfig.at(ROOT)
-    scenes = resolve_scenes(read_pages(config, log), log)
-    log.raise_if_any()
-    return [s.scene for s in scenes]
+    return [s.scene for s in resolve_book(BuildConfig.at(ROOT)).scenes]
 
 
 # Scenes whose models have an exact rational reference here; the others are checked against their

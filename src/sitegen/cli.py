@@ -8,7 +8,7 @@ import os
 import sys
 from pathlib import Path
 
-from .errors import BuildFailed
+from .errors import BuildFailed, SceneCrashed
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -81,6 +81,12 @@ def _build(args) -> int:
     except KeyboardInterrupt:
         print(f"build interrupted; {config.out} holds the last complete build", file=sys.stderr)
         return 130
+    except SceneCrashed as crash:  # a bug in a model or in sitegen, met while working on one scene
+        if args.debug:
+            raise crash.error
+        print(f"sitegen: {crash}\n{config.out} holds the last complete build; run again with --debug for the traceback",
+              file=sys.stderr)
+        return 3
     except OSError as problem:  # the machine's side: a folder that cannot be written, a full disk
         if args.debug:
             raise
@@ -103,7 +109,7 @@ def _bench(args) -> int:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     from .accuracy.bench import run_bench, summary_lines
     from .accuracy.experiments import FULL, QUICK
-    from .accuracy.results import BENCH_FILE, write_results
+    from .content.bench_results import BENCH_FILE, write_results
 
     root = args.root.resolve()
     if not (root / "content").is_dir():
@@ -118,7 +124,9 @@ def _bench(args) -> int:
 
 
 class _Progress:
-    """Build progress: one line per phase and per scene; on a terminal also a live bar of scenes."""
+    """Build progress: one line per phase and per scene, and while a long scene computes, how far it got.
+    On a terminal a live bar of scenes follows the last line, and a scene's updates replace each other
+    in place; in a log every update is a line of its own."""
 
     def __init__(self, stream, explain: bool):
         self.stream, self.explain, self.tty = stream, explain, stream.isatty()
@@ -129,6 +137,11 @@ class _Progress:
             line = line.split(": ", 1)[0] if line.startswith("[") else line  # "computed: new" -> "computed"
         if self.bar_shown:
             self.stream.write("\r\x1b[2K")
+        if self.tty and line.endswith(" stops/s"):  # an update inside a scene: shown until the next line
+            self.stream.write(line)
+            self.bar_shown = True
+            self.stream.flush()
+            return
         self.stream.write(line + "\n")
         done, total = _counter(line)
         if self.tty and total and done < total:

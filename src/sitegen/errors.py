@@ -53,3 +53,14 @@ class ErrorLog:
         """End the build with every error collected so far, if there are any."""
         if self.errors:
             raise BuildFailed(self.errors)
+
+
+class SceneCrashed(Exception):
+    """A bug met while working on one scene (an exception no author can cause): where, and in which phase.
+
+    The original exception is the cause (`raise SceneCrashed(...) from error`), for --debug.
+    """
+
+    def __init__(self, loc: SourceLoc, scene: str, phase: str, error: BaseException):
+        self.loc, self.scene, self.phase, self.error = loc, scene, phase, error
+        super().__init__(f"{loc}: scene '{scene}': internal error while {phase}: {type(error).__name__}: {error}")

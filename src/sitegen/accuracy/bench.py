@@ -6,11 +6,12 @@ from contextlib import contextmanager
 from dataclasses import asdict
 from pathlib import Path
 
-from . import summary
+from ..content.bench_results import SCHEMA
+from ..site.report import summary
 from .build_costs import scene_cold_times, site_sizes
 from .experiments import FULL, Plan, bubble_experiment, chain_experiment
 from .resolution import resolution_experiment
-from .results import SCHEMA
+
 from .timing import MEDIUM, SAMPLE, SLOW, machine_info
 
 REPEATS = (f"a warm-up call, then the median of 5 timed runs for calls under {MEDIUM:g} s, 3 under {SLOW:g} s; "

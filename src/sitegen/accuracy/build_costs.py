@@ -10,13 +10,9 @@ import gzip
 import re
 import sys
 import tempfile
-from math import prod
 from pathlib import Path
 
-from ..build import BuildConfig, BuildReport, build, read_pages, resolve_scenes, tabulate_scenes
-from ..errors import ErrorLog
-from ..review.tree import parse_page
-from .page import scene_data
+from ..build import BuildConfig, build, resolve_book, tabulate_book
 from .timing import time_medians
 
 
@@ -33,33 +29,23 @@ def scene_cold_times(root: Path, repeats: int = 3, progress=None) -> dict[str, d
     """Median seconds to tabulate each scene of the book from nothing, serially, with its count of
     slider states (the full cross product) and of the values its tables store."""
     config = BuildConfig.at(root, cache=None)
-    log = ErrorLog()
-    scenes = resolve_scenes(read_pages(config, log), log)
-    log.raise_if_any()
-    jobs = {scene_key(item): (lambda item=item: _tabulate_cold(item, config)) for item in scenes}
+    book = resolve_book(config)
+    jobs = {record.name: (lambda record=record: _tabulate_cold(book.only(record), config)) for record in book.scenes}
     timed = time_medians(jobs, repeats)
     times = {}
-    for item in scenes:
-        name = scene_key(item)
-        times[name] = {"seconds": timed[name].seconds, "repeats": timed[name].repeats, "model": item.scene.model.name,
-                       "stops": prod(axis.count for axis in item.scene.axes), "stored_values": timed[name].result}
+    for record in book.scenes:
+        name = record.name
+        times[name] = {"seconds": timed[name].seconds, "repeats": timed[name].repeats, "model": record.scene.model.name,
+                       "stops": record.stops, "stored_values": timed[name].result}
         if progress:
             progress(f"  {name:<40} {timed[name].seconds:8.3f} s (median of {timed[name].repeats})")
     return times
 
 
-def scene_key(item) -> str:
-    """How the bench and the accuracy page name a scene: "page#scene"."""
-    return f"{item.page.slug}#{item.scene.id}"
-
-
-def _tabulate_cold(item, config: BuildConfig) -> int:
-    """Tabulate one scene from nothing; the number of values its tables store."""
+def _tabulate_cold(book, config: BuildConfig) -> int:
+    """Tabulate a book of one scene from nothing; the number of values its tables store."""
     clear_model_caches()
-    log = ErrorLog()
-    tables = tabulate_scenes([item], None, config, BuildReport(), log)
-    log.raise_if_any()
-    return sum(t.stored_values() for scene_tables in tables.values() for t in scene_tables.values())
+    return sum(record.stored_values for record in tabulate_book(book, config).scenes)
 
 
 def site_sizes(root: Path) -> tuple[dict[str, dict], dict[str, dict]]:
@@ -67,14 +53,9 @@ def site_sizes(root: Path) -> tuple[dict[str, dict], dict[str, dict]]:
     and of each scene's inline data by "page#scene"."""
     with tempfile.TemporaryDirectory() as folder:
         site = Path(folder) / "build"
-        build(BuildConfig.at(root, site), progress=None)
-        pages, data = {}, {}
-        for page in sorted(site.glob("*.html")):
-            pages[page.name] = page_bytes(site, page)
-            html = page.read_bytes()
-            for scene in parse_page(page.name, html.decode()).scenes:
-                payload = scene_data(html, scene.id) or b""
-                data[f"{page.stem}#{scene.id}"] = {"raw": len(payload), "gzip": len(gzip.compress(payload, 9, mtime=0))}
+        report = build(BuildConfig.at(root, site), progress=None)
+        pages = {page.name: page_bytes(site, page) for page in sorted(site.glob("*.html"))}
+        data = {name: {"raw": raw, "gzip": packed} for name, (raw, packed) in report.data_bytes.items()}
         return pages, data
 
 

@@ -19,14 +19,14 @@ from html import escape
 
 import numpy as np
 
-from ..compute.cache import compute_now, digest, scene_key, source_digest
-from ..compute.grid import CHOICE
-from ..compute.scenes import ResolvedScene
 from ..errors import AuthorError
 from ..physics.numerics import written
-from .records import SceneAccuracy
+from .accuracy import SceneAccuracy
+from .cache import compute_now, digest, scene_key, source_digest
+from .grid import CHOICE
+from .scenes import ResolvedScene
 
-CHECK_MODULES = frozenset({"sitegen.accuracy.check", "sitegen.accuracy.records"})
+CHECK_MODULES = frozenset({"sitegen.compute.check", "sitegen.compute.accuracy"})
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,7 @@ from __future__ import annotations
 import os
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from contextlib import contextmanager
-from typing import Iterator
+from typing import Iterable, Iterator
 
 
 class SerialExecutor(Executor):
@@ -46,3 +46,12 @@ def executor_for(jobs: int = 1, scheduler: str | None = None) -> Iterator[Execut
             yield pool
     else:
         yield SerialExecutor()
+
+
+def results_in_order(executor: Executor, function, units: Iterable) -> Iterator:
+    """`function(unit)` for each unit, in order. A pool is given every unit at once; the serial
+    executor runs each only when its result is asked for, so that a caller sees the work advance."""
+    if isinstance(executor, SerialExecutor):
+        return (function(unit) for unit in units)
+    futures = [executor.submit(function, unit) for unit in units]
+    return (future.result() for future in futures)

@@ -55,15 +55,33 @@ def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[Reso
     def error(key: str, message: str) -> None:
         errors.append(AuthorError(spec.loc_of(key), message, spec.id))
 
+    effects = frozenset(spec.effects) & frozenset(model.effects)  # the scene's effects that the model offers
+    axes, stops = _controls(spec, model, effects, errors)
+    _check_animation(spec, axes, error)
+    fixed = _fixed_values(spec, model, {a.param for a in axes}, effects, error)
+    _check_effects_offered(spec, model, error)
+    _check_params_need_their_effects(model, [a.param for a in axes] + [name for name, _ in fixed], effects, error)
+    _check_params_not_replaced(spec, model, effects, errors)
+    settings = _settings(spec, model, effects, error)
+    known = {o.name: o for o in model.outputs if not o.effect or o.effect in effects}
+    _check_readouts(spec, model, known, error)
+    if errors:
+        return None, errors
+    readouts = tuple(known[n] for n in spec.readouts) if spec.readouts else tuple(o for o in known.values() if not o.size)
+    scene = ResolvedScene(spec, type(model)(settings), tuple(axes), tuple(stops), tuple(fixed), effects, readouts)
+    return scene, []
+
+
+def _controls(spec: SceneSpec, model: Model, effects: frozenset[str], errors: list) -> tuple[list[Axis], list[int]]:
+    """Each slider's and choice's grid and default stop (an error for each control that is wrong)."""
     axes, stops = [], []
     seen: set[str] = set()
-    enabled = frozenset(spec.effects) & frozenset(model.effects)  # (an effect may widen a domain)
     for control in spec.sliders:
         if isinstance(control, ChoiceSpec):
             axis, problem = _choice_axis(control, model, seen)
             what = "choice"
         else:
-            axis, problem = _slider_axis(control, model, seen, enabled)
+            axis, problem = _slider_axis(control, model, seen, effects)  # (an effect may widen a domain)
             what = "slider"
         seen.add(control.param)
         if problem:
@@ -71,52 +89,70 @@ def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[Reso
             continue
         axes.append(axis)
         stops.append(axis.index_of(_default_code(control, model)))
+    return axes, stops
+
+
+def _check_animation(spec: SceneSpec, axes: list[Axis], error) -> None:
+    """What `animate:` names must be one of the scene's sliders."""
     sliders = [a.param for a in axes if a.kind != CHOICE]
     if spec.animate is not None and spec.animate not in sliders:
         error("animate", f"animate '{spec.animate}' is not one of the scene's sliders: {', '.join(sliders) or 'none'}")
+
+
+def _fixed_values(spec: SceneSpec, model: Model, controlled: set[str], effects: frozenset[str], error) -> list[tuple[str, float]]:
+    """The `fix` lines that name a parameter without a control, at a value in its domain."""
     fixed = []
     for item in spec.fixed:
         if item.param not in {p.name for p in model.params}:
             problem = _no_such_param(item.param, model)
-        elif item.param in seen:
+        elif item.param in controlled:
             problem = "also has a slider; keep the slider or the fixed value"
         else:
-            problem = _domain_problem(model, item.param, item.value, "value", enabled)
+            problem = _domain_problem(model, item.param, item.value, "value", effects)
         if problem:
             error(f"fix {item.param}", f"fixed '{item.param}' {problem}")
         else:
             fixed.append((item.param, float(item.value)))
+    return fixed
+
+
+def _check_effects_offered(spec: SceneSpec, model: Model, error) -> None:
+    """Every effect the scene asks for is one the model offers."""
     offered = set(model.effects)
     for effect in spec.effects:
         if effect not in offered:
             what = f"offers: {', '.join(model.effects)}" if model.effects else "offers no effects"
             error("effects", f"model '{model.name}' has no effect '{effect}'{_suggest(effect, offered)} It {what}")
-    enabled = set(spec.effects)
-    for name in [a.param for a in axes] + [name for name, _ in fixed]:
+
+
+def _check_params_need_their_effects(model: Model, names: list[str], effects: frozenset[str], error) -> None:
+    """A parameter that belongs to an effect may be set only when the scene shows that effect."""
+    for name in names:
         needs = model.param(name).effect
-        if needs and needs not in enabled:
+        if needs and needs not in effects:
             error("effects", f"parameter '{name}' belongs to effect '{needs}'; add it to the scene's 'effects:' line")
+
+
+def _check_params_not_replaced(spec: SceneSpec, model: Model, effects: frozenset[str], errors: list) -> None:
+    """No control for a parameter that one of the scene's effects takes the place of."""
     for control in [*spec.sliders, *spec.fixed]:
-        if control.param in {p.name for p in model.params} and (replacing := model.param(control.param).unused_under(enabled)):
+        if control.param in {p.name for p in model.params} and (replacing := model.param(control.param).unused_under(effects)):
             errors.append(AuthorError(control.loc, f"parameter '{control.param}' is not used with effect '{replacing}', which "
                                       "takes its place; remove its control", spec.id))
-    settings = _settings(spec, model, enabled, error)
-    known = {o.name: o for o in model.outputs if not o.effect or o.effect in enabled}
+
+
+def _check_readouts(spec: SceneSpec, model: Model, known: dict[str, Output], error) -> None:
+    """Every readout is an output of the model under the scene's effects."""
     for name in spec.readouts:
         if name not in known:
             error("readouts", f"model '{model.name}' has no output '{name}'{_suggest(name, known)} Its outputs: {', '.join(known)}")
-    if errors:
-        return None, errors
-    readouts = tuple(known[n] for n in spec.readouts) if spec.readouts else tuple(o for o in known.values() if not o.size)
-    scene = ResolvedScene(spec, type(model)(settings), tuple(axes), tuple(stops), tuple(fixed), frozenset(spec.effects), readouts)
-    return scene, []
 
 
-def _settings(spec: SceneSpec, model: Model, enabled: set[str], error):
+def _settings(spec: SceneSpec, model: Model, effects: frozenset[str], error):
     """The model's numerical settings with the scene's `numerics:` line applied (errors reported)."""
     if not spec.numerics:
         return model.settings
-    if model.numerics is None or not model.is_numerical(enabled):
+    if model.numerics is None or not model.is_numerical(effects):
         what = "this scene, with these effects," if model.numerics is not None else "everything"
         error("numerics", f"model '{model.name}' computes {what} in closed form; remove the 'numerics:' line")
         return model.settings

@@ -14,7 +14,7 @@ import markdown
 from markdown.extensions import Extension
 from markdown.preprocessors import Preprocessor
 
-from ..accuracy.blocks import ReportBlock, parse_report_block
+from .reports import ReportBlock, parse_report_block
 from ..errors import AuthorError, SourceLoc
 from .scenes import SceneSpec, parse_scene_block
 
@@ -22,7 +22,7 @@ _SCENE_FENCE = re.compile(r"^```\s*scene\s*$")
 _REPORT_FENCE = re.compile(r"^```\s*accuracy-report\s*$")
 _CODE_FENCE = re.compile(r"^(```|~~~)")
 _INLINE_MATH = re.compile(r"(?<![\\$\w])\$(?=[^\s$])(?P<tex>[^$\n]*?[^\s\\$])\$(?![\w$])")
-_SLOT = re.compile(r'<(div|span) data-(math|scene)-slot="(\d+)"></\1>')
+_SLOT = re.compile(r'<(div|span) data-(math|scene|report)-slot="(\d+)"></\1>')
 _DISPLAY_END = re.compile(r"^(?P<tex>.*)\$\$\s*(?:\{#(?P<label>eq-[a-z0-9-]+)\})?\s*$")
 _EQ_REF = re.compile(r"\(@(?P<label>eq-[a-z0-9-]+)\)")
 _EQ_REF_SLOT = re.compile(r'<a data-eqref="(eq-[a-z0-9-]+)"></a>')
@@ -188,13 +188,15 @@ def markdown_to_html(text: str, path: str, first_line: int, found: Extracted, in
     return html
 
 
-def fill_slots(html: str, found: Extracted, mathml: list[str], scenes: list[str]) -> str:
-    """Replace every placeholder with its MathML, scene HTML or equation number."""
+def fill_slots(html: str, found: Extracted, mathml, scenes, reports=()) -> str:
+    """Replace every placeholder with its MathML, scene HTML, report part or equation number."""
 
     def substitute(match: re.Match) -> str:
         tag, kind, index = match[1], match[2], int(match[3])
         if kind == "scene":
             return scenes[index]
+        if kind == "report":
+            return reports[index]
         if tag == "span":
             return mathml[index]
         label = found.maths[index].label

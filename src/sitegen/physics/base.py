@@ -142,6 +142,8 @@ class Model:
     methods: ClassVar[dict[str, dict[str, object]]] = {}  # method: the settings it takes, at their defaults
     error_metric: ClassVar[str] = ""
     check_stops: ClassVar[int] = 16  # slider stops the build's check samples (fewer for an ODE solve per point)
+    # The accuracy-report parts that this model's bench results fill (part name: what it shows).
+    reports: ClassVar[dict[str, str]] = {}
 
     def __init__(self, settings: Numerics | None = None):
         self.settings = settings if settings is not None else self.numerics

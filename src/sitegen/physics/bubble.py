@@ -121,6 +121,8 @@ class Bubble(Model):
     methods = {AUTO: {"rtol": 1e-6, "atol": None}, **{name: {"rtol": 1e-6, "atol": None} for name in SOLVERS}}
     error_metric = "max |ΔR|/R₀ over R(t) and its extrema"
     check_stops = 6  # each costs a solve and a tight reference solve (0.05–2 s)
+    chunk_stops = 16  # an ODE solve per stop: blocks of 16 stops spread a scene over workers and pace its progress lines
+    reports = {f"bubble-{case}": f"the work–precision diagram of bubble case {case}" for case in "ABC"}
 
     def _evaluate(self, x, wanted, effects):
         check_effects(effects)

@@ -36,13 +36,15 @@ def stylesheet(node_modules: Path) -> bytes:
     return (ours + "\n/* Rules for Temml's MathML (MIT licence), from temml/dist/Temml-Latin-Modern.css */\n" + temml_css).encode()
 
 
-def math_font(pages_html: list[str], remember=None) -> bytes:
-    """Latin Modern Math cut down to the characters the pages' formulas use (with their variants)."""
-    characters = set("()[]{}|=+−0123456789√")  # √: <msqrt> draws it without a text character
-    for html in pages_html:
-        for element in _MATH_ELEMENT.findall(html):
-            characters.update(unescape(_TAG.sub("", element)))
-    text = "".join(sorted(characters))
+def math_characters(html: str) -> set[str]:
+    """The characters the formulas (<math> elements) of a page's HTML show."""
+    return {c for element in _MATH_ELEMENT.findall(html) for c in unescape(_TAG.sub("", element))}
+
+
+def math_font(characters: set[str], remember=None) -> bytes:
+    """Latin Modern Math cut down to `characters` (those the pages' formulas use) and a few every
+    formula may need, with their variants."""
+    text = "".join(sorted(characters | set("()[]{}|=+−0123456789√")))  # √: <msqrt> draws it without a text character
     if remember is None:
         return _subset_font(text)
     font_hash = hashlib.sha256((STATIC / FONT_FILE).read_bytes()).hexdigest()

@@ -1,5 +1,8 @@
 """Writing build/ all at once: into a temporary sibling, then swapped in whole.
 
+The build writes each page into the staging folder as soon as it is finished (so it never holds
+the whole site in memory), and the folder replaces build/ only when every page is written.
+
 Whoever looks at build/ — a reader, a server, the next build — sees the old tree or the new
 one, never a mix, even if the build is killed: the new tree is written under a temporary name
 and exchanged with the old one by one atomic rename (Linux renameat2 RENAME_EXCHANGE). Where
@@ -15,7 +18,9 @@ import os
 import shutil
 import tempfile
 import time
+from contextlib import contextmanager
 from pathlib import Path
+from typing import Iterator
 
 _AT_FDCWD = -100
 _RENAME_EXCHANGE = 2
@@ -32,21 +37,42 @@ def _load_renameat2():
 _renameat2 = _load_renameat2()
 
 
-def write_tree(files: dict[str, bytes], dest: Path) -> None:
-    """Replace `dest` with exactly `files`; if anything fails, or the process dies, `dest` stays
-    as it was (or, once the swap is done, is wholly the new tree)."""
+class StagedTree:
+    """The new tree while it is being written: files go into a staging folder beside the destination."""
+
+    def __init__(self, folder: Path):
+        self.folder = folder
+        self.sizes: dict[str, int] = {}  # what was written: name -> bytes
+
+    def write(self, name: str, data: bytes) -> None:
+        """Write one file of the new tree (a relative path with forward slashes)."""
+        path = self.folder / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(data)
+        self.sizes[name] = len(data)
+
+
+@contextmanager
+def staged_tree(dest: Path) -> Iterator[StagedTree]:
+    """A staging folder for the tree that replaces `dest` when the block ends without an exception;
+    if anything fails, or the process dies, `dest` stays as it was (or, once the swap is done, is
+    wholly the new tree)."""
     dest.parent.mkdir(parents=True, exist_ok=True)
     recover(dest)
     staging = Path(tempfile.mkdtemp(prefix=f"{_staging_prefix(dest)}{os.getpid()}-", dir=dest.parent))
     staging.chmod(0o755)  # mkdtemp makes it private; the site is meant to be read
     try:
-        for name in sorted(files):
-            path = staging / name
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_bytes(files[name])
+        yield StagedTree(staging)
         _swap_in(staging, dest)
     finally:
         shutil.rmtree(staging, ignore_errors=True)  # the old tree after a swap; the new one after a failure
+
+
+def write_tree(files: dict[str, bytes], dest: Path) -> None:
+    """Replace `dest` with exactly `files`, atomically (see `staged_tree`)."""
+    with staged_tree(dest) as tree:
+        for name in sorted(files):
+            tree.write(name, files[name])
 
 
 def recover(dest: Path) -> None:

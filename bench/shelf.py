@@ -1,0 +1,98 @@
+"""`make bench`: a shelf, not a chapter. Builds generated shelves of 1, 4 and 16 copies of the chapter
+"Newton's laws" (content/newtons-laws.md: six scenes, no bubble), each copy's scenes with a slider
+range shortened by a different number of steps so that every scene must be computed, and prints per
+shelf: the cold build (empty cache), its peak memory, and a rebuild with nothing changed.
+
+Each build runs in a fresh process (`sitegen build`), which reports its own peak resident memory.
+Usage: python bench/shelf.py [COPIES ...]   (default 1 4 16)
+"""
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from decimal import Decimal
+from fractions import Fraction
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+CHAPTER = ROOT / "content" / "newtons-laws.md"
+_RANGE = re.compile(r"^slider (\w+): (\S+)\.\.(\S+) step (\S+) default (\S+)$")
+_PEAK = "import resource, sys; from sitegen.cli import main; code = main(sys.argv[1:]); " \
+        "print('peak_kib', resource.getrusage(resource.RUSAGE_SELF).ru_maxrss); sys.exit(code)"
+
+
+def shifted_chapter(text: str, shift: int) -> str:
+    """The chapter with each scene's roomiest range slider ending `shift` steps lower (so no two
+    copies share a scene's cache key) and its title numbered."""
+    blocks = re.split(r"(```scene\n.*?```)", text, flags=re.S)
+    for i in range(1, len(blocks), 2):
+        lines = blocks[i].split("\n")
+        sliders = [(n, _RANGE.match(line)) for n, line in enumerate(lines) if _RANGE.match(line)]
+        n, found = max(sliders, key=lambda s: _room(s[1]))
+        name, lo, hi, step, default = found.groups()
+        lines[n] = f"slider {name}: {lo}..{_minus_steps(hi, step, shift)} step {step} default {default}"
+        blocks[i] = "\n".join(lines)
+    return re.sub(r'^title = "(.*)"$', rf'title = "\1 ({shift + 1})"', "".join(blocks), count=1, flags=re.M)
+
+
+def _room(found: re.Match) -> float:
+    """Steps between a slider's default and its maximum."""
+    _, _, hi, step, default = found.groups()
+    return (float(hi) - float(default)) / _value(step)
+
+
+def _value(step: str) -> float:
+    top, _, bottom = step.partition("/")
+    return float(top) / float(bottom or 1)
+
+
+def _minus_steps(hi: str, step: str, shift: int) -> str:
+    """`hi` lowered by `shift` steps, written as a decimal; a fractional step (1/60) moves by the fewest
+    whole steps whose length is a short decimal (3 frames: 0.05)."""
+    length = Fraction(step)
+    stride = next(m for m in range(1, length.denominator + 1) if (m * length * 10**6).denominator == 1)
+    lowered = Fraction(hi) - shift * stride * length
+    return format(Decimal(lowered.numerator) / Decimal(lowered.denominator), "f")
+
+
+def make_shelf(root: Path, copies: int) -> None:
+    """A book of a home page and `copies` shifted copies of the chapter."""
+    content = root / "content"
+    content.mkdir(parents=True)
+    (content / "index.md").write_text('+++\ntitle = "A shelf"\n+++\n\nThe same chapter, again and again.\n')
+    text = CHAPTER.read_text()
+    for k in range(copies):
+        (content / f"chapter-{k + 1:02d}.md").write_text(shifted_chapter(text, k))
+    (root / "node_modules").symlink_to(ROOT / "node_modules")
+
+
+def timed_build(root: Path) -> tuple[float, float]:
+    """Seconds and peak resident MiB of `sitegen build --root ROOT` in a fresh process."""
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "PYTHONPATH": str(ROOT / "src")}
+    start = time.perf_counter()
+    done = subprocess.run([sys.executable, "-c", _PEAK, "build", "--root", str(root)], capture_output=True, text=True, env=env)
+    seconds = time.perf_counter() - start
+    if done.returncode:
+        raise SystemExit(f"the shelf did not build:\n{done.stderr}")
+    peak = int(re.search(r"peak_kib (\d+)", done.stdout)[1])
+    return seconds, peak / 1024
+
+
+def main(counts: list[int]) -> None:
+    print("shelf: copies of the chapter 'Newton's laws' (6 scenes each), every scene computed; one fresh process per build")
+    print(f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} {'peak MiB':>9} {'no-op s':>8}")
+    for copies in counts:
+        with tempfile.TemporaryDirectory() as folder:
+            root = Path(folder)
+            make_shelf(root, copies)
+            cold, peak = timed_build(root)
+            noop, _ = timed_build(root)
+            print(f"{copies:>8} {6 * copies:>7} {cold:>8.2f} {cold / copies:>10.2f} {peak:>9.0f} {noop:>8.2f}", flush=True)
+
+
+if __name__ == "__main__":
+    main([int(a) for a in sys.argv[1:]] or [1, 4, 16])

@@ -1,0 +1,80 @@
+"""The phases that make files: each scene's element and inline data, each page (its accuracy-report
+parts filled from the build's records, not read back from HTML), and the shared assets."""
+from __future__ import annotations
+
+import gzip
+import hashlib
+from dataclasses import replace
+
+from ..compute.cache import digest, source_digest
+from ..compute.check import caption_sentence
+from ..content.bench_results import BENCH_NAME, load_results
+from ..content.markdown_ext import fill_slots
+from ..site import assets
+from ..site.assemble import page_html, scene_html, scene_payload
+from ..site.report import ReportContext, report_part
+from .record import Book, SceneRecord
+from .run import BuildRun
+from .scenes import scene_digest
+
+PAYLOAD_CODE = frozenset({"sitegen.site.assemble"})
+
+
+def assemble_scenes(book: Book, run: BuildRun) -> Book:
+    """Each scene's element: figure, controls, readouts at the defaults, caption and inline data."""
+    if run.failed:
+        return book
+    linked = any(p.slug == "accuracy" for p in book.pages)  # the rows exist only on the accuracy page
+    records = []
+    for record in book.current():
+        with run.scene(record, "assembling its element"):
+            records.append(_assembled(record, book, run, linked))
+    return book.with_records(records)
+
+
+def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> SceneRecord:
+    scene, tables, figure, page = record.scene, record.tables, record.figure, record.page
+    key = digest(scene_digest(record), source_digest(PAYLOAD_CODE))
+    payload = run.remember("payloads", key, lambda: scene_payload(scene, tables, figure.layers).encode())
+    caption = fill_slots(record.caption, page.found, book.mathml[page.slug], [])
+    if record.accuracy is not None:
+        caption = f"{caption} {caption_sentence(record.accuracy, linked)}".strip()
+    html = scene_html(scene, tables, figure, caption, payload.decode())
+    return replace(record, html=html, data_bytes=_data_bytes(payload, run) if book.has_reports else (len(payload), 0))
+
+
+def _data_bytes(payload: bytes, run: BuildRun) -> tuple[int, int]:
+    """Raw and gzip bytes of a scene's inline tables (what the accuracy report lists)."""
+    key = hashlib.sha256(payload).hexdigest()
+    packed = run.remember("report-gzip", key, lambda: str(len(gzip.compress(payload, 9, mtime=0))).encode())
+    return len(payload), int(packed)
+
+
+def write_page(book: Book, run: BuildRun) -> Book:
+    """The current page as HTML, written into the new tree; its scenes then keep only their small facts."""
+    if run.failed:
+        return book
+    page, records = book.page, book.current()
+    context = _report_context(book, run) if page.found.reports else None
+    reports = [report_part(block.part, context) for block in page.found.reports]
+    body = fill_slots(page.html, page.found, book.mathml[page.slug], [r.html for r in records], reports)
+    html = page_html(page, body, list(book.pages), book.title)
+    run.tree.write(page.output_name, html.encode())
+    run.math_characters |= assets.math_characters(html)
+    return book.with_records(r.finished() for r in records)
+
+
+def _report_context(book: Book, run: BuildRun) -> ReportContext:
+    records = tuple(r.accuracy for r in book.scenes if r.accuracy is not None)
+    sizes = {r.name: r.data_bytes for r in book.scenes}
+    bench = load_results(run.config.content / BENCH_NAME)
+    return ReportContext(bench, records, book.pages, book.scenes, sizes, run.remember, run.models)
+
+
+def write_assets(book: Book, run: BuildRun) -> Book:
+    """The script, the stylesheet and the math font (cut down to the characters the pages use)."""
+    if not run.failed:
+        run.tree.write("assets/sitegen.js", assets.script())
+        run.tree.write("assets/sitegen.css", assets.stylesheet(run.config.node_modules))
+        run.tree.write(f"assets/{assets.FONT_FILE}", assets.math_font(run.math_characters, run.remember))
+    return book

@@ -1,0 +1,97 @@
+"""The records the build carries through its phases: one per scene, and the book that holds them.
+
+Each phase returns a new book whose records have the phase's part filled in (MkDocs' `Page`
+goes through its build the same way); nothing travels in dicts keyed by "page#scene".
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Mapping
+
+from ..compute.accuracy import SceneAccuracy
+from ..compute.cache import CacheKey
+from ..compute.scenes import ResolvedScene
+from ..compute.table import Table
+from ..content.pages import Page
+from ..content.scenes import SceneSpec
+from ..render.figures.base import FigureView
+from ..site.assemble import RenderedScene
+
+
+@dataclass(frozen=True)
+class SceneRecord:
+    """One scene through the build: its block, then what each phase made of it."""
+
+    page: Page
+    index: int  # position among the page's scenes
+    spec: SceneSpec
+    scene: ResolvedScene | None = None  # resolve
+    view: FigureView | None = None  # resolve: the figure that draws it
+    caption: str = ""  # resolve: the caption's HTML (math still as slots)
+    outputs: tuple[str, ...] = ()  # resolve: what it shows (readouts and what its layers read)
+    key: CacheKey | None = None  # resolve: the key of its tables
+    tables: Mapping[str, Table] | None = None  # tabulate
+    status: str = ""  # tabulate: "cached", or "computed: why"
+    accuracy: SceneAccuracy | None = None  # check: numerically computed scenes only
+    figure: RenderedScene | None = None  # render
+    html: str = ""  # assemble: the scene element
+    data_bytes: tuple[int, int] = (0, 0)  # assemble: raw and gzip bytes of its inline tables (for the report)
+    stored_values: int = 0  # tabulate: numbers its tables ship
+
+    @property
+    def name(self) -> str:
+        """How the build's log and the accuracy report name the scene: "page#scene"."""
+        return f"{self.page.slug}#{self.spec.id}"
+
+    @property
+    def stops(self) -> int:
+        """Slider states of the scene (the full cross product)."""
+        count = 1
+        for axis in self.scene.axes:
+            count *= axis.count
+        return count
+
+    def finished(self) -> "SceneRecord":
+        """The record once its page is written: the small facts kept, the tables, figure and HTML let go."""
+        return replace(self, tables=None, figure=None, html="")
+
+
+@dataclass(frozen=True)
+class Book:
+    """The pages, a record per resolved scene (page and scene order), and the MathML of each page."""
+
+    pages: tuple[Page, ...] = ()
+    scenes: tuple[SceneRecord, ...] = ()
+    mathml: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    page: Page | None = None  # the page the scene phases are working on (None: every page)
+
+    def current(self) -> tuple[SceneRecord, ...]:
+        """The records the scene phases work on now: the current page's, or all."""
+        return tuple(s for s in self.scenes if self.page is None or s.page is self.page)
+
+    def with_records(self, records) -> "Book":
+        """The book with some records replaced (matched by page and position)."""
+        new = {(r.page.slug, r.index): r for r in records}
+        return replace(self, scenes=tuple(new.get((s.page.slug, s.index), s) for s in self.scenes))
+
+    def only(self, record: SceneRecord) -> "Book":
+        """The book with one scene (to work on it alone)."""
+        return replace(self, scenes=(record,), page=None)
+
+    def at(self, page: Page | None) -> "Book":
+        """The book with the scene phases pointed at `page`."""
+        return replace(self, page=page)
+
+    def writing_order(self) -> list[Page]:
+        """Pages in the order they are finished: pages with accuracy reports last, as they read every scene."""
+        return sorted(self.pages, key=lambda p: bool(p.found.reports))
+
+    @property
+    def has_reports(self) -> bool:
+        """Whether a page shows accuracy-report parts (which list every scene's data bytes)."""
+        return any(p.found.reports for p in self.pages)
+
+    @property
+    def title(self) -> str:
+        """The book's title: its home page's."""
+        return next((p.title for p in self.pages if p.slug == "index"), "Book")

@@ -1,0 +1,97 @@
+"""One run of the build: its settings, errors, cache, progress lines and counters, and the phase clock."""
+from __future__ import annotations
+
+import time
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Mapping
+
+from ..compute.accuracy import SceneAccuracy
+from ..compute.cache import TableCache, compute_now
+from ..errors import AuthorError, ErrorLog, SceneCrashed
+
+
+@dataclass(frozen=True)
+class BuildConfig:
+    """Where the sources are, where the site goes, the cache, and where the work runs."""
+
+    root: Path
+    content: Path
+    out: Path
+    node_modules: Path
+    cache: Path | None = None  # None: compute everything, remember nothing
+    jobs: int = 1
+    scheduler: str | None = None  # address of a Dask scheduler, e.g. tcp://127.0.0.1:8786
+
+    @classmethod
+    def at(cls, root: Path, out: Path | None = None, **options) -> "BuildConfig":
+        """The conventional layout of a project rooted at `root` (cache in ROOT/.cache)."""
+        root = root.resolve()
+        options.setdefault("cache", root / ".cache")
+        return cls(root, root / "content", (out or root / "build").resolve(), root / "node_modules", **options)
+
+
+@dataclass
+class BuildReport:
+    """What a build did: pages, scenes, values stored, and seconds per phase."""
+
+    pages: int = 0
+    scenes: int = 0
+    stored_values: int = 0
+    computed: int = 0  # scenes evaluated by their models in this build
+    cached: int = 0  # scenes taken from the cache
+    evaluations: int = 0  # work units run (model evaluations over blocks of stops)
+    phases: dict[str, float] = field(default_factory=dict)
+    files: dict[str, int] = field(default_factory=dict)
+    scene_lines: list[str] = field(default_factory=list)  # one line per scene: cached or computed and why
+    accuracy: list[SceneAccuracy] = field(default_factory=list)  # numerically computed scenes, in page/scene order
+    data_bytes: dict[str, tuple[int, int]] = field(default_factory=dict)  # "page#scene" -> raw, gzip bytes of its inline tables
+
+
+class BuildRun:
+    """What every phase is handed besides the book: the config, the models and figures it may use,
+    the error log, the cache (`remember`), the progress callback and the report being filled."""
+
+    def __init__(self, config: BuildConfig, progress, models: Mapping, figures: Mapping):
+        self.config, self.progress, self.models, self.figures = config, progress, models, figures
+        self.log, self.report = ErrorLog(), BuildReport()
+        self.cache = TableCache(config.cache) if config.cache else None
+        self.remember = self.cache.remember if self.cache else compute_now
+        self.tree = None  # the staging folder the pages are written into (site.writer.StagedTree)
+        self.math_characters: set[str] = set()  # what the pages' formulas show: the math font's subset
+
+    def phase(self, name: str, function, book):
+        """Run one phase over the book, adding its seconds to the phase's total."""
+        start = time.perf_counter()
+        try:
+            return function(book, self)
+        finally:
+            self.report.phases[name] = self.report.phases.get(name, 0.0) + time.perf_counter() - start
+
+    def say(self, line: str) -> None:
+        """One line of the build's log (nothing when the run is quiet)."""
+        if self.progress:
+            self.progress(line)
+
+    def error(self, error: AuthorError) -> None:
+        """Record an author error; the build goes on to find the others."""
+        self.log.add(error)
+
+    @property
+    def failed(self) -> bool:
+        """Whether an author error has been found (pages are then no longer assembled)."""
+        return bool(self.log.errors)
+
+    @contextmanager
+    def scene(self, record, doing: str):
+        """Work on one scene: an author error is logged; any other exception is a bug, raised with
+        the scene's page, line and name (never an "internal error" without a place)."""
+        try:
+            yield
+        except AuthorError as error:
+            self.error(error)
+        except (KeyboardInterrupt, SystemExit, MemoryError):
+            raise
+        except Exception as error:
+            raise SceneCrashed(record.spec.loc, record.spec.id, doing, error) from error

@@ -1,0 +1,127 @@
+"""The phases that work on scenes, a page at a time: tabulate (from the cache or by the executor),
+check the numerics against each model's reference, and render each figure."""
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+from functools import partial
+
+from ..compute.cache import digest, library_version, source_digest
+from ..compute.check import check_scenes as check_accuracy
+from ..compute.executors import executor_for, results_in_order
+from ..compute.tabulate import assemble_tables, evaluate_unit, plan_scene
+from ..render.figures.base import figure_label
+from ..render.layers import layer_points
+from ..render.svg import figure_svg
+from ..site.assemble import RenderedScene, dom_id
+from .record import Book, SceneRecord
+from .run import BuildRun
+
+PROGRESS_EVERY = 2.0  # seconds: a scene still computing says how far it got at least this often
+FIGURE_MODULES = frozenset({"sitegen.render.svg", "sitegen.render.style", "sitegen.render.layers", "sitegen.render.figures.base"})
+
+
+def tabulate_scenes(book: Book, run: BuildRun) -> Book:
+    """Each scene's tables: from the cache when its key matches, else computed by the executor."""
+    records = []
+    with executor_for(run.config.jobs, run.config.scheduler) as executor:
+        for record in book.current():
+            with run.scene(record, "tabulating"):
+                records.append(_tabulated(record, run, executor))
+    return book.with_records(records)
+
+
+def _tabulated(record: SceneRecord, run: BuildRun, executor) -> SceneRecord:
+    found = run.cache.load(record.key) if run.cache else None
+    if found is not None:
+        return _noted(replace(record, tables=found), run, cached=True, seconds=0.0)
+    units = plan_scene(record.scene, list(record.outputs), record.scene.model.chunk_stops)
+    results, seconds = [], 0.0
+    pace = _Pace(record, sum(unit.stops() for unit in units), run)
+    for unit, (result, took) in zip(units, results_in_order(executor, partial(_timed, evaluate_unit), units)):
+        results.append(result)
+        seconds += took
+        pace.done(unit.stops())
+    tables = assemble_tables(record.scene, units, results, list(record.outputs))
+    run.report.evaluations += len(units)
+    if run.cache:
+        run.cache.store(record.key, tables)
+    return _noted(replace(record, tables=tables), run, cached=False, seconds=seconds)
+
+
+def _timed(function, *args):
+    start = time.perf_counter()
+    return function(*args), time.perf_counter() - start
+
+
+class _Pace:
+    """Progress inside a long scene: stops done, total and rate, at most every PROGRESS_EVERY seconds."""
+
+    def __init__(self, record: SceneRecord, total: int, run: BuildRun):
+        self.record, self.total, self.run = record, total, run
+        self.start = self.last = time.perf_counter()
+        self.stops = 0
+
+    def done(self, stops: int) -> None:
+        self.stops += stops
+        now = time.perf_counter()
+        if now - self.last >= PROGRESS_EVERY and self.stops < self.total:
+            self.last = now
+            rate = self.stops / (now - self.start)
+            self.run.say(f"  {self.record.name:<40} {self.stops:>12,} of {self.total:,} stops, {rate:,.0f} stops/s")
+
+
+def _noted(record: SceneRecord, run: BuildRun, cached: bool, seconds: float) -> SceneRecord:
+    """Count the scene and log its line: name, stops, seconds, cached or computed and why."""
+    report = run.report
+    status = run.cache.explain(record.name, record.key, cached) if run.cache else "computed: no cache"
+    report.cached += cached
+    report.computed += not cached
+    line = f"[{report.cached + report.computed}/{report.scenes}] {record.name:<36} {record.stops:>14,} stops {seconds:7.2f} s  {status}"
+    report.scene_lines.append(line)
+    run.say(line)
+    stored = sum(t.stored_values() for t in record.tables.values())
+    return replace(record, status=status, stored_values=stored)
+
+
+def check_scenes(book: Book, run: BuildRun) -> Book:
+    """Each numerically computed scene measured against its model's reference (over its tolerance: an error)."""
+    records = []
+    for record in book.current():
+        if record.tables is None:
+            continue
+        with run.scene(record, "checking its numerics"):
+            found, errors = check_accuracy([record], run.remember, run.progress)
+            for error in errors:
+                run.error(error)
+            records.append(replace(record, accuracy=found[0] if found else None))
+    return book.with_records(records)
+
+
+def render_figures(book: Book, run: BuildRun) -> Book:
+    """Each scene's static SVG with its moving layers drawn at the default slider values."""
+    if run.failed:
+        return book
+    records = []
+    for record in book.current():
+        with run.scene(record, "drawing its figure"):
+            records.append(replace(record, figure=_figure(record, run)))
+    return book.with_records(records)
+
+
+def _figure(record: SceneRecord, run: BuildRun) -> RenderedScene:
+    scene, tables, view = record.scene, record.tables, record.view
+    layers = view.layers(scene)
+    points = layer_points(layers, scene, tables, scene.default_stops)
+
+    def draw() -> bytes:
+        return figure_svg(view.draw(scene, tables), layers, points, dom_id(scene), figure_label(view, scene)).encode()
+
+    # The layers are drawn at the defaults, so the defaults (through the points) belong in the key.
+    key = digest(scene_digest(record), source_digest(FIGURE_MODULES | {type(view).__module__}), repr(points), "figure")
+    return RenderedScene(run.remember("figures", key, draw).decode(), tuple(layers))
+
+
+def scene_digest(record: SceneRecord) -> str:
+    """What a scene's figure and data depend on: its tables' key, its place and the matplotlib version."""
+    return digest(record.key.digest, record.name, f"matplotlib {library_version('matplotlib')}")

@@ -1,0 +1,105 @@
+"""The package's imports point one way: content → compute → render → site → the build, and the
+tools on top (the bench, the review, the command) use the build from outside. A short walk over
+every module's imports (all of them, those inside functions too) fails when one runs backwards or
+two modules import each other, however far round."""
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parents[1] / "src" / "sitegen"
+
+# Lowest first: a module may import its own layer and the layers below it, never one above.
+LAYERS = (
+    ("sitegen.errors",),
+    ("sitegen.physics",),  # models: numpy and scipy only
+    ("sitegen.content",),  # the author's sources: pages, scene and report blocks, Markdown, TeX
+    ("sitegen.compute",),  # resolving scenes, tabulating, the cache, the numerical check
+    ("sitegen.render",),  # figures (the only layer with matplotlib)
+    ("sitegen.site",),  # HTML: scenes, pages, the accuracy report's parts, assets, the writer
+    ("sitegen.phases", "sitegen.build"),  # the build: its phases and the script that runs them
+    ("sitegen.accuracy", "sitegen.review"),  # tools that use the build and the layers below it
+    ("sitegen.cli",),
+)
+# Who may import the models: the layers that compute and draw them, the build (which hands the
+# built-in models to its phases) and the bench's experiments (which time the solvers themselves).
+PHYSICS_USERS = ("sitegen.physics", "sitegen.compute", "sitegen.render", "sitegen.build", "sitegen.accuracy")
+
+
+def _modules() -> dict[str, Path]:
+    found = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+        found[".".join(parts[:-1] if parts[-1] == "__init__" else parts)] = path
+    return found
+
+
+MODULES = _modules()
+
+
+def imports_of(name: str) -> set[str]:
+    """The sitegen modules `name` imports, anywhere in its body (relative imports resolved)."""
+    path = MODULES[name]
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom):
+            base = package
+            for _ in range(max(node.level - 1, 0)):
+                base = base.rpartition(".")[0]
+            target = (f"{base}.{node.module}" if node.module else base) if node.level else node.module
+            found |= {f"{target}.{a.name}" if f"{target}.{a.name}" in MODULES else target for a in node.names}
+        elif isinstance(node, ast.Import):
+            found |= {a.name for a in node.names}
+    return {f for f in found if f in MODULES and f != name}
+
+
+def layer_of(name: str) -> int:
+    """The index of the layer a module belongs to."""
+    return next(i for i, layer in enumerate(LAYERS) for top in layer if name == top or name.startswith(top + "."))
+
+
+GRAPH = {name: imports_of(name) for name in MODULES if name != "sitegen"}
+
+
+@pytest.mark.parametrize("name", sorted(GRAPH))
+def test_imports_point_down_the_layers(name):
+    """Every import of the module goes to its own layer or one below."""
+    upward = sorted(t for t in GRAPH[name] if layer_of(t) > layer_of(name))
+    assert not upward, f"{name} imports {', '.join(upward)}, which sit above it"
+
+
+@pytest.mark.parametrize("name", sorted(GRAPH))
+def test_only_the_computing_layers_import_the_models(name):
+    """The physics is used by compute and render (and handed to the build by the build); the site,
+    the content and the review know scenes only through what compute made of them."""
+    models = sorted(t for t in GRAPH[name] if t.startswith("sitegen.physics"))
+    assert not models or name.startswith(PHYSICS_USERS), f"{name} imports {', '.join(models)}"
+
+
+def test_no_circles():
+    """No module reaches itself through its imports."""
+    state, circles = {}, []
+
+    def visit(name: str, trail: list[str]) -> None:
+        state[name] = "open"
+        for target in sorted(GRAPH.get(name, ())):
+            if state.get(target) == "open":
+                circles.append(trail[trail.index(target):] + [target])
+            elif target not in state:
+                visit(target, trail + [target])
+        state[name] = "done"
+
+    for name in sorted(GRAPH):
+        if name not in state:
+            visit(name, [name])
+    assert not circles, "\n".join(" -> ".join(c) for c in circles)
+
+
+def test_the_walk_sees_backward_imports():
+    """The walk itself: a module of the site layer importing the build would be found."""
+    assert layer_of("sitegen.site.assemble") < layer_of("sitegen.build")
+    assert "sitegen.compute.cache" in GRAPH["sitegen.build"] | GRAPH["sitegen.phases.run"]
+    assert "sitegen.review.command" in GRAPH["sitegen.cli"]  # imports inside functions count too

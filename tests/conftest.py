@@ -19,14 +19,29 @@ from sitegen.build import BuildConfig, build
 ROOT = Path(__file__).resolve().parents[1]
 BOOK = Path(__file__).resolve().parent / "book"  # the tiny book: a few pages, one scene per model family
 BROWSER_MODULES = {"test_browser", "test_accessibility"}
+# Tests that take seconds each on their own (node-id prefixes), left to `make test`:
+SLOW_TESTS = (
+    # an ODE solve per stop, with every solver or over whole grids (the bubble's tests of its hard cases)
+    "tests/test_bubble_hard_cases.py::",
+    "tests/test_properties.py::test_effect_vanishes_in_its_limit[bubble.",
+    "tests/test_output_deps.py::test_output_ignores_parameters_outside_its_deps[bubble-",
+    "tests/test_bubble_model.py::test_effect_vanishing_limit_reproduces_the_reduced_model[",
+    "tests/test_hard_cases_extra.py::test_resonance_response_jumps_between_adjacent_frequencies_so_interpolation_fails",
+    # many builds, or builds in other processes, of small books
+    "tests/test_fuzz.py::test_build_of_fuzzed_books_succeeds_or_reports_author_errors",
+    "tests/test_interrupted_build.py::test_kill",
+    "tests/test_build.py::test_computing_from_nothing_is_deterministic_across_hash_seeds",
+    "tests/test_review.py::test_review_against_a_revision_builds_it_in_a_temporary_worktree",
+    "tests/test_executors.py::test_dask_cluster_gives_the_serial_bytes",
+)
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
 def pytest_collection_modifyitems(items) -> None:
-    """Mark what builds the real book `slow` and what drives Chromium `browser`."""
+    """Mark what builds the real book (or is listed in SLOW_TESTS) `slow` and what drives Chromium `browser`."""
     for item in items:
         names = set(getattr(item, "fixturenames", ()))
-        if "built_site" in names:
+        if "built_site" in names or item.nodeid.startswith(SLOW_TESTS):
             item.add_marker(pytest.mark.slow)
         if "chromium" in names or item.module.__name__ in BROWSER_MODULES:
             item.add_marker(pytest.mark.browser)

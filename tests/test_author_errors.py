@@ -1,7 +1,6 @@
 """Broken pages give exact `file:line: message` errors, all of them in one run."""
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -167,11 +166,7 @@ def test_non_finite_output_fails_the_build_naming_the_stop(tmp_path, monkeypatch
     ]
 
 
-def test_project_book_builds_cleanly(tmp_path):
-    """The book in content/ itself has no author errors (its tables from the project's cache, as the
-    session's build left it: resolving, checking and assembling the pages is what is tested here)."""
-    content = tmp_path / "content"
-    shutil.copytree(ROOT / "content", content)
-    config = BuildConfig(tmp_path, content, tmp_path / "build", ROOT / "node_modules", cache=ROOT / ".cache")
-    report = build(config, progress=None)
-    assert report.pages >= 2 and report.scenes >= 2
+def test_project_book_builds_cleanly(built_site):
+    """The book in content/ itself has no author errors: the session's build of it succeeded and
+    wrote its home page and a page per Markdown file."""
+    assert {p.stem for p in built_site.glob("*.html")} == {p.stem for p in (ROOT / "content").glob("*.md")}

@@ -52,7 +52,8 @@ from browser import (
     stop_inputs,
 )
 from sitegen.compute.grid import CHOICE, RANGE
-from sitegen.compute.structure import proof_stops, structured_pieces
+from sitegen.compute.proof import proof_stops
+from sitegen.compute.structure import structured_pieces
 from sitegen.compute.quantize import fmt
 
 PAGES, SCENES = book()

@@ -17,7 +17,8 @@ from sitegen.cli import main
 from sitegen.review import review_builds
 from sitegen.review.compare import text_diff
 from sitegen.review.figures import CHROMIUM
-from sitegen.review.tables import compare_table, decode
+from sitegen.review.decode import decode
+from sitegen.review.tables import compare_table
 from sitegen.review.tree import parse_page, text_lines
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -6,7 +6,9 @@ import numpy as np
 import pytest
 
 from sitegen.compute.scenes import resolve_scene
-from sitegen.compute.structure import Structured, proof_stops, shown
+from sitegen.compute.expression import shown
+from sitegen.compute.proof import proof_stops
+from sitegen.compute.structure import Structured
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import AuthorError, SourceLoc

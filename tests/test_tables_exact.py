@@ -13,7 +13,8 @@ import pytest
 
 from sitegen.build import BuildConfig, needed_outputs, resolve_book
 from sitegen.compute.quantize import SPECIAL
-from sitegen.compute.structure import Structured, shown
+from sitegen.compute.expression import shown
+from sitegen.compute.structure import Structured
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.errors import ErrorLog
 

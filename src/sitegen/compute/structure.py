@@ -2,28 +2,25 @@
 exact pieces is shipped as that expression, and the page's script evaluates it.
 
 The expression is plain JSON that knows slider values, tables, polynomial nodes, branches and
-thresholds, and nothing of physics. `evaluate` below is the script's arithmetic in numpy, in the
-same order of operations, so that what the build proves is what the page shows. `prove` compares
+thresholds, and nothing of physics. expression.py is the script's arithmetic in numpy, in the
+same order of operations, so that what the build proves is what the page shows; proof.py compares
 it with a direct evaluation of the model at every corner and edge of the slider box and at a
 seeded random sample of stops, and the build fails on any displayed difference.
 """
 from __future__ import annotations
 
-import hashlib
-import itertools
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..errors import AuthorError
 from ..physics.structure import ChoiceOf, Choose, Coord, Log10, OutputOf, Poly, Ratio, Threshold
+from .expression import shown, table_values
 from .grid import CHOICE, LIST
+from .proof import proof_stops, prove
 from .quantize import quantize
 from .scenes import ResolvedScene
 from .table import Table, grid_table
-
-RANDOM_STOPS = 4000  # sampled stops per scene in the proof, beyond corners and edges
-EDGE_STOPS = 20_000  # at most this many stops along the box's edges (all of them when fewer)
 
 
 @dataclass(frozen=True)
@@ -169,14 +166,6 @@ def coordinate_table(scene: ResolvedScene, coord: Coord) -> Table:
     return Table(table.output, table.axes, table.shape, table.quanta, table.decimals, raw=raw)
 
 
-def table_values(table: Table, rows=slice(None)) -> np.ndarray:
-    """A scalar table's values (at `rows`): doubles as stored, or quanta scaled to their digits."""
-    entries = table.quanta[rows]
-    if table.raw:
-        return entries.astype(float)
-    return entries.astype(float) if table.labels else entries / 10.0**table.decimals
-
-
 def _along_index_sum(entries: np.ndarray) -> np.ndarray | None:
     """The values by i + j + ... when they depend only on that sum (e.g. a function of m1 + m2 on
     two sliders with the same grid), else None. The sum of two floats can differ in its last bit
@@ -191,167 +180,6 @@ def _along_index_sum(entries: np.ndarray) -> np.ndarray | None:
     spread = np.abs(by_sum[total] - entries)
     allowed = 8 * np.finfo(float).eps * np.abs(entries) if entries.dtype.kind == "f" else 1
     return by_sum if np.all(spread <= allowed) else None
-
-
-# --- the script's arithmetic, over many stops at once ---------------------------------------
-
-
-def evaluate(expr: dict, parts: dict[str, Table], sliders, stops: np.ndarray) -> np.ndarray:
-    """The expression's value at each row of `stops` (n × sliders), as the page's script computes it."""
-    n = len(stops)
-    if "c" in expr:
-        return np.full(n, expr["c"])
-    if "x" in expr:
-        return sliders[expr["x"]][stops[:, expr["x"]]]
-    if "t" in expr:
-        table = parts[expr["t"]]
-        return table_values(table, table.flat_indices(stops))
-    if "poly" in expr:
-        return _poly_value(expr, parts, sliders, stops)
-    if "sel" in expr:
-        which = evaluate(expr["sel"], parts, sliders, stops).astype(np.int64)
-        branches = [evaluate(b, parts, sliders, stops) for b in expr["of"]]
-        return np.choose(which[(...,) + (None,) * (branches[0].ndim - 1)], branches)
-    if "cut" in expr:
-        value = evaluate(expr["cut"], parts, sliders, stops)
-        count = sum((value > edge).astype(np.int64) for edge in expr["edges"])
-        return np.asarray(expr["map"], dtype=float)[count]
-    if "log10" in expr:
-        return expr["k"] * np.log10(evaluate(expr["log10"], parts, sliders, stops))
-    if "ratio" in expr:
-        top, bottom = (evaluate(e, parts, sliders, stops) for e in expr["ratio"])
-        safe = np.where(bottom == 0, 1.0, bottom)
-        return np.where(bottom == 0, expr["zero"], expr["k"] * top / safe)
-    raise ValueError(f"unknown expression {sorted(expr)}")
-
-
-def _poly_value(expr: dict, parts, sliders, stops: np.ndarray) -> np.ndarray:
-    """Tensor-product Lagrange interpolation, in the script's order of operations."""
-    weights = []
-    for coord, nodes in zip(expr["poly"], expr["nodes"]):
-        c = evaluate(coord, parts, sliders, stops)
-        per_node = []
-        for j, xj in enumerate(nodes):
-            w = np.ones(len(stops))
-            for m, xm in enumerate(nodes):
-                if m != j:
-                    w = w * (c - xm) / (xj - xm)
-            per_node.append(w)
-        weights.append(per_node)
-    values = np.asarray(expr["v"], dtype=float)
-    total = np.zeros((len(stops),) + values.shape[1:])
-    for flat, index in enumerate(itertools.product(*[range(len(n)) for n in expr["nodes"]])):
-        product = np.ones(len(stops))
-        for i, j in enumerate(index):
-            product = product * weights[i][j]
-        total = total + (values[flat] * product[:, None] if values.ndim > 1 else values[flat] * product)
-    return total
-
-
-def shown(table: Structured, stops: np.ndarray) -> np.ndarray:
-    """What the page shows at each row of `stops`: a label index, or integers of the last digit
-    (rounded half up: floor(x·10^d + 0.5), as the script rounds)."""
-    value = evaluate(table.expr, table.parts, table.sliders, stops)
-    if table.labels:
-        return value.astype(np.int64)
-    return np.floor(value * 10.0**table.decimals + 0.5).astype(np.int64) + 0
-
-
-# --- proving a declaration against the model ------------------------------------------------
-
-
-def proof_stops(scene: ResolvedScene) -> np.ndarray:
-    """Every corner and (up to EDGE_STOPS) edge stop of the slider box, the defaults, and a seeded
-    random sample: the stops at which a structural claim is checked."""
-    counts = [a.count for a in scene.axes]
-    if not counts:
-        return np.zeros((1, 0), dtype=np.int64)
-    ends = [sorted({0, c - 1}) for c in counts]
-    rows = [list(corner) for corner in itertools.product(*ends)]
-    edges = []
-    for i, count in enumerate(counts):
-        others = [ends[j] for j in range(len(counts)) if j != i]
-        for corner in itertools.product(*others):
-            for k in range(count):
-                edges.append([*corner[:i], k, *corner[i:]])
-    if len(edges) > EDGE_STOPS:
-        edges = [edges[i] for i in np.linspace(0, len(edges) - 1, EDGE_STOPS).astype(int)]
-    seed = int.from_bytes(hashlib.sha256(scene.spec.id.encode()).digest()[:8], "little")
-    sample = np.random.default_rng(seed).integers(0, counts, size=(RANDOM_STOPS, len(counts)))
-    return np.unique(np.vstack([rows, edges or np.zeros((0, len(counts)), int), [scene.default_stops], sample]).astype(np.int64), axis=0)
-
-
-def prove(scene: ResolvedScene, table: Structured, stops: np.ndarray) -> tuple[float, float]:
-    """Check that the page shows what the model gives at every row of `stops`; raise an author
-    error at the first difference. Returns the smallest and largest value shown."""
-    output = scene.model.output(table.output)
-    inputs = scene.base_values()
-    for i, axis in enumerate(scene.axes):
-        inputs[axis.param] = axis.values()[stops[:, i]]
-    direct = np.asarray(scene.model.evaluate(inputs, [table.output], scene.effects)[table.output], dtype=float)
-    direct = np.broadcast_to(direct, (len(stops),) + ((output.size,) if output.size else ()))
-    deps = scene.model.deps_of(output.name, scene.effects)
-    dep_axes = tuple(i for i, a in enumerate(scene.axes) if a.param in deps)
-    require_showable(scene, output, direct, lambda index: stop_text(scene, dep_axes, stops[index[0], list(dep_axes)]))
-    page = shown(table, stops)
-    if output.is_text:
-        wrong = page != direct.astype(np.int64)
-    else:
-        expected = quantize(direct, output.decimals)
-        wrong = (page != expected) & ~_ties(direct, output.decimals, page, expected)
-    if wrong.ndim > 1:
-        wrong = wrong.any(axis=tuple(range(1, wrong.ndim)))
-    if wrong.any():
-        k = int(np.argmax(wrong))
-        raise AuthorError(
-            scene.spec.loc,
-            f"output '{table.output}': its declared structure gives {_text(page[k], output)} "
-            f"{stop_text(scene, tuple(range(len(scene.axes))), stops[k])}, "
-            f"but the model gives {_text(direct[k], output, raw=True)}; the structure declared in model "
-            f"'{scene.model.name}' is wrong for this scene (remove it to tabulate per stop)",
-            scene.id,
-        )
-    scale = 10.0**-output.decimals
-    return float(page.min()) * scale, float(page.max()) * scale
-
-
-def require_showable(scene: ResolvedScene, output, values: np.ndarray, where) -> None:
-    """Fail on a number too large to be counted exactly in units of its last digit: the page's
-    script reads the counts as JavaScript numbers, exact only up to 2**53 (past 2**63 the count
-    would even wrap around). `where(index)` says where the value at that index of `values` is."""
-    if output.is_text:
-        return
-    limit = 2.0**53 / 10.0**output.decimals
-    bad = np.argwhere(np.isfinite(values) & (np.abs(values) >= limit))
-    if len(bad):
-        raise AuthorError(
-            scene.spec.loc,
-            f"output '{output.name}' is {values[tuple(bad[0])]:.6g} {where(bad[0])}, too large to show "
-            f"with {output.decimals} decimals (at most {limit:.6g}); narrow the sliders' ranges",
-            scene.id,
-        )
-
-
-def stop_text(scene: ResolvedScene, axes: tuple[int, ...], index) -> str:
-    """Where a value is: "at m1=0.1, e=1.00" for the stops `index` of the sliders `axes`."""
-    stop = ", ".join(f"{scene.axes[a].param}={scene.axes[a].stop(int(k))}" for a, k in zip(axes, index))
-    return f"at {stop}" if stop else "at the scene's fixed values"
-
-
-def _ties(direct: np.ndarray, decimals: int, page: np.ndarray, expected: np.ndarray) -> np.ndarray:
-    """Where the exact value sits on a rounding tie (to the model's own float error), so that
-    either neighbour is a correct display."""
-    scaled = direct * 10.0**decimals
-    off_tie = np.abs(np.abs(scaled - np.floor(scaled)) - 0.5)
-    return (np.abs(page - expected) == 1) & (off_tie <= 1e-9 * np.maximum(1.0, np.abs(scaled)))
-
-
-def _text(value, output, raw: bool = False) -> str:
-    if output.is_text:
-        return repr(output.labels[int(np.ravel(value)[0])])
-    if raw:
-        return np.array2string(np.asarray(value), precision=output.decimals + 3)
-    return np.array2string(np.asarray(value) * 10.0**-output.decimals, precision=output.decimals)
 
 
 # --- a scene's structured outputs ------------------------------------------------------------

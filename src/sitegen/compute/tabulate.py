@@ -10,7 +10,8 @@ from ..errors import AuthorError
 from ..physics.structure import outputs_read
 from .quantize import SPECIAL, quantize
 from .scenes import ResolvedScene
-from .structure import compile_structured, require_showable, stop_text, structured_pieces
+from .proof import require_showable, stop_text
+from .structure import compile_structured, structured_pieces
 from .table import Table, drop_constant_axes
 
 

@@ -12,6 +12,7 @@ from ..compute.executors import executor_for, results_in_order
 from ..compute.tabulate import assemble_tables, evaluate_unit, plan_scene
 from ..render.figures.base import figure_label
 from ..render.layers import layer_points
+from ..render.style import laid_out
 from ..render.svg import figure_svg
 from ..site.assemble import RenderedScene, dom_id
 from .record import Book, SceneRecord
@@ -115,7 +116,7 @@ def _figure(record: SceneRecord, run: BuildRun) -> RenderedScene:
     points = layer_points(layers, scene, tables, scene.default_stops)
 
     def draw() -> bytes:
-        return figure_svg(view.draw(scene, tables), layers, points, dom_id(scene), figure_label(view, scene)).encode()
+        return figure_svg(laid_out(view.draw(scene, tables)), layers, points, dom_id(scene), figure_label(view, scene)).encode()
 
     # The layers are drawn at the defaults, so the defaults (through the points) belong in the key.
     key = digest(scene_digest(record), source_digest(FIGURE_MODULES | {type(view).__module__}), repr(points), "figure")

@@ -57,3 +57,11 @@ def new_mosaic(height_in: float, layout, **kwargs):
     with plt.rc_context(RC):
         fig, named = plt.subplot_mosaic(layout, figsize=(WIDTH_IN, height_in), **kwargs)
     return fig, named
+
+
+def laid_out(fig):
+    """The figure as its view laid it out, without the placeholder layout engine that `tight_layout`
+    leaves behind: with one, savefig draws the whole figure an extra time before printing it (the
+    layout is already final, so the SVG is the same, for a third less drawing)."""
+    fig.set_layout_engine(None)
+    return fig

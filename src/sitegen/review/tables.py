@@ -1,34 +1,12 @@
-"""A scene's inline tables decoded back into values, and two versions of a table compared stop by stop."""
+"""Two versions of a scene's table compared stop by stop (decode.py reads them back from the pages)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from decimal import Decimal
 
 import numpy as np
 
 from ..compute.quantize import format_quantum
-from ..compute.structure import Structured, shown
-from ..compute.table import Table
-
-
-@dataclass(frozen=True)
-class Axis:
-    """One slider of a scene: its stops as keys (to match stops across builds) and as the page writes them."""
-
-    param: str
-    keys: tuple[str, ...]
-    texts: tuple[str, ...]
-
-
-@dataclass(frozen=True)
-class Decoded:
-    """One output's values over the sliders it depends on (float; NaN pads a short vector; inf is special)."""
-
-    params: tuple[str, ...]
-    values: np.ndarray  # float, or object (the phrases of a text output); a trailing axis for a vector
-    decimals: int
-    is_text: bool
-    is_vector: bool
+from .decode import Axis, Decoded, decode, expression, scene_axes, with_unit
 
 
 @dataclass(frozen=True)
@@ -56,82 +34,13 @@ class TableChange:
     notes: tuple[str, ...] = ()
 
 
-def scene_axes(data: dict) -> dict[str, Axis]:
-    """The scene's sliders by parameter."""
-    return {s["param"]: _axis(s) for s in data.get("sliders", [])}
-
-
-def _axis(slider: dict) -> Axis:
-    unit = slider.get("unit", "")
-    if "texts" in slider:
-        texts = tuple(slider["texts"])
-        if slider.get("kind") == "choice":
-            return Axis(slider["param"], tuple(f"choice:{t}" for t in texts), texts)
-        return Axis(slider["param"], tuple(_key(Decimal(repr(float(v)))) for v in slider["values"]), texts)
-    d = slider["d"]
-    values = [Decimal(slider["lo"] + k * slider["step"]).scaleb(-d) for k in range(slider["count"])]
-    return Axis(slider["param"], tuple(_key(v) for v in values), tuple(_with_unit(f"{v:.{d}f}", unit) for v in values))
-
-
-def _key(value: Decimal) -> str:
-    text = format(value.normalize(), "f")
-    return "0" if text == "-0" else text
-
-
-def _with_unit(text: str, unit: str) -> str:
-    return f"{text} {unit}".strip() if unit not in ("×", "°") else text + unit
-
-
-EVALUATED_UP_TO = 500_000  # an expression over more stops is compared as an expression only
-
-
-def decode(data: dict, name: str) -> Decoded | None:
-    """One table of a scene's data, decoded (aliases followed, differences summed, specials as inf);
-    an output the page computes from an expression is evaluated at every stop of the sliders it
-    reads, or None when they are more than EVALUATED_UP_TO."""
-    tables, seen = data["tables"], set()
-    entry = tables[name]
-    while "same" in entry and entry["same"] not in seen:
-        seen.add(entry["same"])
-        entry = tables[entry["same"]]
-    if "expr" in entry:
-        return _evaluated(data, entry)
-    params = tuple(data["sliders"][a]["param"] for a in entry["axes"])
-    shape, d, q = tuple(entry["shape"]), entry["d"], entry["q"]
-    delta = entry.get("enc") == "delta"
-    if entry.get("sum"):  # stored along the sum of its axes' stops: spread it over the grid
-        counts = tuple(data["sliders"][a]["count"] for a in entry["axes"])
-        values = np.asarray(q, dtype=float)[sum(np.indices(counts))]
-        return Decoded(params, values if entry.get("raw") else values / 10.0**d, d, False, False)
-    if entry.get("raw"):
-        return Decoded(params, np.asarray(q, dtype=float).reshape(shape), d, False, False)
-    if "labels" in entry:
-        labels = np.array(entry["labels"], dtype=object)
-        return Decoded(params, labels[np.asarray(q, dtype=np.int64)].reshape(shape), d, True, False)
-    if q and isinstance(q[0], list):
-        rows = [_numbers(np.cumsum(r) if delta else r) for r in q]
-        width = max((len(r) for r in rows), default=0)
-        values = np.full((len(rows), width), np.nan)
-        for i, row in enumerate(rows):
-            values[i, : len(row)] = row
-        return Decoded(params, values.reshape(shape + (width,)) / 10.0**d, d, False, True)
-    values = _numbers(np.cumsum(np.asarray(q, dtype=np.int64)) if delta else q)
-    return Decoded(params, values.reshape(shape) / 10.0**d, d, False, False)
-
-
-def _numbers(row) -> np.ndarray:
-    if isinstance(row, np.ndarray):
-        return row.astype(float)
-    return np.array([np.inf if v is None else v for v in row], dtype=float)
-
-
 def compare_table(name: str, unit: str, old: dict | None, new: dict | None) -> TableChange | None:
     """How output `name` changed between two versions of a scene's data (None when it did not)."""
     if old is None or name not in old.get("tables", {}):
         return TableChange(name, unit, "added", notes=(_describe_new(new, name),))
     if new is None or name not in new.get("tables", {}):
         return TableChange(name, unit, "removed")
-    expressions = _expression(old, name), _expression(new, name)
+    expressions = expression(old, name), expression(new, name)
     if expressions[0] == expressions[1] and expressions[0] is not None:
         return None
     a, b = decode(old, name), decode(new, name)
@@ -158,62 +67,6 @@ def compare_table(name: str, unit: str, old: dict | None, new: dict | None) -> T
         example = Extreme("", str(va[first]), str(vb[first]), _stop_text(first, params, texts))
         change = replace(change, largest_abs=example)
     return change
-
-
-def _evaluated(data: dict, entry: dict) -> Decoded | None:
-    """An expression's shown values over the grid of the sliders it reads (the script's arithmetic)."""
-    names = _leaves(entry["expr"], "t")
-    parts = {n: _as_table(n, data["tables"][n]) for n in names}
-    axes = sorted(_leaves(entry["expr"], "x") | {a for t in parts.values() for a in t.axes})
-    counts = [data["sliders"][a]["count"] for a in axes]
-    if int(np.prod(counts)) > EVALUATED_UP_TO:
-        return None
-    stops = np.zeros((int(np.prod(counts)), len(data["sliders"])), dtype=np.int64)
-    for column, index in zip(axes, np.indices(counts).reshape(len(axes), -1)):
-        stops[:, column] = index
-    table = Structured("", entry["expr"], entry["d"], tuple(entry.get("labels", ())), entry.get("n", 0), "", parts,
-                       tuple(_slider_values(s) for s in data["sliders"]))
-    values = shown(table, stops)
-    params = tuple(data["sliders"][a]["param"] for a in axes)
-    grid = tuple(counts) + ((table.width,) if table.width else ())
-    if table.labels:
-        return Decoded(params, np.array(table.labels, dtype=object)[values].reshape(grid), table.decimals, True, False)
-    return Decoded(params, (values / 10.0**table.decimals).reshape(grid), table.decimals, False, bool(table.width))
-
-
-def _leaves(expr, key: str) -> set:
-    """Every value under `key` in an expression: the tables ("t") or sliders ("x") it reads."""
-    if isinstance(expr, dict):
-        return ({expr[key]} if key in expr else set()).union(*(_leaves(v, key) for v in expr.values()))
-    if isinstance(expr, list):
-        return set().union(*(_leaves(v, key) for v in expr))
-    return set()
-
-
-def _as_table(name: str, entry: dict) -> Table:
-    """A scalar table of the page's data as the build held it (differences summed)."""
-    quanta = np.asarray(entry["q"], dtype=float if entry.get("raw") else np.int64)
-    if entry.get("enc") == "delta":
-        quanta = np.cumsum(quanta)
-    return Table(name, tuple(entry["axes"]), tuple(entry["shape"]), quanta, entry["d"], tuple(entry.get("labels", ())),
-                 summed_axes=bool(entry.get("sum")), raw=bool(entry.get("raw")))
-
-
-def _slider_values(slider: dict) -> np.ndarray:
-    """A control's value at each stop, as the page's script computes it."""
-    if slider["kind"] == "choice":
-        return np.arange(slider["count"], dtype=float)
-    if "values" in slider:
-        return np.asarray(slider["values"], dtype=float)
-    return np.array([(slider["lo"] + k * slider["step"]) / 10.0 ** slider["d"] for k in range(slider["count"])])
-
-
-def _expression(data: dict, name: str) -> dict | None:
-    """The expression an output is computed from (None for a table of values)."""
-    entry = data["tables"][name]
-    while "same" in entry:
-        entry = data["tables"][entry["same"]]
-    return entry if "expr" in entry else None
 
 
 def _compare_expressions(name: str, unit: str, old: dict | None, new: dict | None) -> TableChange | None:
@@ -311,7 +164,7 @@ def _extreme(size, va, vb, at, params, texts, d_old, d_new, unit, vector) -> Ext
         where = f"{where}, element {at[len(params)]}" if where else f"element {at[len(params)]}"
     old = format_quantum(round(float(va[at]) * 10**d_old), d_old)
     new = format_quantum(round(float(vb[at]) * 10**d_new), d_new)
-    return Extreme(_with_unit(size, unit) if unit else size, old, new, where)
+    return Extreme(with_unit(size, unit) if unit else size, old, new, where)
 
 
 def _percent(ratio: float) -> str:

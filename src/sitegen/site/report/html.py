@@ -7,6 +7,7 @@ import re
 from html import escape
 
 from ...compute.cache import digest, library_version, source_digest
+from ...render.style import laid_out
 from ...render.svg import figure_svg
 from ...render.work_precision import Point
 
@@ -63,7 +64,7 @@ def rtol_exponent(rtol: float) -> str:
 def figure(context, name: str, data, label: str, draw) -> str:
     """A diagram's inline SVG, remembered by its data and the drawing code (same data, same bytes)."""
     key = digest(name, json.dumps(data, sort_keys=True), source_digest(DRAWING_CODE), f"matplotlib {library_version('matplotlib')}")
-    svg = context.remember("report-figures", key, lambda: figure_svg(draw(), [], [], f"acc-{name}", label).encode())
+    svg = context.remember("report-figures", key, lambda: figure_svg(laid_out(draw()), [], [], f"acc-{name}", label).encode())
     return svg.decode()
 
 

@@ -27,6 +27,7 @@ serve: site
 
 bench: $(VENV)/.test-installed node_modules/.installed tools-chromium
 	$(BIN)/python bench/run.py
+	$(BIN)/python bench/shelf.py
 	$(BIN)/sitegen bench
 
 # Build revision BASE (default HEAD) in a temporary git worktree, build the working tree, and write

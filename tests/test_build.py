@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import gzip
+import io
 import json
 import os
 import re
@@ -119,3 +120,29 @@ def test_cli_reports_author_errors_without_traceback(tmp_path):
     assert "content/index.md:6: scene 'colision': unknown model 'colision'" in done.stderr
     assert "Traceback" not in done.stderr
     assert not (tmp_path / "build").exists()
+
+
+class _Terminal(io.StringIO):
+    def isatty(self) -> bool:
+        return True
+
+
+@pytest.mark.parametrize("tty", [False, True], ids=["log", "terminal"])
+def test_progress_inside_a_scene_is_a_line_in_a_log_and_replaced_on_a_terminal(tty):
+    """In a log every update inside a long scene is a line of its own; on a terminal each replaces
+    the last, and the scene's own line replaces the updates when it ends."""
+    from sitegen.cli import _Progress
+
+    stream = _Terminal() if tty else io.StringIO()
+    progress = _Progress(stream, explain=False)
+    for done in (16, 32):
+        progress(f"  page#scene {done:>12,} of 48 stops, 8 stops/s")
+    progress("[1/2] page#scene      48 stops    6.00 s  computed: new")
+    text = stream.getvalue()
+    if not tty:
+        assert text.splitlines() == ["  page#scene           16 of 48 stops, 8 stops/s", "  page#scene           32 of 48 stops, 8 stops/s",
+                                     "[1/2] page#scene      48 stops    6.00 s  computed"]
+    else:
+        shown = text.split("\r\x1b[2K")
+        assert shown[1] == "  page#scene           32 of 48 stops, 8 stops/s"  # the second update replaced the first
+        assert shown[2].startswith("[1/2] page#scene      48 stops    6.00 s  computed\n[") and shown[2].endswith("1/2 scenes")

@@ -140,3 +140,21 @@ class _Bare:
         from sitegen.render.style import new_figure
 
         return new_figure(2.0)[0]
+
+
+def test_a_long_scene_says_how_far_it_got_before_its_own_line(tmp_path, monkeypatch):
+    """While a scene computes, lines give its stops done, its total and the rate (here after every
+    block, as if each took longer than the pace); the scene's own line follows when it ends."""
+    from sitegen.phases import scenes as scene_phases
+
+    _every_output_per_stop(monkeypatch)
+    monkeypatch.setattr(Collision, "chunk_stops", 10_000)
+    monkeypatch.setattr(scene_phases, "PROGRESS_EVERY", 0.0)
+    lines: list[str] = []
+    build(_book(tmp_path, "paced"), progress=lines.append)
+    collision = next(i for i, line in enumerate(lines) if line.startswith("[") and "#collision" in line)
+    updates = [line for line in lines[:collision] if "#collision" in line and line.endswith(" stops/s")]
+    assert len(updates) >= 3, lines
+    done = [int(line.split()[1].replace(",", "")) for line in updates]
+    totals = {line.split(" of ")[1].split()[0] for line in updates}
+    assert done == sorted(done) and len(totals) == 1 and done[-1] < int(totals.pop().replace(",", ""))

@@ -18,9 +18,17 @@ test: $(VENV)/.test-installed node_modules/.installed tools-chromium tools-java
 	$(BIN)/pytest
 
 # The inner loop: every test but those that drive Chromium or build the project's own book
-# (the end-to-end tests run on the tiny book in tests/book/).
+# (the end-to-end tests run on the tiny book in tests/book/), in two processes (one per core):
+# the test files from a to f, and the rest. Both reports are printed (without the progress dots);
+# check fails if either half fails.
+CHECK := $(BIN)/pytest -q -p no:cacheprovider -m "not browser and not slow"
 check: $(VENV)/.test-installed node_modules/.installed
-	$(BIN)/pytest -q -m "not browser and not slow"
+	@log=$$(mktemp -d); \
+	$(CHECK) $$(ls tests/test_[a-f]*.py) > $$log/first 2>&1 & first=$$!; \
+	$(CHECK) $$(ls tests/test_*.py | grep -v '^tests/test_[a-f]') > $$log/second 2>&1; second=$$?; \
+	wait $$first; first=$$?; \
+	grep -hv '^[.sxFE]*  *\[ *[0-9]*%\]$$' $$log/first $$log/second; rm -rf $$log; \
+	test $$first -eq 0 -a $$second -eq 0
 
 serve: site
 	$(BIN)/sitegen serve --dir build --port $(PORT)

@@ -19,7 +19,7 @@ from .base import Model, Output, Param
 from .bubble_point import (
     BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, SOLVER_LABELS, Scales, check_effects, compose, read_run,
 )
-from .bubble_solve import AUTO, CURVE_POINTS, REFERENCE_CAPS, SOLVERS, STIFF, Run, method_for, reference_for, solve
+from .bubble_solve import AUTO, COMPILED, CURVE_POINTS, REFERENCE_CAPS, SOLVERS, STIFF, Run, method_for, reference_for, solve
 from .bubble_terms import P0, WATER, Problem
 from .numerics import Measurement, Numerics
 
@@ -118,7 +118,7 @@ class Bubble(Model):
     # Over every stop of the book's three bubble scenes this gives at most 5.7e-4 R0 (a violent
     # collapse at R0 = 10 µm, p_a = 1.4 p0), 2.7e-4 under the ramp, 7.8e-6 for the collapse (measured).
     numerics = Numerics(AUTO, tolerance=1e-3, rtol=1e-6)
-    methods = {AUTO: {"rtol": 1e-6, "atol": None}, **{name: {"rtol": 1e-6, "atol": None} for name in SOLVERS}}
+    methods = {AUTO: {"rtol": 1e-6, "atol": None}, **{name: {"rtol": 1e-6, "atol": None} for name in (*SOLVERS, *COMPILED)}}
     error_metric = "max |ΔR|/R₀ over R(t) and its extrema"
     check_stops = 6  # each costs a solve and a tight reference solve (0.05–2 s)
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from . import bubble_terms as terms
 from .bubble_solve import (
-    ANALYTIC, CAP_NFEV, CAP_WALL, CORE, CURVE_POINTS, EXPLICIT_RTOL, FAILED, IMPLICIT_RTOL, KM_STOP, MACH,
+    ANALYTIC, CAP_NFEV, CORE, CURVE_POINTS, EXPLICIT, EXPLICIT_RTOL, FAILED, IMPLICIT, IMPLICIT_RTOL, KM_STOP, MACH,
     POINT, STIFF, UNBOUNDED_GROWTH, Run,
 )
 from .bubble_terms import P0, T0, Problem
@@ -33,19 +33,24 @@ FLAGS = (
     "tolerance too loose: the solution reached the van der Waals hard core",
     "stopped at R = 10 R_B: unbounded growth",
     "evaluation cap hit: solve abandoned",
-    "wall-time cap hit: solve abandoned",
     "solver failed: step size underflow",
 )
-_FLAG_OF_STATUS = {MACH: 2, KM_STOP: 3, POINT: 4, CORE: 5, UNBOUNDED_GROWTH: 6, CAP_NFEV: 7, CAP_WALL: 8, FAILED: 9}
+_FLAG_OF_STATUS = {MACH: 2, KM_STOP: 3, POINT: 4, CORE: 5, UNBOUNDED_GROWTH: 6, CAP_NFEV: 7, FAILED: 8}
+def _power(rtol: float) -> str:
+    """An rtol as a label writes it: 1e−6."""
+    return f"{rtol:.0e}".replace("e-0", "e−").replace("e-", "e−")
+
+
 # The default settings' three choices, then any method at the rtol a scene's `numerics:` line sets.
-SCENE_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
-SOLVER_LABELS = ("analytic (betaincinv)", "DOP853, rtol 1e−6", "LSODA (stiff: 4µT/ρR₀² > 10³), rtol 1e−6", "other") + tuple(
+SCENE_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA", EXPLICIT, IMPLICIT)
+SOLVER_LABELS = ("analytic (betaincinv)", f"DOP853 (compiled), rtol {_power(EXPLICIT_RTOL)}",
+                 f"Radau IIA (compiled; stiff: 4µT/ρR₀² > 10³), rtol {_power(IMPLICIT_RTOL)}", "other") + tuple(
     f"{method}, at the scene's rtol" for method in SCENE_METHODS)
 BLAKE_LABELS = ("bounded: R stayed below the Blake radius", "R passed R_B but stayed below 10 R_B", "unbounded: R reached 10 R_B")
 
 GUARDS = (MACH, KM_STOP, POINT, CORE)  # terminal events that end a run before its window does
 TERMINAL = GUARDS + (UNBOUNDED_GROWTH,)
-ABANDONED = (CAP_NFEV, CAP_WALL, FAILED)
+ABANDONED = (CAP_NFEV, FAILED)
 
 
 def check_effects(effects) -> None:
@@ -263,9 +268,9 @@ def _flag(run: Run, pb: Problem) -> int:
 
 def _solver_label(run: Run, pb: Problem) -> int:
     """Index into SOLVER_LABELS (the stiff label only where the terms are stiff)."""
-    choices = {(ANALYTIC, 0.0): 0, ("DOP853", EXPLICIT_RTOL): 1}
+    choices = {(ANALYTIC, 0.0): 0, (EXPLICIT, EXPLICIT_RTOL): 1}
     if pb.stiffness > STIFF:
-        choices[("LSODA", IMPLICIT_RTOL)] = 2
+        choices[(IMPLICIT, IMPLICIT_RTOL)] = 2
     if (run.method, run.rtol) in choices:
         return choices[(run.method, run.rtol)]
     return 4 + SCENE_METHODS.index(run.method) if run.method in SCENE_METHODS else 3

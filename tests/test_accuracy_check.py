@@ -179,7 +179,7 @@ def test_switching_method_takes_the_new_methods_defaults():
     default = Numerics("stepper", tolerance=1.0, rtol=1e-3)
     assert configure(default, methods, {"method": "quadrature"}) == Numerics("quadrature", tolerance=1.0, nodes=32)
     assert configure(Bubble.numerics, Bubble.methods, {"method": "Radau", "atol": "1e-9"}).text() == \
-        "method Radau, rtol 1e-6, atol 1e-9, tolerance 0.001"
+        "method Radau, rtol 1e-6, atol 1e-9, tolerance 1e-5"
 
 
 def test_settings_take_part_in_the_cache_key():

@@ -19,7 +19,7 @@ from .content.markdown_ext import fill_slots, markdown_to_html
 from .content.math import convert_math
 from .content.pages import Page, discover_pages, read_page
 from .errors import AuthorError, ErrorLog, SourceLoc
-from .physics import MODELS
+from .physics import MODELS, compiled
 from .render.svg import figure_svg
 from .render.figures import FIGURES
 from .render.figures.base import figure_label
@@ -86,6 +86,7 @@ def build(config: BuildConfig, progress=print) -> BuildReport:
     scenes = clock.phase("resolve", resolve_scenes, pages, log)
     mathml = clock.phase("math", convert_page_math, pages, config, log, remember)
     log.raise_if_any()
+    clock.phase("compile", compile_kernels, scenes, cache, config, progress)
     tables = clock.phase("tabulate", tabulate_scenes, scenes, cache, config, report, log, progress)
     log.raise_if_any()
     report.accuracy = clock.phase("check", check_accuracy, scenes, log, remember, progress)
@@ -155,6 +156,19 @@ def convert_page_math(pages: list[Page], config: BuildConfig, log: ErrorLog, rem
     return by_page
 
 
+def compile_kernels(scenes: list[PageScene], cache: TableCache | None, config: BuildConfig, progress=None) -> None:
+    """Compile the kernels of the models that have scenes to tabulate, or load them from .cache/compiled/
+    (kept even without a table cache); a build with every table cached loads none."""
+    compiled.use_cache(config.root / ".cache" / "compiled")
+    pending = [item for item in scenes if not cache or not cache.has(scene_key(item.scene, needed_outputs(item.scene)))]
+    models = {item.scene.model.name: item.scene.model for item in pending}
+    for name, model in sorted(models.items()):
+        prepared = model.prepare_kernels()
+        if prepared and progress:
+            seconds, fresh = prepared
+            progress(f"compile   {name}: {'compiled' if fresh else 'loaded from the cache'} in {seconds:.2f} s")
+
+
 def tabulate_scenes(scenes, cache: TableCache | None, config: BuildConfig, report: BuildReport, log: ErrorLog,
                     progress=None) -> dict[str, dict[str, Table]]:
     """Each scene's tables: from the cache when its key matches, else computed by the executor."""
@@ -190,7 +204,7 @@ def tabulate_scenes(scenes, cache: TableCache | None, config: BuildConfig, repor
 
 def check_accuracy(scenes: list[PageScene], log: ErrorLog, remember=compute_now, progress=None) -> list[SceneAccuracy]:
     """Each numerically computed scene measured against its model's reference (a scene over its tolerance is an error)."""
-    records, errors = check_scenes(scenes, remember, progress)
+    records, errors = check_scenes(scenes, remember, progress, shown=needed_outputs)
     for error in errors:
         log.add(error)
     return records

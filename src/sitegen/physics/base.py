@@ -143,6 +143,8 @@ class Model:
     error_metric: ClassVar[str] = ""
     check_stops: ClassVar[int] = 16  # slider stops the build's check samples (fewer for an ODE solve per point)
 
+    checks_digits: ClassVar[bool] = False  # whether measure_error also compares the displayed digits
+
     def __init__(self, settings: Numerics | None = None):
         self.settings = settings if settings is not None else self.numerics
 
@@ -200,6 +202,10 @@ class Model:
         self, x: Mapping[str, np.ndarray], wanted: tuple[str, ...], effects: frozenset[str]
     ) -> dict[str, np.ndarray]:
         raise NotImplementedError
+
+    def prepare_kernels(self) -> tuple[float, bool] | None:
+        """Compile (or load from the cache) the model's compiled code: (seconds, whether it compiled), or None."""
+        return None
 
     def is_numerical(self, effects: Iterable[str]) -> bool:
         """Whether, with these effects, some output comes from a numerical method (and is checked)."""

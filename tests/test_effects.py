@@ -171,7 +171,7 @@ def test_chain_scene_evaluates_an_effect_only_when_it_names_it(chain_spy, effect
 # --- the bubble's terms ------------------------------------------------------------------------------------------------
 
 # The statements that evaluate each term (the start of each, as written there), in scipy's right-hand
-# side (make_rhs) and in the compiled one (bubble_kernel_terms: gas, tension and viscosity in `wall`).
+# side (make_rhs) and in the compiled one (bubble_kernel_terms.rhs).
 BUBBLE_TERMS = {
     "gas": "p_gas = gas0 * (gas_volume0 / volume) ** kappa",
     "surface_tension": "p_wall -= two_sigma / r",
@@ -180,7 +180,7 @@ BUBBLE_TERMS = {
     "radiation": "return (v, (drive - 1.5 * v * v + r / c * p_gas_rate) / r)",
 }
 KERNEL_TERMS = {
-    "gas": "p_gas = p[GAS] * ((1.0 - p[E3]) / volume) ** kappa",
+    "gas": "p_gas = p[GAS] * ((1.0 - p[E3]) / volume) ** p[KAPPA]",
     "surface_tension": "pw -= p[SIGMA2] / r",
     "viscosity": "pw -= p[VISC4] * v / r",
     "keller_miksis": "numerator = (1.0 + v / c) * drive",
@@ -192,7 +192,7 @@ MILD = {"R0": 10.0, "p_a": 0.4, "f": 50.0}  # a gentle driven bubble: a short, c
 
 def _term_lines(path: str) -> dict[str, tuple[str, int]]:
     """(function name, line number) of each term's statement, in scipy's or the compiled right-hand side."""
-    terms, functions = (BUBBLE_TERMS, [make_rhs]) if path == "scipy" else (KERNEL_TERMS, [kernel_terms.wall.py_func, kernel_terms.rhs.py_func])
+    terms, functions = (BUBBLE_TERMS, [make_rhs]) if path == "scipy" else (KERNEL_TERMS, [kernel_terms.rhs.py_func])
     found = {}
     for function in functions:
         lines, start = inspect.getsourcelines(function)
@@ -205,8 +205,9 @@ def _term_lines(path: str) -> dict[str, tuple[str, int]]:
 def _executed_rhs_lines(effects, path: str) -> set[tuple[str, int]]:
     """Solve one driven bubble with `effects` and record which lines of the composed right-hand side ran.
 
-    scipy's path is traced while it solves; the compiled kernels cannot be traced, so their Python source
-    (which numba compiles) is run on the same packed parameters at the states of the compiled solve.
+    scipy's path is traced while it solves; the compiled kernels cannot be traced, so the Python source of
+    the compiled right-hand side (which numba compiles) is run on the same packed parameters at the states
+    of the compiled solve.
     """
     executed: set[tuple[str, int]] = set()
     files = {bubble_terms.__file__} if path == "scipy" else {kernel_terms.__file__}
@@ -217,7 +218,7 @@ def _executed_rhs_lines(effects, path: str) -> set[tuple[str, int]]:
         return local
 
     def tracer(frame, event, arg):
-        return local if frame.f_code.co_name in ("rhs", "wall") and frame.f_code.co_filename in files else None
+        return local if frame.f_code.co_name == "rhs" and frame.f_code.co_filename in files else None
 
     pb, _ = bubble_point.compose({**MODELS["bubble"].defaults(), **MILD}, effects)
     method = "DOP853" if path == "scipy" else bubble_solve.EXPLICIT
@@ -229,7 +230,6 @@ def _executed_rhs_lines(effects, path: str) -> set[tuple[str, int]]:
             p = kernel_terms.pack(pb)
             for t, r, v in zip(run.tau[::40], run.r[::40], run.v[::40]):
                 kernel_terms.rhs.py_func(p, t, r, v)
-                kernel_terms.wall.py_func(p, r, v)
     finally:
         sys.settrace(None)
     return executed

@@ -10,7 +10,9 @@ terminal events and caps (bubble_solve.py); points that are one nondimensional p
 from __future__ import annotations
 
 import math
+import os
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -25,6 +27,7 @@ from .numerics import Measurement, Numerics
 
 EFFECTS = ("inertia", "gas", "vdw_hard_core", "vapour", "surface_tension", "viscosity", "thermal_damping",
            "step", "drive", "ramp", "radiation", "keller_miksis")
+THREADS = min(2, os.cpu_count() or 1)  # the solves of a block of points run on this many threads
 LIQUID_AND_GAS = ("R0", "rho", "c", "kappa", "h_frac", "p_v", "sigma", "mu", "D_g")
 HISTORY_PARAMS = {"step": ("p_inf", "gas_content"), "drive": ("p_a", "f"), "ramp": ("p_target", "t_ramp", "t_hold")}
 PREFIX = {"step": "collapse", "drive": "driven", "ramp": "ramp"}
@@ -216,15 +219,23 @@ CLOSED_FORMS = {
 
 
 def _solve_points(x, names, effects, settings: Numerics) -> dict[str, np.ndarray]:
-    """Solve every point (each distinct nondimensional problem once) and read the named outputs."""
+    """Solve every point (each distinct nondimensional problem once) and read the named outputs.
+
+    The compiled solver releases the GIL, so THREADS threads solve points side by side; each point's
+    result depends on that point alone, so the tables do not depend on the number of threads.
+    """
     shape = np.shape(x["R0"])
     flat = {name: np.ravel(x[name]) for name in ALL}
-    rows = []
-    for i in range(int(np.prod(shape, dtype=int))):
-        point = {name: float(flat[name][i]) for name in ALL}
-        pb, scales = compose(point, effects)
+    count = int(np.prod(shape, dtype=int))
+
+    def one(i: int) -> dict:
+        pb, scales = compose({name: float(flat[name][i]) for name in ALL}, effects)
         method, rtol, atol = method_for(pb, settings)
-        rows.append(read_run(solve(pb, method, rtol, atol=atol), pb, scales, effects))
+        return read_run(solve(pb, method, rtol, atol=atol), pb, scales, effects)
+
+    ensure_compiled()  # before the threads start: compiling or loading is done once
+    with ThreadPoolExecutor(max_workers=THREADS) as pool:
+        rows = list(pool.map(one, range(count)))
     out = {}
     for name in names:
         key, size = name.split("_", 1)[1], Bubble.output(name).size

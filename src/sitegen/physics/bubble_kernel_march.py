@@ -46,17 +46,19 @@ def interpolate(method, dense, t_old, h, y_old, t):
 
 
 @kernel
-def event_on_step(p, kind, level, method, dense, t_old, h, y_old, t):
+def event_on_step(p, kind, level, method, dense, t_old, h, y_old, t, count):
     """g on the step's interpolant at t."""
     r, v = interpolate(method, dense, t_old, h, y_old, t)
+    if kind == G_ACCELERATION:
+        count[0] += 1
     return event_value(p, kind, level, t, r, v)
 
 
 @kernel
-def locate(p, kind, level, method, dense, t_old, h, y_old, a, b):
+def locate(p, kind, level, method, dense, t_old, h, y_old, a, b, count):
     """The crossing of g in [a, b] by Brent's method; b when the interpolant misses the bracket."""
-    fa = event_on_step(p, kind, level, method, dense, t_old, h, y_old, a)
-    fb = event_on_step(p, kind, level, method, dense, t_old, h, y_old, b)
+    fa = event_on_step(p, kind, level, method, dense, t_old, h, y_old, a, count)
+    fb = event_on_step(p, kind, level, method, dense, t_old, h, y_old, b, count)
     if fa * fb > 0.0:
         return b
     if fa == 0.0:
@@ -91,7 +93,7 @@ def locate(p, kind, level, method, dense, t_old, h, y_old, a, b):
             s_pre, s_cur = s_bis, s_bis
         x_pre, f_pre = x_cur, f_cur
         x_cur += s_cur if abs(s_cur) > delta else (delta if s_bis > 0.0 else -delta)
-        f_cur = event_on_step(p, kind, level, method, dense, t_old, h, y_old, x_cur)
+        f_cur = event_on_step(p, kind, level, method, dense, t_old, h, y_old, x_cur, count)
     return x_cur
 
 
@@ -111,9 +113,9 @@ def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
     """Step from y0 at τ = 0 to t_bound with events, samples and the evaluation cap.
 
     Returns (end code, (τ, r, ṙ) at the end, samples (len(grid) × 2, NaN past the end), hits (rows of
-    record code, τ, r, ṙ), solver evaluations, all evaluations).
+    record code, τ, r, ṙ), right-hand-side evaluations, the events' included).
     """
-    count, extra = np.zeros(1, np.int64), np.zeros(1, np.int64)  # solver's and events' evaluations
+    count = np.zeros(1, np.int64)  # right-hand-side evaluations: the steppers' and the events'
     y, y_new, f = y0.copy(), np.empty(2), np.empty(2)
     K = np.empty((16, 2))
     # the step's interpolant: DOP853's 7 × 2 coefficients, or Radau's 2 × 3 collocation polynomial
@@ -139,8 +141,8 @@ def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
         g_old[i] = event_value(p, int(events[i, 0]), events[i, 1], t, y[0], y[1])
     end = (t, y[0], y[1])
     while True:
-        if count[0] + extra[0] > max_nfev:
-            return CAP_CODE, end, samples, hits[:n_hits], count[0], count[0] + extra[0]
+        if count[0] > max_nfev:
+            return CAP_CODE, end, samples, hits[:n_hits], count[0]
         t_old = t
         if method == DOP853_METHOD:
             ok, t, h_abs = dop853_step(p, t_old, y, f, h_abs, t_bound, rtol, atol, K, y_new, count)
@@ -148,7 +150,7 @@ def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
             ok, t = radau_step(p, t_old, y, f, state, J, inv_real, inv_complex, sol, dense, t_bound, rtol, atol,
                                newton_tol, y_new, count)
         if not ok or not (math.isfinite(y_new[0]) and math.isfinite(y_new[1])):
-            return FAILED_CODE, end, samples, hits[:n_hits], count[0], count[0] + extra[0]
+            return FAILED_CODE, end, samples, hits[:n_hits], count[0]
         h = t - t_old
         if method == DOP853_METHOD:
             f[0], f[1] = K[STAGES, 0], K[STAGES, 1]
@@ -158,9 +160,10 @@ def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
         crossed = False
         for i in range(n_events):
             kind, direction = int(events[i, 0]), events[i, 2]
-            if kind == G_ACCELERATION:
-                extra[0] += 1
-            g_new[i] = event_value(p, kind, events[i, 1], t, y_new[0], y_new[1])
+            if kind == G_ACCELERATION:  # r̈ at the step's end is f[1], just computed
+                g_new[i] = f[1]
+            else:
+                g_new[i] = event_value(p, kind, events[i, 1], t, y_new[0], y_new[1])
             a, b = g_old[i], g_new[i]
             rising, falling = a <= 0.0 <= b and a != b, a >= 0.0 >= b and a != b
             roots[i] = 0.0 if (rising and direction >= 0) or (falling and direction <= 0) else math.nan
@@ -170,7 +173,7 @@ def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
         stop, stop_t = -1, t
         for i in range(n_events):
             if not math.isnan(roots[i]):
-                roots[i] = locate(p, int(events[i, 0]), events[i, 1], method, dense, t_old, h, y, t_old, t)
+                roots[i] = locate(p, int(events[i, 0]), events[i, 1], method, dense, t_old, h, y, t_old, t, count)
                 if events[i, 3] > 0 and (stop < 0 or roots[i] < stop_t):
                     stop, stop_t = i, roots[i]
         for i in range(n_events):
@@ -183,9 +186,9 @@ def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
             next_sample += 1
         if stop >= 0:
             r, v = interpolate(method, dense, t_old, h, y, stop_t)
-            return int(events[stop, 3]), (stop_t, r, v), samples, hits[:n_hits], count[0], count[0] + extra[0]
+            return int(events[stop, 3]), (stop_t, r, v), samples, hits[:n_hits], count[0]
         y[0], y[1] = y_new[0], y_new[1]
         end = (t, y[0], y[1])
         if t >= t_bound:
-            return ENDED, end, samples, hits[:n_hits], count[0], count[0] + extra[0]
+            return ENDED, end, samples, hits[:n_hits], count[0]
         g_old[:] = g_new

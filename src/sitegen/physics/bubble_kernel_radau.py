@@ -42,6 +42,8 @@ def newton(p, t, y, h, Z, scale, tol, inv_real, inv_complex, count):
     times(RADAU_TI, Z, W)
     F = np.empty((3, 2))
     dW = np.empty((3, 2))
+    fr = np.empty(2)
+    fc = np.empty(2, np.complex128)
     m_real, m_complex = MU_REAL / h, MU_COMPLEX / h
     norm_old, rate = math.nan, math.nan
     for k in range(NEWTON_MAXITER):
@@ -50,8 +52,6 @@ def newton(p, t, y, h, Z, scale, tol, inv_real, inv_complex, count):
             F[i, 0], F[i, 1] = rhs(p, t + h * RADAU_C[i], y[0] + Z[i, 0], y[1] + Z[i, 1])
         if not np.all(np.isfinite(F)):
             return False, k + 1, rate
-        fr = np.empty(2)
-        fc = np.empty(2, np.complex128)
         for j in range(2):
             fr[j] = F[0, j] * RADAU_TI[0, 0] + F[1, j] * RADAU_TI[0, 1] + F[2, j] * RADAU_TI[0, 2] - m_real * W[0, j]
             re = F[0, j] * RADAU_TI[1, 0] + F[1, j] * RADAU_TI[1, 1] + F[2, j] * RADAU_TI[1, 2]

@@ -124,16 +124,15 @@ def dop853_step(p, t, y, f, h_abs, t_bound, rtol, atol, K, y_new, count):
 @kernel
 def dop853_error(K, h, y, y_new, rtol, atol):
     """DOP853's error norm: the fifth-order estimate, corrected by the third-order one."""
-    e5 = np.zeros(2)
-    e3 = np.zeros(2)
+    n5, n3 = 0.0, 0.0
     for i in range(2):
         scale = atol + max(abs(y[i]), abs(y_new[i])) * rtol
+        e5, e3 = 0.0, 0.0
         for j in range(STAGES + 1):
-            e5[i] += K[j, i] * E5[j]
-            e3[i] += K[j, i] * E3[j]
-        e5[i] /= scale
-        e3[i] /= scale
-    n5, n3 = e5[0] ** 2 + e5[1] ** 2, e3[0] ** 2 + e3[1] ** 2
+            e5 += K[j, i] * E5[j]
+            e3 += K[j, i] * E3[j]
+        n5 += (e5 / scale) ** 2
+        n3 += (e3 / scale) ** 2
     if n5 == 0.0 and n3 == 0.0:
         return 0.0
     return abs(h) * n5 / math.sqrt((n5 + 0.01 * n3) * 2.0)

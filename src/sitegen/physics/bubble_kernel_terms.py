@@ -81,9 +81,20 @@ def wall(p, r, v):
 
 @kernel
 def rhs(p, t, y0, y1):
-    """(ṙ, r̈) at (τ, r, ṙ): make_rhs's right-hand side."""
+    """(ṙ, r̈) at (τ, r, ṙ): make_rhs's right-hand side (the terms again, without `wall`'s derivatives)."""
     r, v = max(y0, R_FLOOR), y1
-    pw, _, _, q, _, _, g, _, _ = wall(p, r, v)
+    pw, q, g = p[VAPOUR], 0.0, 0.0
+    if p[GAS] > 0.0:
+        volume = max(r * r * r - p[E3], p[VOLUME_FLOOR])
+        p_gas = p[GAS] * ((1.0 - p[E3]) / volume) ** p[KAPPA]
+        g = -3.0 * p[KAPPA] * p_gas * r * r * v / volume
+        pw, q = pw + p_gas, g
+    if p[SIGMA2] > 0.0:
+        pw -= p[SIGMA2] / r
+        q += p[SIGMA2] * v / (r * r)
+    if p[VISC4] > 0.0:
+        pw -= p[VISC4] * v / r
+        q += p[VISC4] * v * v / (r * r)
     drive = pw - far_field(p, t)
     c = p[SOUND]
     if p[COMPRESSIBLE] == KM_FORM:

@@ -226,7 +226,7 @@ def integrate_compiled(pb: Problem, y0, method: str, rtol: float, caps: Caps = C
     atol = default_atol(rtol) if atol is None else atol
     if pb.compressible == KELLER_MIKSIS and abs(y0[1]) >= pb.speed_limit:
         return _make_run(KM_STOP, method, rtol, _Stepper([], grid, y0), 0, time.perf_counter() - start)
-    code, end, samples, hits, nfev, _ = march(COMPILED[method], pack(pb), np.array(y0, float), rtol, atol, pb.tau_end,
+    code, end, samples, hits, nfev = march(COMPILED[method], pack(pb), np.array(y0, float), rtol, atol, pb.tau_end,
                                               grid, event_table(pb), caps.max_nfev)
     status = _ENDS[code] if code in _ENDS else STOPS[code - 3]
     pick = lambda role, column: _frozen(hits[hits[:, 0] == _RECORDS[role]][:, [1, column]]).reshape(-1, 2)  # noqa: E731

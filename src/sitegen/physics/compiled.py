@@ -35,9 +35,9 @@ def kernel(function):
     """Compile `function` with numba (on first use, from the content-keyed cache when it is there).
 
     error_model="numpy": a division by zero gives inf or NaN, as in numpy, instead of raising; the
-    steppers reject such a step.
+    steppers reject such a step. nogil: the kernels release the GIL, so threads solve points side by side.
     """
-    dispatcher = numba.njit(error_model="numpy")(function)
+    dispatcher = numba.njit(error_model="numpy", nogil=True)(function)
     _KERNELS.append(dispatcher)
     return dispatcher
 

@@ -19,6 +19,7 @@ PARTS = {
     "bubble-A": "the work–precision diagram of bubble case A",
     "bubble-B": "the work–precision diagram of bubble case B",
     "bubble-C": "the work–precision diagram of bubble case C",
+    "settings": "the bubble scenes' settings: every stop's shown digits against time",
     "digits": "what one more digit costs, measured",
     "resolution": "grid resolution against interpolation error and bytes",
     "scenes": "the table of the numerically checked scenes of this build",

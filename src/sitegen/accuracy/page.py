@@ -21,10 +21,11 @@ from ..render.work_precision import Panel, Point, Series, resolution_figure, wor
 from . import summary
 from .results import load_results
 from .records import SceneAccuracy
+from .sweep_report import near_listing, sweep_panel, sweep_rows
 
 _SLOT = re.compile(r'<div data-report-slot="(\d+)"></div>')
 _SCENE_DATA = re.compile(rb'<script type="application/json" class="scene-data">(.*?)</script>', re.S)
-_CODE = frozenset({"sitegen.accuracy.page", "sitegen.render.work_precision", "sitegen.render.svg"})
+_CODE = frozenset({"sitegen.accuracy.page", "sitegen.accuracy.sweep_report", "sitegen.render.work_precision", "sitegen.render.svg"})
 MISSING = ('<p class="report-missing">No benchmark results yet: run <code>make bench</code> (or '
            '<code>sitegen bench</code>) to measure them.</p>')
 
@@ -299,7 +300,7 @@ def digits_part(context: ReportContext) -> str:
 
 
 def _per_digit_rows(bench: dict) -> dict:
-    names = ["velocity Verlet", "RK45", "DOP853", "Radau", "BDF", "LSODA"]
+    names = ["velocity Verlet", "RK45", "DOP853", "Radau", "BDF", "LSODA", "compiled-DOP853", "compiled-Radau"]
     rows = []
     for n in sorted({r["N"] for r in bench["chain"]["runs"]}):
         costs = summary.chain_headlines(bench["chain"], n)["per_digit"]
@@ -364,6 +365,24 @@ def label_html(run: dict) -> str:
     if run.get("courant") is not None:
         return f"velocity Verlet at ν = {run['courant']:g}"
     return escape(run["method"])
+
+
+def settings_part(context: ReportContext) -> str:
+    """The bubble scenes' settings, chosen: time per solve against the largest error in shown digits, every stop."""
+    sweep = (context.bench or {}).get("digits")
+    if not sweep:
+        return MISSING
+    label = "Time per solve against the largest error in units of the last shown digit, every stop of each bubble scene."
+
+    def draw():
+        return work_precision_figure([sweep_panel(sweep)], "time per solve, all stops (ms)", "largest error (last shown digits)",
+                                     "labels: rtol = 10⁻ⁿ; below 0.5 every shown digit can be right")
+
+    table = _table(["scene", "rtol", "ms per solve", "wrong values", "near a boundary", "largest error (digits)"], sweep_rows(sweep),
+                   "Every stop of every bubble scene against the tight reference", text=(0,))
+    caption = (f"{label} Reference: {escape(next(iter(sweep.values()))['reference'])}. The number beside a point is n in rtol = 10⁻ⁿ; "
+               "the ringed point is the setting the scenes use.")
+    return _figure_html("settings", _figure(context, "settings", sweep, label, draw), label, caption, table) + near_listing(sweep)
 
 
 def scenes_part(context: ReportContext) -> str:
@@ -437,6 +456,7 @@ PARTS = {
     "bubble-A": bubble_part("A"),
     "bubble-B": bubble_part("B"),
     "bubble-C": bubble_part("C"),
+    "settings": settings_part,
     "digits": digits_part,
     "resolution": resolution_part,
     "scenes": scenes_part,

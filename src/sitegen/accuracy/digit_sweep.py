@@ -18,7 +18,7 @@ import numpy as np
 from ..build import BuildConfig, needed_outputs, read_pages, resolve_scenes
 from ..compute.grid import CHOICE
 from ..errors import ErrorLog
-from ..physics.bubble import ALL, PREFIX, Bubble, run_difference, shown_difference
+from ..physics.bubble import ALL, CLOSED_FORMS, PREFIX, Bubble, run_difference, shown_difference
 from ..physics.bubble_point import compose, read_run
 from ..physics.bubble_solve import (
     AUTO, EXPLICIT_RTOL, REFERENCE_CAPS, ensure_compiled, method_for, reference_for, solve,
@@ -48,7 +48,8 @@ def digit_sweep(root: Path, rtols=RTOLS, progress=None) -> dict:
 
 def _scene_sweep(scene, rtols) -> dict:
     history = next(h for h in PREFIX if h in scene.effects)
-    shown = [n for n in needed_outputs(scene) if n.startswith(PREFIX[history] + "_")]
+    solved_outputs = {o.name for o in Bubble.outputs if o.name not in CLOSED_FORMS and not o.name.endswith("_solver")}
+    shown = [n for n in needed_outputs(scene) if n.startswith(PREFIX[history] + "_") and n in solved_outputs]
     points = [(stop, _point(scene, stop)) for stop in np.ndindex(*[a.count for a in scene.axes])]
     problems = [compose({n: point[n] for n in ALL}, scene.effects) for _, point in points]
     references = [solve.__wrapped__(pb, *reference_for(pb, AUTO), REFERENCE_CAPS) for pb, _ in problems]

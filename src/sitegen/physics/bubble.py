@@ -151,8 +151,8 @@ class Bubble(Model):
         pb, scales = compose({**self.defaults(), **values}, effects)
         method, rtol, atol = method_for(pb, self.settings)
         run = solve(pb, method, rtol, atol=atol)
-        ref_method, ref_rtol = reference_for(pb, method)
-        reference = solve(pb, ref_method, ref_rtol, REFERENCE_CAPS)
+        ref_method, ref_rtol, ref_atol = reference_for(pb, method)
+        reference = solve(pb, ref_method, ref_rtol, REFERENCE_CAPS, atol=ref_atol)
         error = run_difference(run, reference, pb, scales, effects)
         where = " where stiff" if pb.stiffness > STIFF else ""
         wrong, near = shown_difference(read_run(run, pb, scales, effects), read_run(reference, pb, scales, effects),

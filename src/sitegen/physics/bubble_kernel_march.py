@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .bubble_kernel_radau import CURRENT_JAC, H_ABS, HAS_SOL, STATE_SIZE, radau_step
+from .bubble_kernel_radau import CURRENT_JAC, FACTORISED, H_ABS, HAS_SOL, STATE_SIZE, radau_step
 from .bubble_kernel_steppers import (
     DOP853_ORDER, RADAU_ORDER, STAGES, dop853_at, dop853_dense, dop853_step, initial_step, radau_at, set_jacobian,
 )
@@ -132,9 +132,9 @@ def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
     f[0], f[1] = rhs(p, t, y[0], y[1])
     order = DOP853_ORDER if method == DOP853_METHOD else RADAU_ORDER
     h_abs = initial_step(p, t, y, f, t_bound, order, rtol, atol, count)
+    newton_tol = max(10.0 * np.finfo(np.float64).eps / rtol, min(0.03, rtol**0.5))  # Radau's, as scipy sets it
     if method == RADAU_METHOD:
-        newton_tol = max(10.0 * np.finfo(np.float64).eps / rtol, min(0.03, rtol**0.5))
-        state[H_ABS], state[HAS_SOL], state[4] = h_abs, 0.0, 0.0
+        state[H_ABS], state[HAS_SOL], state[FACTORISED] = h_abs, 0.0, 0.0
         set_jacobian(p, t, y, J)
         state[CURRENT_JAC] = 1.0
     for i in range(n_events):

@@ -51,10 +51,11 @@ EXPLICIT_RTOL, IMPLICIT_RTOL = 1e-8, 1e-8
 AUTO = "auto"  # the method setting that lets the composed terms choose (analytic, compiled DOP853 or Radau)
 REFERENCE_RTOL, REFERENCE_STIFF = 1e-12, 1e-10  # the check's tight solutions (non-stiff, stiff)
 ATOL_PER_RTOL = 1e-3  # nondimensional: atol = 1e-3 rtol on r ~ 1 and ṙ ~ 1
-# ... but never below 1e-12: in a quasi-static stretch of a stiff run ṙ ≈ 0, its round-off exceeds
-# a smaller atol and the step size collapses (Radau at rtol 1e-10 with atol 1e-13 ran into 3e6
-# evaluations on a 0.1 µm nucleus, scipy's and the compiled one alike; with 1e-12, 4e3).
-ATOL_FLOOR = 1e-12
+# ... but on stiff terms, for `auto` and the references, never below 1e-11: in a quasi-static stretch of
+# a stiff run ṙ ≈ 0, its round-off exceeds a smaller atol and the step size collapses (Radau at rtol 1e-10 ran into 3e6 evaluations on a 0.1 µm
+# nucleus with atol 1e-13, scipy's and the compiled one alike, and at 2 stops of the Blake scene with
+# 1e-12; with 1e-11 every stop of R0 ≤ 1 µm takes at most 1.3e4).
+ATOL_FLOOR = 1e-11
 CURVE_POINTS = 401  # samples of R(t) over the run; the middle one is t = T for a two-period drive
 EPS = np.finfo(float).eps
 
@@ -133,8 +134,13 @@ class Event:
 
 
 def default_atol(rtol: float) -> float:
-    """The absolute tolerance that goes with rtol: 1e-3 rtol, at least ATOL_FLOOR."""
-    return max(rtol * ATOL_PER_RTOL, ATOL_FLOOR)
+    """The absolute tolerance that goes with rtol: 1e-3 rtol."""
+    return rtol * ATOL_PER_RTOL
+
+
+def stiff_atol(pb: Problem, rtol: float) -> float | None:
+    """The absolute tolerance `auto` and the references use: at least ATOL_FLOOR on stiff terms, else the default."""
+    return max(default_atol(rtol), ATOL_FLOOR) if pb.stiffness > STIFF else None
 
 
 def sample_grid(tau_end: float) -> np.ndarray:
@@ -156,10 +162,13 @@ def method_for(pb: Problem, settings: Numerics) -> tuple[str, float, float | Non
     if settings.method != AUTO:
         return settings.method, settings.rtol, settings.atol
     method, rtol = choose_method(pb)
-    return (ANALYTIC, 0.0, None) if method == ANALYTIC else (method, settings.rtol or rtol, settings.atol)
+    if method == ANALYTIC:
+        return ANALYTIC, 0.0, None
+    rtol = settings.rtol or rtol
+    return method, rtol, settings.atol if settings.atol is not None else stiff_atol(pb, rtol)
 
 
-def reference_for(pb: Problem, method: str) -> tuple[str, float]:
+def reference_for(pb: Problem, method: str) -> tuple[str, float, float | None]:
     """The tight solution a point solved by `method` is checked against in the build.
 
     The compiled solvers at tight tolerances: DOP853 at rtol 1e-12, or, on stiff terms (where explicit
@@ -171,8 +180,10 @@ def reference_for(pb: Problem, method: str) -> tuple[str, float]:
     """
     stiff = pb.stiffness > STIFF
     if method in COMPILED or method == AUTO:
-        return (IMPLICIT, REFERENCE_STIFF) if stiff else (EXPLICIT, REFERENCE_RTOL)
-    return ("LSODA", REFERENCE_RTOL) if stiff else ("DOP853", REFERENCE_RTOL)
+        found = (IMPLICIT, REFERENCE_STIFF) if stiff else (EXPLICIT, REFERENCE_RTOL)
+    else:
+        found = ("LSODA", REFERENCE_RTOL) if stiff else ("DOP853", REFERENCE_RTOL)
+    return (*found, stiff_atol(pb, found[1]))
 
 
 @lru_cache(maxsize=4096)

@@ -1,5 +1,5 @@
 """K4 hard cases (physics.md K4 "Hard cases" and §14), one test each with the stated tolerance, and
-the guards: every solve has terminal events, an evaluation cap and a wall-time cap."""
+the guards: every solve has terminal events and an evaluation cap (no wall-time cap: results never depend on the clock)."""
 from __future__ import annotations
 
 import dataclasses

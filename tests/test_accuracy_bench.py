@@ -211,11 +211,16 @@ def test_quick_bench_writes_strict_json_with_the_expected_keys(tmp_path):
 
 
 def test_committed_bench_results_cover_every_experiment():
-    """content/accuracy/bench.json (the page's source) holds a full run: chain N = 64 and 256, cases A, B, C."""
+    """content/accuracy/bench.json (the page's source) holds a full run: chain N = 64 and 256, cases A, B, C with the
+    compiled solvers beside scipy's, and the settings sweep of every bubble scene."""
     data = load_results(ROOT / "content" / BENCH_NAME)
     assert data is not None, "run `make bench` to write content/accuracy/bench.json"
     assert {r["N"] for r in data["chain"]["runs"]} == {64, 256} and set(data["bubble"]) == {"A", "B", "C"}
-    assert {r["method"] for r in data["bubble"]["B"]["runs"]} == {"RK45", "DOP853", "Radau", "BDF", "LSODA"}
+    assert {r["method"] for r in data["bubble"]["B"]["runs"]} == {"RK45", "DOP853", "Radau", "BDF", "LSODA", "compiled-DOP853", "compiled-Radau"}
+    bubble_scenes = {f"newtons-laws-examples#{s}" for s in ("rayleigh-collapse", "driven-bubble", "driven-map", "blake-threshold")}
+    assert set(data["digits"]) == bubble_scenes
+    for sweep in data["digits"].values():  # at the chosen setting no shown value is wrong at any stop
+        assert next(r for r in sweep["runs"] if r["rtol"] == sweep["chosen"])["wrong"] == 0
 
 
 # --- the report blocks --------------------------------------------------------------------------------------
@@ -259,7 +264,7 @@ def test_accuracy_page_is_built_and_linked_from_the_home_page(built_site):
     assert not any("data-report-slot" in p.read_text() for p in built_site.glob("*.html"))
 
 
-@pytest.mark.parametrize("figure", ["chain", "bubble-A", "bubble-B", "bubble-C", "resolution"])
+@pytest.mark.parametrize("figure", ["chain", "bubble-A", "bubble-B", "bubble-C", "settings", "resolution"])
 def test_accuracy_page_has_each_diagram_with_its_numbers(built_site, figure):
     """Each diagram: an inline SVG with a label, a caption and a table of the numbers behind it."""
     html = (built_site / "accuracy.html").read_text()

@@ -144,13 +144,14 @@ def test_every_numerical_model_meets_its_declared_tolerance_at_its_defaults(mode
 
 
 @pytest.mark.parametrize("preset, rtol, label", [
-    pytest.param("stiff", None, "LSODA (stiff: 4µT/ρR₀² > 10³), rtol 1e−6", id="stiff-default"),
-    pytest.param("stiff", "1e-8", "LSODA, at the scene's rtol", id="stiff-rtol-1e-8"),
-    pytest.param("B", None, "DOP853, rtol 1e−6", id="driven-default"),
+    pytest.param("stiff", None, SOLVER_LABELS[2], id="stiff-default"),
+    pytest.param("stiff", "1e-10", "compiled-Radau, at the scene's rtol", id="stiff-rtol-1e-10"),
+    pytest.param("B", None, SOLVER_LABELS[1], id="driven-default"),
     pytest.param("A", None, "analytic (betaincinv)", id="rayleigh-analytic"),
 ])
 def test_automatic_method_switches_to_implicit_for_stiff_terms(preset, rtol, label):
-    """`method auto` picks LSODA where 4µT/ρR0² > 10³, DOP853 for the driven bubble, the closed form for Rayleigh."""
+    """`method auto` picks the compiled Radau where 4µT/ρR0² > 10³, the compiled DOP853 for the driven bubble, the
+    closed form for Rayleigh; the labels name the method and its rtol."""
     effects, values = PRESETS[preset]
     settings = configure(Bubble.numerics, Bubble.methods, {"rtol": rtol} if rtol else {})
     prefix = {"drive": "driven", "step": "collapse"}[next(e for e in effects if e in ("drive", "step"))]
@@ -159,7 +160,7 @@ def test_automatic_method_switches_to_implicit_for_stiff_terms(preset, rtol, lab
 
 
 @pytest.mark.parametrize("changes, message", [
-    ({"method": "Euler"}, "unknown method 'Euler'; this model offers auto, RK45, DOP853, Radau, BDF, LSODA"),
+    ({"method": "Euler"}, "unknown method 'Euler'; this model offers auto, RK45, DOP853, Radau, BDF, LSODA, compiled-DOP853, compiled-Radau"),
     ({"steps": "10"}, "unknown setting 'steps'; numerics take method, rtol, atol, nodes, tolerance"),
     ({"nodes": "32"}, "method auto has no setting 'nodes'; it takes rtol, atol and tolerance"),
     ({"rtol": "2"}, "rtol '2' must lie in [1e-14, 1)"),
@@ -178,7 +179,7 @@ def test_switching_method_takes_the_new_methods_defaults():
     default = Numerics("stepper", tolerance=1.0, rtol=1e-3)
     assert configure(default, methods, {"method": "quadrature"}) == Numerics("quadrature", tolerance=1.0, nodes=32)
     assert configure(Bubble.numerics, Bubble.methods, {"method": "Radau", "atol": "1e-9"}).text() == \
-        "method Radau, rtol 1e-6, atol 1e-9, tolerance 0.001"
+        "method Radau, rtol 1e-6, atol 1e-9, tolerance 1e-5"
 
 
 def test_settings_take_part_in_the_cache_key():

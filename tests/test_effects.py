@@ -23,6 +23,7 @@ from sitegen.compute.tabulate import plan_scene, tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
 from sitegen.physics import MODELS, bubble, bubble_point, bubble_solve, bubble_terms, chain, contact, impulse
+from sitegen.physics import bubble_kernel_terms as kernel_terms
 from sitegen.physics.bubble_terms import make_rhs
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -169,7 +170,8 @@ def test_chain_scene_evaluates_an_effect_only_when_it_names_it(chain_spy, effect
 
 # --- the bubble's terms ------------------------------------------------------------------------------------------------
 
-# The statements of make_rhs that evaluate each term (the start of each, as written there).
+# The statements that evaluate each term (the start of each, as written there), in scipy's right-hand
+# side (make_rhs) and in the compiled one (bubble_kernel_terms.rhs).
 BUBBLE_TERMS = {
     "gas": "p_gas = gas0 * (gas_volume0 / volume) ** kappa",
     "surface_tension": "p_wall -= two_sigma / r",
@@ -177,46 +179,69 @@ BUBBLE_TERMS = {
     "keller_miksis": "numerator = (1.0 + v / c) * drive",
     "radiation": "return (v, (drive - 1.5 * v * v + r / c * p_gas_rate) / r)",
 }
+KERNEL_TERMS = {
+    "gas": "p_gas = p[GAS] * ((1.0 - p[E3]) / volume) ** p[KAPPA]",
+    "surface_tension": "pw -= p[SIGMA2] / r",
+    "viscosity": "pw -= p[VISC4] * v / r",
+    "keller_miksis": "numerator = (1.0 + v / c) * drive",
+    "radiation": "return v, (drive - 1.5 * v * v + r / c * g) / r",
+}
 DRIVEN = ("gas", "surface_tension", "viscosity", "drive", "keller_miksis")
 MILD = {"R0": 10.0, "p_a": 0.4, "f": 50.0}  # a gentle driven bubble: a short, cheap solve
 
 
-def _term_lines() -> dict[str, int]:
-    """The line number of each term's statement in bubble_terms.py."""
-    lines, start = inspect.getsourcelines(make_rhs)
-    found = {term: start + i for term, text in BUBBLE_TERMS.items() for i, line in enumerate(lines) if line.strip().startswith(text)}
-    assert set(found) == set(BUBBLE_TERMS), "a term's statement changed: update BUBBLE_TERMS"
+def _term_lines(path: str) -> dict[str, tuple[str, int]]:
+    """(function name, line number) of each term's statement, in scipy's or the compiled right-hand side."""
+    terms, functions = (BUBBLE_TERMS, [make_rhs]) if path == "scipy" else (KERNEL_TERMS, [kernel_terms.rhs.py_func])
+    found = {}
+    for function in functions:
+        lines, start = inspect.getsourcelines(function)
+        name = "rhs" if function is make_rhs else function.__name__
+        found.update({term: (name, start + i) for term, text in terms.items() for i, line in enumerate(lines) if line.strip().startswith(text)})
+    assert set(found) == set(terms), "a term's statement changed: update BUBBLE_TERMS or KERNEL_TERMS"
     return found
 
 
-def _executed_rhs_lines(effects) -> set[int]:
-    """Solve one driven bubble with `effects` and record which lines of the composed right-hand side ran."""
-    executed: set[int] = set()
-    rhs_file = bubble_terms.__file__
+def _executed_rhs_lines(effects, path: str) -> set[tuple[str, int]]:
+    """Solve one driven bubble with `effects` and record which lines of the composed right-hand side ran.
+
+    scipy's path is traced while it solves; the compiled kernels cannot be traced, so the Python source of
+    the compiled right-hand side (which numba compiles) is run on the same packed parameters at the states
+    of the compiled solve.
+    """
+    executed: set[tuple[str, int]] = set()
+    files = {bubble_terms.__file__} if path == "scipy" else {kernel_terms.__file__}
 
     def local(frame, event, arg):
         if event == "line":
-            executed.add(frame.f_lineno)
+            executed.add((frame.f_code.co_name, frame.f_lineno))
         return local
 
     def tracer(frame, event, arg):
-        return local if frame.f_code.co_name == "rhs" and frame.f_code.co_filename == rhs_file else None
+        return local if frame.f_code.co_name == "rhs" and frame.f_code.co_filename in files else None
 
+    pb, _ = bubble_point.compose({**MODELS["bubble"].defaults(), **MILD}, effects)
+    method = "DOP853" if path == "scipy" else bubble_solve.EXPLICIT
     bubble_solve.solve.cache_clear()  # a cached run would not call the right-hand side at all
     sys.settrace(tracer)
     try:
-        MODELS["bubble"]().evaluate(MILD, wanted=["driven_R_max"], effects=effects)
+        run = bubble_solve.solve(pb, method, 1e-6)
+        if path == "compiled":
+            p = kernel_terms.pack(pb)
+            for t, r, v in zip(run.tau[::40], run.r[::40], run.v[::40]):
+                kernel_terms.rhs.py_func(p, t, r, v)
     finally:
         sys.settrace(None)
     return executed
 
 
+@pytest.mark.parametrize("path", ["scipy", "compiled"])
 @pytest.mark.parametrize("left_out", ["surface_tension", "viscosity", "keller_miksis"])
-def test_bubble_term_left_out_of_the_scene_is_never_evaluated(left_out):
+def test_bubble_term_left_out_of_the_scene_is_never_evaluated(left_out, path):
     """Line tracing of the right-hand side: without an effect its term's statement never runs; every
-    other enabled term's statement does."""
-    lines = _term_lines()
-    executed = _executed_rhs_lines(tuple(e for e in DRIVEN if e != left_out))
+    other enabled term's statement does (scipy's right-hand side and the compiled one)."""
+    lines = _term_lines(path)
+    executed = _executed_rhs_lines(tuple(e for e in DRIVEN if e != left_out), path)
     assert lines[left_out] not in executed
     assert lines["radiation"] not in executed
     for term in DRIVEN:
@@ -224,10 +249,11 @@ def test_bubble_term_left_out_of_the_scene_is_never_evaluated(left_out):
             assert lines[term] in executed, f"{term} should have run"
 
 
-def test_bubble_with_every_driven_term_runs_each_of_them():
+@pytest.mark.parametrize("path", ["scipy", "compiled"])
+def test_bubble_with_every_driven_term_runs_each_of_them(path):
     """The tracing is honest: with all the driven preset's effects on, each of their terms runs."""
-    lines = _term_lines()
-    executed = _executed_rhs_lines(DRIVEN)
+    lines = _term_lines(path)
+    executed = _executed_rhs_lines(DRIVEN, path)
     assert all(lines[term] in executed for term in DRIVEN if term in BUBBLE_TERMS)
 
 

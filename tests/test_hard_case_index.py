@@ -80,7 +80,7 @@ INDEX: dict[str, list[str]] = {
     "Singularities: K4 R → 0 (event + guards; LSODA hang)": [
         BUBBLE_HARD + "test_every_solver_returns_within_10_s_at_every_preset_A_stop",
         BUBBLE_HARD + "test_collapse_without_terminal_events_is_stopped_by_the_guards",
-        BUBBLE_HARD + "test_wall_time_cap_stops_a_solve",
+        BUBBLE_HARD + "test_the_cap_counts_evaluations_so_a_capped_solve_ends_the_same_way_every_time",
     ],
     "Singularities: vdW R ≤ h": [
         BUBBLE_HARD + "test_reaching_the_hard_core_reports_a_loose_tolerance",

@@ -22,7 +22,7 @@ def main(argv: list[str] | None = None) -> int:
     build_cmd.add_argument("--explain", action="store_true", help="say for each scene why it was computed or that it was cached")
     build_cmd.add_argument("--jobs", type=int, default=1, help="tabulate in N local processes (default 1: serial)")
     build_cmd.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT", help="tabulate on a Dask cluster")
-    build_cmd.add_argument("--no-cache", action="store_true", help="compute every scene; neither read nor write .cache/")
+    build_cmd.add_argument("--no-cache", action="store_true", help="compute every scene; neither read nor write tables in .cache/ (compiled code is still kept in .cache/compiled/)")
     serve_cmd = commands.add_parser("serve", help="serve build/ on 127.0.0.1")
     serve_cmd.add_argument("--dir", type=Path, default=Path("build"))
     serve_cmd.add_argument("--port", type=int, default=8000)

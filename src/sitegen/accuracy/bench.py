@@ -9,6 +9,7 @@ from pathlib import Path
 from ..content.bench_results import SCHEMA
 from ..site.report import summary
 from .build_costs import scene_cold_times, site_sizes
+from .digit_sweep import digit_sweep
 from .experiments import FULL, Plan, bubble_experiment, chain_experiment
 from .resolution import resolution_experiment
 
@@ -29,6 +30,8 @@ def run_bench(root: Path, plan: Plan = FULL, progress=print) -> dict:
     for case in plan.cases:
         with _section(sections, f"bubble {case}", progress, f"{', '.join(plan.bubble_methods)} over {len(plan.bubble_rtols)} tolerances"):
             results["bubble"][case] = bubble_experiment(case, plan)
+    with _section(sections, "digits", progress, "every stop of each bubble scene at several rtols against a tight reference"):
+        results["digits"] = digit_sweep(root, plan.sweep_rtols, progress)
     with _section(sections, "resolution", progress, "interpolation error against bytes"):
         results["resolution"] = resolution_experiment()
     with _section(sections, "build", progress, "per scene: cold tabulation time, states, stored values, bytes; bytes per page"):
@@ -62,6 +65,10 @@ def summary_lines(results: dict) -> list[str]:
     lines += _chain_lines(results["chain"])
     for case, data in results["bubble"].items():
         lines += _bubble_lines(case, data)
+    lines.append("bubble scenes, every stop against the tight reference (rtol: wrong, near a boundary, ms per solve):")
+    for name, sweep in results.get("digits", {}).items():
+        lines.append(f"  {name:<40} " + ", ".join(f"{r['rtol']:.0e}: {r['wrong']}, {r['near']}, {r['seconds'] / sweep['stops'] * 1e3:.2f} ms"
+                                                   for r in sweep["runs"]))
     lines.append("resolution (max interpolation error / display resolution, float32 bytes):")
     for row in results["resolution"]:
         lines.append(f"  {row['output']:<24} {row['axis_text']:<18} {row['nodes']:>4} nodes  "

@@ -23,6 +23,11 @@ class SceneAccuracy:
     reference: str  # e.g. "Radau rtol 1e-12", "closed form"
     stops_checked: int
     evaluations: int  # function evaluations (nfev) summed over the checked stops
+    # Displayed values checked against the reference's at the sampled stops: the wrong ones and those
+    # where the reference lies within the tolerance of a rounding boundary ("stop: output", listed).
+    digits_checked: bool = False  # whether the model compares displayed digits at all
+    digits_wrong: tuple[str, ...] = ()
+    near_boundary: tuple[str, ...] = ()
 
     @property
     def anchor(self) -> str:

@@ -21,13 +21,14 @@ from pathlib import Path
 
 import numpy as np
 
+from ..physics import compiled
 from .scenes import ResolvedScene
 from .structure import Structured
 from .table import Table
 
 PACKAGE_ROOT = Path(__file__).resolve().parents[1]  # src/sitegen
 TABULATOR_MODULES = ("sitegen.compute.tabulate", "sitegen.compute.structure", "sitegen.compute.table", "sitegen.compute.quantize", "sitegen.compute.grid", "sitegen.compute.scenes")
-LIBRARIES = ("numpy", "scipy", "matplotlib")
+LIBRARIES = ("numpy", "scipy", "matplotlib", "numba", "llvmlite")
 # Packages whose __init__ only gathers the models into a registry: the tabulator reaches them for
 # `Model` and `Output`, but what their imports bring in is every other model. Their own text counts
 # (adding a model changes it); their imports do not, so editing one model recomputes only its scenes.
@@ -102,8 +103,8 @@ def digest(*parts: str) -> str:
 
 @functools.lru_cache(maxsize=None)
 def library_digest() -> str:
-    """Hash of the versions of the numerical and plotting libraries."""
-    return _sha(",".join(f"{lib}=={library_version(lib)}" for lib in LIBRARIES))
+    """Hash of the versions of the numerical and plotting libraries and of the compiled code's target CPU."""
+    return _sha(",".join(f"{lib}=={library_version(lib)}" for lib in LIBRARIES) + f",target={compiled.target_name()}")
 
 
 @functools.lru_cache(maxsize=None)
@@ -135,6 +136,10 @@ class TableCache:
             self.problems.append(f"cache entry {path.name} is damaged ({problem}); recomputed")
             path.unlink(missing_ok=True)
             return None
+
+    def has(self, key: CacheKey) -> bool:
+        """Whether an entry exists for the key (not whether it is sound: `load` checks that)."""
+        return self._entry(key).is_file()
 
     def store(self, key: CacheKey, tables: dict[str, Table]) -> None:
         """Write an entry: a temporary file renamed into place, so readers never see half of one."""

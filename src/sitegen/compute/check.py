@@ -37,10 +37,12 @@ class Checked:
     worst: str
 
 
-def check_scenes(items, remember=compute_now, progress=None) -> tuple[list[SceneAccuracy], list[AuthorError]]:
-    """Records of every numerically computed scene, in the order given, and an error per scene over its tolerance.
+def check_scenes(items, remember=compute_now, progress=None, shown=None) -> tuple[list[SceneAccuracy], list[AuthorError]]:
+    """Records of every numerically computed scene, in the order given, and an error per scene over its
+    tolerance or showing a digit the reference does not.
 
-    `items` are the build's page scenes (each with `.page.slug` and `.scene`).
+    `items` are the build's page scenes (each with `.page.slug` and `.scene`); `shown(scene)` names the
+    outputs a scene displays (its readouts when not given).
     """
     records, errors = [], []
     for item in items:
@@ -49,11 +51,15 @@ def check_scenes(items, remember=compute_now, progress=None) -> tuple[list[Scene
             continue
         start = time.perf_counter()
         key = digest(scene_key(scene, []).digest, item.page.slug, source_digest(CHECK_MODULES), "accuracy")
-        measured = json.loads(remember("accuracy", key, lambda scene=scene: _measure(scene).encode()))
+        names = sorted(shown(scene) if shown else (o.name for o in scene.readouts))
+        key = digest(key, *names)
+        measured = json.loads(remember("accuracy", key, lambda scene=scene, names=names: _measure(scene, names).encode()))
         checked = _checked(item.page.slug, scene, measured)
         records.append(checked.record)
         if checked.record.error > checked.record.tolerance:
             errors.append(tolerance_error(scene, checked))
+        if checked.record.digits_wrong:
+            errors.append(digits_error(scene, checked.record))
         if progress:
             progress(_progress_line(item.page.slug, checked.record, time.perf_counter() - start))
     return records, errors
@@ -62,24 +68,30 @@ def check_scenes(items, remember=compute_now, progress=None) -> tuple[list[Scene
 def _progress_line(page: str, record: SceneAccuracy, seconds: float) -> str:
     """One line of the build's log for a checked scene (the only place its time appears)."""
     error = written(record.error, ".1e") if record.error else "0"
+    digits = (f"; digits: {len(record.digits_wrong)} wrong, {len(record.near_boundary)} near a rounding boundary"
+              if record.digits_checked else "")
     return (f"check     {page + '#' + record.scene:<44} {record.stops_checked:>3} stops {seconds:7.2f} s  "
-            f"error {error} (tolerance {written(record.tolerance)})")
+            f"error {error} (tolerance {written(record.tolerance)}){digits}")
 
 
-def _measure(scene: ResolvedScene) -> str:
-    """What the settings achieve at the sampled stops, as JSON (everything but the tolerance, which may change alone)."""
-    rows = []
+def _measure(scene: ResolvedScene, shown: list[str]) -> str:
+    """What the settings achieve at the sampled stops, as JSON: the error, and the displayed outputs
+    (of `shown`) that differ from the reference's, wrong or near a rounding boundary."""
+    rows, wrong, near = [], [], []
     for stop in sample_stops(scene):
         values = {**scene.base_values(), **{a.param: float(a.stop(k)) for a, k in zip(scene.axes, stop)}}
         measurement = scene.model.measure_error(values, scene.effects)
         error = float(measurement.error)
         rows.append((math.inf if math.isnan(error) else error, measurement, stop_text(scene, stop)))
+        wrong += [f"{stop_text(scene, stop)}: {name}" for name in measurement.wrong if name in shown]
+        near += [f"{stop_text(scene, stop)}: {name}" for name in measurement.near if name in shown]
     worst = max(rows, key=lambda row: row[0])
     methods = list(dict.fromkeys(m.method for _, m, _ in rows))
     references = list(dict.fromkeys(m.reference for _, m, _ in rows))
     return json.dumps({
         "error": repr(worst[0]), "worst": worst[2], "stops": len(rows),
         "evaluations": sum(m.evaluations for _, m, _ in rows), "methods": methods, "references": references,
+        "wrong": wrong, "near": near,
     }, sort_keys=True)
 
 
@@ -93,6 +105,7 @@ def _checked(page: str, scene: ResolvedScene, measured: dict) -> Checked:
         page=page, scene=scene.id, model=scene.model.name, method=method, settings=knobs or "—",
         tolerance=settings.tolerance, error=float(measured["error"]), metric=scene.model.error_metric,
         reference="; ".join(measured["references"]), stops_checked=measured["stops"], evaluations=measured["evaluations"],
+        digits_checked=scene.model.checks_digits, digits_wrong=tuple(measured["wrong"]), near_boundary=tuple(measured["near"]),
     )
     return Checked(record, measured["worst"])
 
@@ -112,6 +125,14 @@ def tolerance_error(scene: ResolvedScene, checked: Checked) -> AuthorError:
                f"exceeds the declared tolerance {written(settings.tolerance)} of '{settings.text()}'; "
                f"{remedy} or loosen the tolerance on the scene's 'numerics:' line")
     return AuthorError(where, message, scene.id)
+
+
+def digits_error(scene: ResolvedScene, record: SceneAccuracy) -> AuthorError:
+    """The author error of a scene that shows a digit its reference does not, away from any rounding boundary."""
+    shown = "; ".join(record.digits_wrong[:3]) + (f" and {len(record.digits_wrong) - 3} more" if len(record.digits_wrong) > 3 else "")
+    message = (f"displayed values differ from {record.reference} at {shown}; tighten rtol on the scene's 'numerics:' "
+               f"line (a value within the tolerance {written(record.tolerance)} of a rounding boundary is only listed)")
+    return AuthorError(scene.spec.loc_of("numerics"), message, scene.id)
 
 
 def sample_stops(scene: ResolvedScene) -> list[tuple[int, ...]]:

@@ -22,6 +22,20 @@ PROGRESS_EVERY = 2.0  # seconds: a scene still computing says how far it got at 
 FIGURE_MODULES = frozenset({"sitegen.render.svg", "sitegen.render.style", "sitegen.render.layers", "sitegen.render.figures.base"})
 
 
+def compile_kernels(book: Book, run: BuildRun) -> Book:
+    """Compile the kernels of the models that have scenes to tabulate, or load them from .cache/compiled/
+    (kept even without a table cache); a build with every table cached loads none."""
+    if run.failed:  # an author error stops the build before anything is computed
+        return book
+    pending = {r.scene.model.name: r.scene.model for r in book.scenes if not run.cache or not run.cache.has(r.key)}
+    for name, model in sorted(pending.items()):
+        prepared = model.prepare_kernels(run.config.root / ".cache" / "compiled")
+        if prepared:
+            seconds, fresh = prepared
+            run.say(f"compile   {name}: {'compiled' if fresh else 'loaded from the cache'} in {seconds:.2f} s")
+    return book
+
+
 def tabulate_scenes(book: Book, run: BuildRun) -> Book:
     """Each scene's tables: from the cache when its key matches, else computed by the executor."""
     records = []
@@ -92,7 +106,7 @@ def check_scenes(book: Book, run: BuildRun) -> Book:
         if record.tables is None:
             continue
         with run.scene(record, "checking its numerics"):
-            found, errors = check_accuracy([record], run.remember, run.progress)
+            found, errors = check_accuracy([record], run.remember, run.progress, shown=lambda _: record.outputs)
             for error in errors:
                 run.error(error)
             records.append(replace(record, accuracy=found[0] if found else None))

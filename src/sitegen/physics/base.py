@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, replace
+from pathlib import Path
 from typing import ClassVar, Iterable, Mapping
 
 import numpy as np
@@ -145,6 +146,8 @@ class Model:
     # The accuracy-report parts that this model's bench results fill (part name: what it shows).
     reports: ClassVar[dict[str, str]] = {}
 
+    checks_digits: ClassVar[bool] = False  # whether measure_error also compares the displayed digits
+
     def __init__(self, settings: Numerics | None = None):
         self.settings = settings if settings is not None else self.numerics
 
@@ -202,6 +205,11 @@ class Model:
         self, x: Mapping[str, np.ndarray], wanted: tuple[str, ...], effects: frozenset[str]
     ) -> dict[str, np.ndarray]:
         raise NotImplementedError
+
+    def prepare_kernels(self, cache: Path) -> tuple[float, bool] | None:
+        """Compile the model's compiled code, or load it from the folder `cache`: (seconds, whether it
+        compiled), or None for a model without compiled code."""
+        return None
 
     def is_numerical(self, effects: Iterable[str]) -> bool:
         """Whether, with these effects, some output comes from a numerical method (and is checked)."""

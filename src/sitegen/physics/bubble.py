@@ -10,21 +10,26 @@ terminal events and caps (bubble_solve.py); points that are one nondimensional p
 from __future__ import annotations
 
 import math
+import os
 import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 
 import numpy as np
 
 from . import bubble_terms as terms
+from . import compiled
 from .base import Model, Output, Param
 from .bubble_point import (
     BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, SOLVER_LABELS, Scales, check_effects, compose, read_run,
 )
-from .bubble_solve import AUTO, CURVE_POINTS, REFERENCE_CAPS, SOLVERS, STIFF, Run, method_for, reference_for, solve
+from .bubble_solve import AUTO, COMPILED, CURVE_POINTS, REFERENCE_CAPS, SOLVERS, STIFF, Run, ensure_compiled, method_for, reference_for, solve
 from .bubble_terms import P0, WATER, Problem
 from .numerics import Measurement, Numerics
 
 EFFECTS = ("inertia", "gas", "vdw_hard_core", "vapour", "surface_tension", "viscosity", "thermal_damping",
            "step", "drive", "ramp", "radiation", "keller_miksis")
+THREADS = min(2, os.cpu_count() or 1)  # the solves of a block of points run on this many threads
 LIQUID_AND_GAS = ("R0", "rho", "c", "kappa", "h_frac", "p_v", "sigma", "mu", "D_g")
 HISTORY_PARAMS = {"step": ("p_inf", "gas_content"), "drive": ("p_a", "f"), "ramp": ("p_target", "t_ramp", "t_hold")}
 PREFIX = {"step": "collapse", "drive": "driven", "ramp": "ramp"}
@@ -113,16 +118,18 @@ class Bubble(Model):
         Output("driven_p_far", "figure: p∞(t)/p0 over two periods", "", ("p_a",), decimals=3, size=CURVE_POINTS, effect="drive"),
     ) + _history_outputs()
     effects = EFFECTS
-    # physics.md §11.2: the analytic collapse when only inertia (+ vapour) acts, DOP853 at rtol 1e-6
-    # for the driven bubble, LSODA where the viscous terms are stiff; `auto` picks among them per point.
-    # Over every stop of the book's three bubble scenes this gives at most 5.7e-4 R0 (a violent
-    # collapse at R0 = 10 µm, p_a = 1.4 p0), 2.7e-4 under the ramp, 7.8e-6 for the collapse (measured).
-    numerics = Numerics(AUTO, tolerance=1e-3, rtol=1e-6)
-    methods = {AUTO: {"rtol": 1e-6, "atol": None}, **{name: {"rtol": 1e-6, "atol": None} for name in SOLVERS}}
+    # `auto`: the analytic collapse when only inertia (+ vapour) acts, the compiled DOP853 otherwise, the
+    # compiled Radau where the viscous terms are stiff, each at the rtol at which every readout of the
+    # book's bubble scenes shows the tight reference's digits (bubble_solve.EXPLICIT_RTOL, IMPLICIT_RTOL).
+    # A scene's `rtol` replaces both. The tolerance bounds max |ΔR|/R0 (4.2e-6 measured, a violent collapse).
+    numerics = Numerics(AUTO, tolerance=1e-5)
+    methods = {AUTO: {"rtol": None, "atol": None}, **{name: {"rtol": 1e-6, "atol": None} for name in (*SOLVERS, *COMPILED)}}
     error_metric = "max |ΔR|/R₀ over R(t) and its extrema"
-    check_stops = 6  # each costs a solve and a tight reference solve (0.05–2 s)
+    check_stops = 16  # each costs a solve and a tight reference solve (compiled: 1–50 ms)
+    checks_digits = True
     chunk_stops = 16  # an ODE solve per stop: blocks of 16 stops spread a scene over workers and pace its progress lines
-    reports = {f"bubble-{case}": f"the work–precision diagram of bubble case {case}" for case in "ABC"}
+    reports = {**{f"bubble-{case}": f"the work–precision diagram of bubble case {case}" for case in "ABC"},
+               "settings": "the bubble scenes' settings: every stop's shown digits against time"}
 
     def _evaluate(self, x, wanted, effects):
         check_effects(effects)
@@ -135,6 +142,11 @@ class Bubble(Model):
             results.update(_solve_points(x, dynamic, effects, self.settings))
         return results
 
+    def prepare_kernels(self, cache: Path) -> tuple[float, bool]:
+        """The compiled solver, compiled or loaded from `cache` once per process."""
+        compiled.use_cache(cache)
+        return ensure_compiled()
+
     def is_numerical(self, effects) -> bool:
         """Only a pressure history is solved: the closed forms alone need no check."""
         return bool(set(effects) & set(HISTORY_PARAMS))
@@ -145,11 +157,13 @@ class Bubble(Model):
         pb, scales = compose({**self.defaults(), **values}, effects)
         method, rtol, atol = method_for(pb, self.settings)
         run = solve(pb, method, rtol, atol=atol)
-        ref_method, ref_rtol = reference_for(pb, method)
-        reference = solve(pb, ref_method, ref_rtol, REFERENCE_CAPS)
+        ref_method, ref_rtol, ref_atol = reference_for(pb, method)
+        reference = solve(pb, ref_method, ref_rtol, REFERENCE_CAPS, atol=ref_atol)
         error = run_difference(run, reference, pb, scales, effects)
         where = " where stiff" if pb.stiffness > STIFF else ""
-        return Measurement(error, run.nfev, method, f"{ref_method} at rtol {ref_rtol:g}{where}")
+        wrong, near = shown_difference(read_run(run, pb, scales, effects), read_run(reference, pb, scales, effects),
+                                       PREFIX[_history(effects)], error)
+        return Measurement(error, run.nfev, method, f"{ref_method} at rtol {ref_rtol:g}{where}", wrong, near)
 
 
 # --- closed forms (vectorised) ---------------------------------------------------------------------------
@@ -211,20 +225,73 @@ CLOSED_FORMS = {
 
 
 def _solve_points(x, names, effects, settings: Numerics) -> dict[str, np.ndarray]:
-    """Solve every point (each distinct nondimensional problem once) and read the named outputs."""
+    """Solve every point (each distinct nondimensional problem once) and read the named outputs.
+
+    The compiled solver releases the GIL, so THREADS threads solve points side by side; each point's
+    result depends on that point alone, so the tables do not depend on the number of threads.
+    """
     shape = np.shape(x["R0"])
     flat = {name: np.ravel(x[name]) for name in ALL}
-    rows = []
-    for i in range(int(np.prod(shape, dtype=int))):
-        point = {name: float(flat[name][i]) for name in ALL}
-        pb, scales = compose(point, effects)
+    count = int(np.prod(shape, dtype=int))
+
+    def one(i: int) -> dict:
+        pb, scales = compose({name: float(flat[name][i]) for name in ALL}, effects)
         method, rtol, atol = method_for(pb, settings)
-        rows.append(read_run(solve(pb, method, rtol, atol=atol), pb, scales, effects))
+        return read_run(solve(pb, method, rtol, atol=atol), pb, scales, effects)
+
+    ensure_compiled()  # before the threads start: compiling or loading is done once
+    with ThreadPoolExecutor(max_workers=THREADS) as pool:
+        rows = list(pool.map(one, range(count)))
     out = {}
     for name in names:
         key, size = name.split("_", 1)[1], Bubble.output(name).size
         out[name] = np.array([row[key] for row in rows], float).reshape(shape + ((size,) if size else ()))
     return out
+
+
+def _history(effects) -> str:
+    return next(name for name in HISTORY_PARAMS if name in effects)
+
+
+def shown_difference(mine: dict, theirs: dict, prefix: str, error: float) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The outputs (`prefix`_key) whose displayed values differ between two read runs: those that are wrong,
+    and those where the reference lies within the run's measured `error` (relative, at least 1e-12) of a
+    rounding boundary, where the run cannot be expected to show the reference's digit.
+
+    Labels must match exactly (the solver's label names the method, so it is left out); a number is
+    compared at its displayed digits, element by element for the figure's arrays.
+    """
+    wrong, near = [], []
+    for key, theirs_value in theirs.items():
+        name = f"{prefix}_{key}"
+        output = Bubble.output(name) if key != "solver" and any(o.name == name for o in Bubble.outputs) else None
+        if output is None:
+            continue
+        a, b = np.atleast_1d(np.asarray(mine[key], float)), np.atleast_1d(np.asarray(theirs_value, float))
+        if output.labels:
+            if not np.array_equal(a, b):
+                wrong.append(name)
+            continue
+        unit = 10.0 ** -output.decimals
+        differs = _shown(a, unit) != _shown(b, unit)
+        if len(a) != len(b) or np.any(differs & ~(np.isfinite(a) & np.isfinite(b))):
+            wrong.append(name)
+            continue
+        # distance of the reference from the nearest rounding boundary (in the displayed unit's halves)
+        with np.errstate(invalid="ignore"):  # inf and NaN entries are equal here (differs is False)
+            boundary = np.abs(np.abs(b / unit - np.floor(b / unit)) - 0.5) * unit
+        close = boundary <= max(error, 1e-12) * np.maximum(np.abs(b), 1.0)
+        if np.any(differs & ~close):
+            wrong.append(name)
+        elif np.any(differs):
+            near.append(name)
+    return tuple(wrong), tuple(near)
+
+
+def _shown(values: np.ndarray, unit: float) -> np.ndarray:
+    """Values as the page shows them: counts of the displayed unit (inf and NaN kept apart)."""
+    finite = np.isfinite(values)
+    return np.where(finite, np.rint(np.where(finite, values, 0.0) / unit), np.where(np.isnan(values), -1.5, np.sign(values) * 0.5))
 
 
 def run_difference(run: Run, reference: Run, pb: Problem, scales, effects) -> float:

@@ -12,7 +12,7 @@ import numpy as np
 
 from . import bubble_terms as terms
 from .bubble_solve import (
-    ANALYTIC, CAP_NFEV, CAP_WALL, CORE, CURVE_POINTS, EXPLICIT_RTOL, FAILED, IMPLICIT_RTOL, KM_STOP, MACH,
+    ANALYTIC, CAP_NFEV, CORE, CURVE_POINTS, EXPLICIT, EXPLICIT_RTOL, FAILED, IMPLICIT, IMPLICIT_RTOL, KM_STOP, MACH,
     POINT, STIFF, UNBOUNDED_GROWTH, Run,
 )
 from .bubble_terms import P0, T0, Problem
@@ -20,6 +20,7 @@ from .bubble_terms import P0, T0, Problem
 DRIVE_PERIODS = 2  # the driven bubble runs two acoustic periods from rest at R0
 CURVE_EXTREMA = 200  # event-detected extrema merged into the drawn curve (the deepest, if more)
 CURVE_SIZE = CURVE_POINTS + CURVE_EXTREMA + 1  # samples, extrema and the stop
+CURVE_GAP = 1e-3  # the drawn curve's resolution in y (its 3 decimals): extrema closer to the chord add nothing
 
 NEEDS = {"vdw_hard_core": "gas", "thermal_damping": "gas", "radiation": "gas"}
 PROTOCOLS = ("step", "drive", "ramp")  # what is done to the liquid pressure: one per scene
@@ -33,19 +34,24 @@ FLAGS = (
     "tolerance too loose: the solution reached the van der Waals hard core",
     "stopped at R = 10 R_B: unbounded growth",
     "evaluation cap hit: solve abandoned",
-    "wall-time cap hit: solve abandoned",
     "solver failed: step size underflow",
 )
-_FLAG_OF_STATUS = {MACH: 2, KM_STOP: 3, POINT: 4, CORE: 5, UNBOUNDED_GROWTH: 6, CAP_NFEV: 7, CAP_WALL: 8, FAILED: 9}
+_FLAG_OF_STATUS = {MACH: 2, KM_STOP: 3, POINT: 4, CORE: 5, UNBOUNDED_GROWTH: 6, CAP_NFEV: 7, FAILED: 8}
+def _power(rtol: float) -> str:
+    """An rtol as a label writes it: 1e−6."""
+    return f"{rtol:.0e}".replace("e-0", "e−").replace("e-", "e−")
+
+
 # The default settings' three choices, then any method at the rtol a scene's `numerics:` line sets.
-SCENE_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA")
-SOLVER_LABELS = ("analytic (betaincinv)", "DOP853, rtol 1e−6", "LSODA (stiff: 4µT/ρR₀² > 10³), rtol 1e−6", "other") + tuple(
+SCENE_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA", EXPLICIT, IMPLICIT)
+SOLVER_LABELS = ("analytic (betaincinv)", f"DOP853 (compiled), rtol {_power(EXPLICIT_RTOL)}",
+                 f"Radau IIA (compiled; stiff: 4µT/ρR₀² > 10³), rtol {_power(IMPLICIT_RTOL)}", "other") + tuple(
     f"{method}, at the scene's rtol" for method in SCENE_METHODS)
 BLAKE_LABELS = ("bounded: R stayed below the Blake radius", "R passed R_B but stayed below 10 R_B", "unbounded: R reached 10 R_B")
 
 GUARDS = (MACH, KM_STOP, POINT, CORE)  # terminal events that end a run before its window does
 TERMINAL = GUARDS + (UNBOUNDED_GROWTH,)
-ABANDONED = (CAP_NFEV, CAP_WALL, FAILED)
+ABANDONED = (CAP_NFEV, FAILED)
 
 
 def check_effects(effects) -> None:
@@ -161,31 +167,35 @@ def _extremes(run: Run, pb: Problem, a: float, b: float) -> dict:
 
     A run stopped by a guard inside [a, b] has no R_min there (the collapse it was heading into is
     not computed, e.g. the empty collapse stopped at |Ṙ| = c); an abandoned run has no value at all.
+    Ties go to the earliest candidate (events first, then the window's ends).
     """
     missing = (np.inf, np.inf)
     if run.status in ABANDONED:
-        return {"r_max": missing, "r_min": missing, "speed": np.inf, "events": ()}
-    inside = lambda rows: [tuple(row) for row in rows if a <= row[0] <= b]  # noqa: E731
+        return {"r_max": missing, "r_min": missing, "speed": np.inf, "events": (_NONE, _NONE)}
+    inside = lambda rows: rows[(rows[:, 0] >= a) & (rows[:, 0] <= b)]  # noqa: E731
     maxima, minima, speeds = inside(run.maxima), inside(run.minima), inside(run.speeds)
-    events = maxima[:], minima[:]
+    events = maxima, minima
     index = [int(round(t / pb.tau_end * (len(run.tau) - 1))) for t in (a, b)]
     if not math.isnan(run.r[index[1]]):  # the run covered [a, b]: its ends are candidates too
-        ends = [(run.tau[k], run.r[k]) for k in index]
-        maxima, minima = maxima + ends, minima + ends
-        speeds = speeds + [(run.tau[k], run.v[k]) for k in index]
+        ends = np.array([(run.tau[k], run.r[k]) for k in index])
+        maxima, minima = np.concatenate([maxima, ends]), np.concatenate([minima, ends])
+        speeds = np.concatenate([speeds, [(run.tau[k], run.v[k]) for k in index]])
     stop_t, stop_r, stop_v = run.end
     if a <= stop_t <= b and run.status == UNBOUNDED_GROWTH:
-        maxima.append((stop_t, stop_r))
+        maxima = np.concatenate([maxima, [(stop_t, stop_r)]])
     if a <= stop_t <= b and run.status in (MACH, KM_STOP):
-        speeds.append((stop_t, stop_v))
+        speeds = np.concatenate([speeds, [(stop_t, stop_v)]])
     if a <= stop_t <= b and run.status in GUARDS:  # the minimum of [a, b] lies beyond the stop: unknown
-        minima = []
+        minima = _NONE
     return {
-        "r_max": max(maxima, key=lambda row: row[1], default=missing),
-        "r_min": min(minima, key=lambda row: row[1], default=missing),
-        "speed": max((abs(v) for _, v in speeds), default=np.inf),
+        "r_max": tuple(maxima[np.argmax(maxima[:, 1])]) if len(maxima) else missing,
+        "r_min": tuple(minima[np.argmin(minima[:, 1])]) if len(minima) else missing,
+        "speed": float(np.max(np.abs(speeds[:, 1]))) if len(speeds) else np.inf,
         "events": events,
     }
+
+
+_NONE = np.empty((0, 2))
 
 
 def _gas_peaks(pb: Problem, r_min: float) -> dict:
@@ -218,16 +228,17 @@ def _figure_marks(run: Run, scales: Scales, to_y, first: dict) -> dict:
     Grid samples alone miss a violent collapse: in preset B they bottom out near 0.5 R0 while the
     event-detected minimum is 0.176 R0 (physics.md §0.3), so the curve passes through the events.
     """
-    curve = _curve_points(run)
+    curve = _curve_points(run, to_y)
     pad = CURVE_SIZE - len(curve)
     out = {
         "curve_x": np.concatenate([scales.x(curve[:, 0]), np.full(pad, np.nan)]),
-        "curve_y": np.concatenate([to_y(curve[:, 1]), np.full(pad, np.nan)]),
+        "curve_y": np.concatenate([curve[:, 1], np.full(pad, np.nan)]),
         "stop_x": np.full(1, np.nan), "stop_y": np.full(1, np.nan),
     }
     if run.status in TERMINAL:
         out.update(stop_x=scales.x([run.end[0]]), stop_y=to_y([run.end[1]]))
-    marked = [row for row in (first["r_max"], first["r_min"]) if any(row in group for group in first["events"]) and row[0] > 0]
+    marked = [row for row in (first["r_max"], first["r_min"])
+              if row[0] > 0 and any(np.any(np.all(group == row, axis=1)) for group in first["events"])]
     xs, ys = np.full(2, np.nan), np.full(2, np.nan)
     for k, (t, r) in enumerate(marked):
         xs[k], ys[k] = scales.x(t), to_y(r)
@@ -235,20 +246,38 @@ def _figure_marks(run: Run, scales: Scales, to_y, first: dict) -> dict:
     return out
 
 
-def _curve_points(run: Run) -> np.ndarray:
-    """(τ, r) of the grid samples, the deepest CURVE_EXTREMA extrema and a terminal stop, in time order."""
+def _curve_points(run: Run, to_y) -> np.ndarray:
+    """(τ, y) of the grid samples, the visible extrema (the deepest CURVE_EXTREMA) and a terminal stop, in time order.
+
+    An extremum joins the curve only where the line through the grid samples would miss it by more
+    than the drawing's resolution (CURVE_GAP in y). That keeps the curve well defined: where R(t) is
+    quasi-static, ringing far below the resolution makes tiny extrema (about 1e-10 R0) whose number and
+    times differ between any two solvers, and merging them would shift every later point of the curve.
+    """
     reached = np.isfinite(run.r)
-    samples = np.stack([run.tau[reached], run.r[reached]], axis=1)
+    tau, y = run.tau[reached], to_y(run.r[reached])
     extrema = np.concatenate([run.maxima, run.minima])
     extrema = extrema[extrema[:, 0] <= run.end[0]]
+    extrema = np.stack([extrema[:, 0], to_y(extrema[:, 1])], axis=1)
+    extrema = extrema[_visible(extrema, tau, y, run.tau[1] - run.tau[0])]
     if len(extrema) > CURVE_EXTREMA:
-        depth = np.abs(np.log(extrema[:, 1]))
+        depth = np.abs(extrema[:, 1] - y[0])
         extrema = extrema[np.sort(np.argsort(-depth, kind="stable")[:CURVE_EXTREMA])]
-    stop = [run.end[:2]] if run.status in TERMINAL else []
-    points = np.concatenate([samples, extrema, np.reshape(stop, (-1, 2))])
+    stop = [(run.end[0], float(to_y(run.end[1])))] if run.status in TERMINAL else []
+    points = np.concatenate([np.stack([tau, y], axis=1), extrema, np.reshape(stop, (-1, 2))])
     points = points[np.argsort(points[:, 0], kind="stable")]
     keep = np.concatenate([[True], np.diff(points[:, 0]) > 0])  # one point per time (t = 0 is both)
     return points[keep]
+
+
+def _visible(extrema: np.ndarray, tau: np.ndarray, y: np.ndarray, spacing: float) -> np.ndarray:
+    """Which extrema (τ, y) lie farther than CURVE_GAP from the chord between the grid samples around them
+    (all of those past the last sample, where there is no chord)."""
+    left = np.floor(extrema[:, 0] / spacing).astype(int)
+    inside = left + 1 < len(tau)
+    k = np.where(inside, left, 0)
+    chord = y[k] + (y[np.minimum(k + 1, len(y) - 1)] - y[k]) * (extrema[:, 0] - tau[k]) / spacing
+    return ~inside | (np.abs(extrema[:, 1] - chord) > CURVE_GAP)
 
 
 def _flag(run: Run, pb: Problem) -> int:
@@ -263,9 +292,9 @@ def _flag(run: Run, pb: Problem) -> int:
 
 def _solver_label(run: Run, pb: Problem) -> int:
     """Index into SOLVER_LABELS (the stiff label only where the terms are stiff)."""
-    choices = {(ANALYTIC, 0.0): 0, ("DOP853", EXPLICIT_RTOL): 1}
+    choices = {(ANALYTIC, 0.0): 0, (EXPLICIT, EXPLICIT_RTOL): 1}
     if pb.stiffness > STIFF:
-        choices[("LSODA", IMPLICIT_RTOL)] = 2
+        choices[(IMPLICIT, IMPLICIT_RTOL)] = 2
     if (run.method, run.rtol) in choices:
         return choices[(run.method, run.rtol)]
     return 4 + SCENE_METHODS.index(run.method) if run.method in SCENE_METHODS else 3

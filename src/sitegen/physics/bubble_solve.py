@@ -1,9 +1,14 @@
 """K4 helpers: one bubble solved with terminal events and hard caps, or by the analytic collapse.
 
 Every solve stops at a terminal event (collapse to εR_i, |Ṙ| = c or 0.9c, the hard core,
-unbounded growth), at an evaluation cap or at a wall-time cap, and comes back as data: a `Run`
-with a status, never an exception, a hang or a NaN. Samples on the fixed grid are taken from each
-accepted step's interpolant as the step is made, so memory stays bounded whatever the solver does.
+unbounded growth) or at its evaluation cap, and comes back as data: a `Run` with a status, never an
+exception, a hang or a NaN. No cap reads a clock, so a run ends the same way on any machine at any
+load. Samples on the fixed grid are taken from each accepted step's interpolant as the step is made,
+so memory stays bounded whatever the solver does.
+
+Two paths solve the same problem with the same events: the compiled one (numba: DOP853, or Radau
+IIA with the analytic Jacobian where the terms are stiff), which the book's scenes use, and scipy's
+solvers, kept as the reference the build checks against and for the accuracy experiments.
 """
 from __future__ import annotations
 
@@ -27,15 +32,30 @@ from .bubble_terms import (
     rayleigh_radius,
     rayleigh_tau,
 )
+from . import compiled
+from .bubble_kernel_march import (
+    CAP_CODE, DOP853_METHOD, ENDED, FAILED_CODE, G_ACCELERATION, G_RADIUS_LEVEL, G_SPEED, G_SPEED_LEVEL, RADAU_METHOD,
+    march,
+)
+from .bubble_kernel_terms import pack
 from .numerics import Numerics
 
 SOLVERS = {"RK45": RK45, "DOP853": DOP853, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
+COMPILED = {"compiled-DOP853": DOP853_METHOD, "compiled-Radau": RADAU_METHOD}  # the same steppers, compiled
 ANALYTIC = "analytic"
 STIFF = 1e3  # 4µT/(ρR0²) above which explicit methods are stability-limited (physics.md §11.2 C)
-EXPLICIT_RTOL, IMPLICIT_RTOL = 1e-6, 1e-6  # physics.md §11.2 B and C verdicts
-AUTO = "auto"  # the method setting that lets the composed terms choose (analytic, DOP853 or LSODA)
-REFERENCE_RTOL, REFERENCE_STIFF = 1e-12, 1e-8  # the check's tight solutions (non-stiff, stiff)
+EXPLICIT, IMPLICIT = "compiled-DOP853", "compiled-Radau"  # what `auto` picks off and on stiff terms
+# rtol of `auto`: the loosest at which every readout of the book's bubble scenes shows the digits of a
+# tight reference at every stop (the sweep on the accuracy page; physics.md §11.2 chose 1e-6 for 1e-3 R0).
+EXPLICIT_RTOL, IMPLICIT_RTOL = 1e-8, 1e-8
+AUTO = "auto"  # the method setting that lets the composed terms choose (analytic, compiled DOP853 or Radau)
+REFERENCE_RTOL, REFERENCE_STIFF = 1e-12, 1e-10  # the check's tight solutions (non-stiff, stiff)
 ATOL_PER_RTOL = 1e-3  # nondimensional: atol = 1e-3 rtol on r ~ 1 and ṙ ~ 1
+# ... but on stiff terms, for `auto` and the references, never below 1e-11: in a quasi-static stretch of
+# a stiff run ṙ ≈ 0, its round-off exceeds a smaller atol and the step size collapses (Radau at rtol 1e-10 ran into 3e6 evaluations on a 0.1 µm
+# nucleus with atol 1e-13, scipy's and the compiled one alike, and at 2 stops of the Blake scene with
+# 1e-12; with 1e-11 every stop of R0 ≤ 1 µm takes at most 1.3e4).
+ATOL_FLOOR = 1e-11
 CURVE_POINTS = 401  # samples of R(t) over the run; the middle one is t = T for a two-period drive
 EPS = np.finfo(float).eps
 
@@ -47,19 +67,23 @@ POINT = "point"  # the empty collapse reached R = εR_i
 CORE = "core"  # the van der Waals hard core was reached: the tolerance is too loose
 UNBOUNDED_GROWTH = "unbounded"  # R reached 10 R_B
 CAP_NFEV = "cap_nfev"  # the evaluation cap was hit
-CAP_WALL = "cap_wall"  # the wall-time cap was hit
 FAILED = "failed"  # the solver gave up (step size underflow)
+
+
+STOPS = (MACH, KM_STOP, POINT, CORE, UNBOUNDED_GROWTH)  # terminal statuses, by their code in the event table
+_ENDS = {ENDED: OK, FAILED_CODE: FAILED, CAP_CODE: CAP_NFEV}
+_RECORDS = {"max": 1, "min": 2, "speed": 3}  # an event table's record codes
 
 
 @dataclass(frozen=True)
 class Caps:
-    """Hard limits on one solve: right-hand-side evaluations (event functions included) and wall-clock seconds."""
+    """Hard limit on one solve: right-hand-side evaluations (event functions included). Never seconds:
+    a wall-clock cap would make a busy machine's build differ from a quiet one's."""
 
     max_nfev: int = 200_000
-    max_seconds: float = 10.0
 
 
-REFERENCE_CAPS = Caps(max_nfev=3_000_000, max_seconds=120.0)  # a reference may cost much more than the page's solve
+REFERENCE_CAPS = Caps(max_nfev=3_000_000)  # a reference may cost much more than the page's solve
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,18 +111,15 @@ class _CapHit(Exception):
 
 
 class _Budget:
-    """The right-hand side, counted and timed: raises _CapHit past either cap."""
+    """The right-hand side, counted: raises _CapHit past the cap."""
 
     def __init__(self, fun, caps: Caps):
         self.fun, self.caps, self.calls = fun, caps, 0
-        self.deadline = time.perf_counter() + caps.max_seconds
 
     def __call__(self, t, y):
         self.calls += 1
         if self.calls > self.caps.max_nfev:
             raise _CapHit(CAP_NFEV)
-        if self.calls % 64 == 0 and time.perf_counter() > self.deadline:
-            raise _CapHit(CAP_WALL)
         return self.fun(t, y)
 
 
@@ -112,6 +133,16 @@ class Event:
     records: str = ""  # "max", "min" or "speed": which extrema this event finds
 
 
+def default_atol(rtol: float) -> float:
+    """The absolute tolerance that goes with rtol: 1e-3 rtol."""
+    return rtol * ATOL_PER_RTOL
+
+
+def stiff_atol(pb: Problem, rtol: float) -> float | None:
+    """The absolute tolerance `auto` and the references use: at least ATOL_FLOOR on stiff terms, else the default."""
+    return max(default_atol(rtol), ATOL_FLOOR) if pb.stiffness > STIFF else None
+
+
 def sample_grid(tau_end: float) -> np.ndarray:
     """The fixed sample times of a run, CURVE_POINTS over [0, τ_end]."""
     return np.linspace(0.0, tau_end, CURVE_POINTS)
@@ -122,8 +153,8 @@ def choose_method(pb: Problem) -> tuple[str, float]:
     if pb.is_rayleigh:
         return ANALYTIC, 0.0
     if pb.stiffness > STIFF:
-        return "LSODA", IMPLICIT_RTOL
-    return "DOP853", EXPLICIT_RTOL
+        return IMPLICIT, IMPLICIT_RTOL
+    return EXPLICIT, EXPLICIT_RTOL
 
 
 def method_for(pb: Problem, settings: Numerics) -> tuple[str, float, float | None]:
@@ -131,21 +162,28 @@ def method_for(pb: Problem, settings: Numerics) -> tuple[str, float, float | Non
     if settings.method != AUTO:
         return settings.method, settings.rtol, settings.atol
     method, rtol = choose_method(pb)
-    return (ANALYTIC, 0.0, None) if method == ANALYTIC else (method, settings.rtol or rtol, settings.atol)
+    if method == ANALYTIC:
+        return ANALYTIC, 0.0, None
+    rtol = settings.rtol or rtol
+    return method, rtol, settings.atol if settings.atol is not None else stiff_atol(pb, rtol)
 
 
-def reference_for(pb: Problem, method: str) -> tuple[str, float]:
-    """The tight solution a point solved by `method` is checked against.
+def reference_for(pb: Problem, method: str) -> tuple[str, float, float | None]:
+    """The tight solution a point solved by `method` is checked against in the build.
 
-    On stiff terms Radau at rtol 1e-8 (LSODA at 1e-12 for a point Radau itself solved): explicit
-    methods are stability-limited there, and Radau at 1e-10 takes minutes on a 0.1 µm nucleus
-    while at 1e-8 it agrees with LSODA and BDF at 1e-12 to 5e-9 R0 (measured). Otherwise DOP853 at
-    rtol 1e-12, which agrees with Radau at 1e-12 to about 1e-11 R0 on presets A–C at a thirtieth of
-    Radau's cost (measured; a second explicit method, RK45 at 1e-11, costs 2–9 s per driven point).
+    The compiled solvers at tight tolerances: DOP853 at rtol 1e-12, or, on stiff terms (where explicit
+    methods are stability-limited), Radau at rtol 1e-10; a point solved by one of scipy's methods gets
+    scipy's DOP853 at 1e-12 (LSODA at 1e-12 where stiff). scipy's solvers at the same settings cost
+    0.7–2.5 s a point (measured: LSODA 1e-12 on a 0.1 µm nucleus, DOP853 1e-12 on preset B), 20–200 times
+    the compiled ones, so the compiled references are themselves checked against scipy's in the tests
+    (tests/test_bubble_compiled.py) and by `sitegen bench`.
     """
-    if pb.stiffness > STIFF:
-        return ("Radau", REFERENCE_STIFF) if method != "Radau" else ("LSODA", REFERENCE_RTOL)
-    return "DOP853", REFERENCE_RTOL
+    stiff = pb.stiffness > STIFF
+    if method in COMPILED or method == AUTO:
+        found = (IMPLICIT, REFERENCE_STIFF) if stiff else (EXPLICIT, REFERENCE_RTOL)
+    else:
+        found = ("LSODA", REFERENCE_RTOL) if stiff else ("DOP853", REFERENCE_RTOL)
+    return (*found, stiff_atol(pb, found[1]))
 
 
 @lru_cache(maxsize=4096)
@@ -159,36 +197,77 @@ def solve(pb: Problem, method: str | None = None, rtol: float | None = None, cap
     return integrate(pb, (1.0, 0.0), method, rtol, caps, atol=atol)
 
 
-def bubble_events(pb: Problem, fun) -> list[Event]:
-    """Extrema of r and ṙ (recorded) and the terminal events the composed terms need."""
-    events = [
-        Event(lambda t, y: y[1], -1, records="max"),
-        Event(lambda t, y: y[1], +1, records="min"),
-        Event(lambda t, y: fun(t, y)[1], 0, records="speed"),
-    ]
+def event_table(pb: Problem) -> np.ndarray:
+    """The events of a run as rows (g's kind, level, direction, stop code, record code): the extrema of r
+    and ṙ (recorded) and the terminal events the composed terms need. Both solving paths read it."""
+    rows = [(G_SPEED, 0.0, -1, "", "max"), (G_SPEED, 0.0, +1, "", "min"), (G_ACCELERATION, 0.0, 0, "", "speed")]
     limit = pb.speed_limit
     if math.isfinite(limit):
         stop = MACH if limit == pb.sound else KM_STOP
-        events += [Event(lambda t, y: y[1] - limit, +1, stop), Event(lambda t, y: y[1] + limit, -1, stop)]
+        rows += [(G_SPEED_LEVEL, limit, +1, stop, ""), (G_SPEED_LEVEL, -limit, -1, stop, "")]
     if pb.singular:
-        events.append(Event(lambda t, y: y[0] - EPSILON, -1, POINT))
+        rows.append((G_RADIUS_LEVEL, EPSILON, -1, POINT, ""))
     if pb.gas and pb.eta:
-        core = pb.eta * (1.0 + CORE_MARGIN)
-        events.append(Event(lambda t, y: y[0] - core, -1, CORE))
+        rows.append((G_RADIUS_LEVEL, pb.eta * (1.0 + CORE_MARGIN), -1, CORE, ""))
     if math.isfinite(pb.r_unbounded):
-        events.append(Event(lambda t, y: y[0] - pb.r_unbounded, +1, UNBOUNDED_GROWTH))
-    return events
+        rows.append((G_RADIUS_LEVEL, pb.r_unbounded, +1, UNBOUNDED_GROWTH, ""))
+    codes = [(kind, level, direction, STOPS.index(stop) + 3 if stop else 0, _RECORDS.get(role, 0))
+             for kind, level, direction, stop, role in rows]
+    return np.array(codes, float)
+
+
+def bubble_events(pb: Problem, fun) -> list[Event]:
+    """The event table as scipy-path Events, with `fun` the (counted) right-hand side."""
+    def g(kind: int, level: float):
+        if kind == G_ACCELERATION:
+            return lambda t, y: fun(t, y)[1]
+        column = 0 if kind == G_RADIUS_LEVEL else 1
+        return lambda t, y: y[column] - level
+
+    roles = {code: role for role, code in _RECORDS.items()}
+    return [Event(g(int(kind), level), int(direction), STOPS[int(stop) - 3] if stop else "", roles.get(int(record), ""))
+            for kind, level, direction, stop, record in event_table(pb)]
+
+
+def integrate_compiled(pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), atol: float | None = None) -> Run:
+    """The compiled path of `integrate`: the same events, samples and statuses, no Python per step."""
+    start = time.perf_counter()
+    ensure_compiled()
+    grid = sample_grid(pb.tau_end)
+    atol = default_atol(rtol) if atol is None else atol
+    if pb.compressible == KELLER_MIKSIS and abs(y0[1]) >= pb.speed_limit:
+        return _make_run(KM_STOP, method, rtol, _Stepper([], grid, y0), 0, time.perf_counter() - start)
+    code, end, samples, hits, nfev = march(COMPILED[method], pack(pb), np.array(y0, float), rtol, atol, pb.tau_end,
+                                              grid, event_table(pb), caps.max_nfev)
+    status = _ENDS[code] if code in _ENDS else STOPS[code - 3]
+    pick = lambda role, column: _frozen(hits[hits[:, 0] == _RECORDS[role]][:, [1, column]]).reshape(-1, 2)  # noqa: E731
+    samples.setflags(write=False)
+    return Run(status, method, rtol, _frozen(grid), samples[:, 0], samples[:, 1], (float(end[0]), float(end[1]), float(end[2])),
+               pick("max", 2), pick("min", 2), pick("speed", 3), int(nfev), time.perf_counter() - start)
+
+
+def ensure_compiled() -> tuple[float, bool]:
+    """Compile the bubble's kernels, or load them from the cache (once per process): (seconds, compiled)."""
+    def warm_up():
+        pb = Problem(gas=1.0, kappa=1.4, visc=0.01, drive=0.5, omega=1.0, tau_end=0.5)
+        for code in COMPILED.values():
+            march(code, pack(pb), np.array([1.0, 0.0]), 1e-6, 1e-9, pb.tau_end, sample_grid(pb.tau_end), event_table(pb), 10_000)
+
+    return compiled.prepare(warm_up)
 
 
 def integrate(pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), events=None, atol: float | None = None) -> Run:
     """Step `method` from y0 over [0, τ_end] with events and caps; always returns a Run.
 
-    atol defaults to 1e-3 rtol: r and ṙ are of order one in these units.
+    atol defaults to 1e-3 rtol: r and ṙ are of order one in these units. A compiled method takes only
+    the bubble's own events.
     """
+    if method in COMPILED and events is None:
+        return integrate_compiled(pb, y0, method, rtol, caps, atol)
     start = time.perf_counter()
     budget = _Budget(make_rhs(pb), caps)
     stepper = _Stepper(bubble_events(pb, budget) if events is None else events, sample_grid(pb.tau_end), y0)
-    atol = rtol * ATOL_PER_RTOL if atol is None else atol
+    atol = default_atol(rtol) if atol is None else atol
     with np.errstate(over="ignore", invalid="ignore"):  # wild trial stages may overflow; their steps are rejected
         status, solver = _run_guarded(pb, y0, method, rtol, atol, budget, stepper)
     nfev = budget.calls if solver is None else solver.nfev

@@ -50,6 +50,10 @@ class Measurement:
     evaluations: int  # right-hand-side or integrand evaluations the settings spent (0 for a transform)
     method: str  # the method that computed the point (after any automatic choice)
     reference: str  # what the point was compared with, e.g. "DOP853 rtol 1e-12"
+    # Outputs whose displayed value differs from the reference's: `wrong` ones, and `near` ones, where the
+    # reference lies within the tolerance of a rounding boundary (no setting can promise that digit).
+    wrong: tuple[str, ...] = ()
+    near: tuple[str, ...] = ()
 
 
 def configure(default: Numerics, methods: Mapping[str, Mapping[str, object]], changes: Mapping[str, str]) -> Numerics:

@@ -21,7 +21,7 @@ from ...render.work_precision import Panel, Point, Series, resolution_figure
 from .html import MISSING, duration, factor, figure, figure_html, kib, sci, table
 from .views import REPORT_VIEWS
 
-PER_DIGIT_METHODS = ("velocity Verlet", "RK45", "DOP853", "Radau", "BDF", "LSODA")
+PER_DIGIT_METHODS = ("velocity Verlet", "RK45", "DOP853", "Radau", "BDF", "LSODA", "compiled-DOP853", "compiled-Radau")
 
 
 @dataclass(frozen=True)

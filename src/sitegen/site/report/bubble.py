@@ -6,13 +6,16 @@ from html import escape
 from ...render.work_precision import Panel, Point, Series, work_precision_figure
 from . import summary
 from .html import MISSING, duration, factor, figure, figure_html, label_html, run_point, sci, table
+from .sweep import near_listing, sweep_panel, sweep_rows
 
 
 class BubbleReport:
     """What the accuracy report shows of the bubble's bench results (bench.json's "bubble", one entry per case)."""
 
     def part(self, name: str, context) -> str:
-        """The part "bubble-<case>"."""
+        """The part "bubble-<case>", or "settings"."""
+        if name == "settings":
+            return settings_part(context)
         return bubble_part(name.removeprefix("bubble-"))(context)
 
     def findings(self, bench: dict) -> list[str]:
@@ -108,3 +111,21 @@ def _bubble_sentence(case: str, data: dict) -> str:
     if cheapest:
         parts.append("Cheapest solver run " + "; ".join(cheapest) + ".")
     return " ".join(parts)
+
+
+def settings_part(context) -> str:
+    """The bubble scenes' settings, chosen: time per solve against the largest error in shown digits, every stop."""
+    sweep = (context.bench or {}).get("digits")
+    if not sweep:
+        return MISSING
+    label = "Time per solve against the largest error in units of the last shown digit, every stop of each bubble scene."
+
+    def draw():
+        return work_precision_figure([sweep_panel(sweep)], "time per solve, all stops (ms)", "largest error (last shown digits)",
+                                     "labels: rtol = 10⁻ⁿ; below 0.5 every shown digit can be right")
+
+    rows = table(["scene", "rtol", "ms per solve", "wrong values", "near a boundary", "largest error (digits)"], sweep_rows(sweep),
+                 "Every stop of every bubble scene against the tight reference", text=(0,))
+    caption = (f"{label} Reference: {escape(next(iter(sweep.values()))['reference'])}. The number beside a point is n in rtol = 10⁻ⁿ; "
+               "the ringed point is the setting the scenes use.")
+    return figure_html("settings", figure(context, "settings", sweep, label, draw), label, caption, rows) + near_listing(sweep)

@@ -1,0 +1,118 @@
+"""Compiled kernels (numba): a portable target, and a cache keyed by content rather than by place or time.
+
+Every kernel is compiled for a generic x86-64 CPU (no FMA, no vector extensions the host happens to
+have) and never with fastmath, so the numbers a kernel computes do not depend on the machine that
+compiled it. The compiled code is cached on disk under a folder named by a digest of the kernels'
+source files, numba's and llvmlite's versions and the target; the build points that cache at
+`.cache/compiled/` and reports compiling (or loading) as its own step. Set SITEGEN_COMPILE_TARGET=host
+to compile for the host CPU instead (used to test that the shown numbers do not change).
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import time
+from importlib import metadata
+from pathlib import Path
+
+TARGET = os.environ.get("SITEGEN_COMPILE_TARGET", "generic")
+if TARGET == "generic":  # must be set before numba builds its code generator
+    os.environ["NUMBA_CPU_NAME"] = "generic"
+    os.environ["NUMBA_CPU_FEATURES"] = ""
+
+import numba  # noqa: E402
+from numba.core import caching, config  # noqa: E402
+
+config.reload_config()  # in case numba was imported before the target was set
+
+CACHE_ENV = "SITEGEN_COMPILED_CACHE"  # where compiled code is kept; the build sets it to .cache/compiled
+DEFAULT_CACHE = Path.home() / ".cache" / "sitegen" / "compiled"
+_KERNELS: list = []  # every kernel, in definition order
+_state = {"root": None, "ready": False}
+
+
+def kernel(function):
+    """Compile `function` with numba (on first use, from the content-keyed cache when it is there).
+
+    error_model="numpy": a division by zero gives inf or NaN, as in numpy, instead of raising; the
+    steppers reject such a step. nogil: the kernels release the GIL, so threads solve points side by side.
+    """
+    dispatcher = numba.njit(error_model="numpy", nogil=True)(function)
+    _KERNELS.append(dispatcher)
+    return dispatcher
+
+
+def versions() -> str:
+    """numba, llvmlite and the target, as they enter every cache key of compiled results."""
+    return f"numba=={metadata.version('numba')},llvmlite=={metadata.version('llvmlite')},target={target_name()}"
+
+
+def target_name() -> str:
+    """The CPU the kernels are compiled for: `generic`, or the host's name and features."""
+    if TARGET == "generic":
+        return "generic"
+    import llvmlite.binding as llvm
+
+    return f"{llvm.get_host_cpu_name()}:{llvm.get_host_cpu_features().flatten()}"
+
+
+def source_key() -> str:
+    """Digest of the kernels' source files, the library versions and the target: the cache's folder name."""
+    files = sorted({Path(k.py_func.__code__.co_filename) for k in _KERNELS} | {Path(__file__)})
+    text = "".join(f"{f.name}:{hashlib.sha256(f.read_bytes()).hexdigest()}\n" for f in files) + versions()
+    return hashlib.sha256(text.encode()).hexdigest()[:24]
+
+
+def use_cache(root: Path) -> None:
+    """Keep compiled code under `root` (before the first kernel runs); children of this process inherit it."""
+    os.environ[CACHE_ENV] = str(root)
+
+
+def prepare(warm_up) -> tuple[float, bool]:
+    """Compile every kernel or load it from the cache, then run `warm_up` (which calls the entry points).
+
+    Returns (seconds, whether anything was compiled rather than loaded). Idempotent within a process.
+    """
+    start = time.perf_counter()
+    if _state["ready"]:
+        return 0.0, False
+    root = Path(os.environ.get(CACHE_ENV) or DEFAULT_CACHE) / source_key()
+    _state["root"] = root
+    if ContentLocator not in caching.CacheImpl._locator_classes:
+        caching.CacheImpl._locator_classes.insert(0, ContentLocator)
+    for dispatcher in _KERNELS:
+        dispatcher.enable_caching()
+    before = {id(d): len(d.stats.cache_misses) for d in _KERNELS}
+    warm_up()
+    _state["ready"] = True
+    compiled = any(len(d.stats.cache_misses) > before[id(d)] for d in _KERNELS)
+    return time.perf_counter() - start, compiled
+
+
+class ContentLocator(caching._CacheLocator):
+    """numba's cache locator for sitegen's kernels: one folder per content digest, stamped by it too.
+
+    numba's own locators write next to the source (in __pycache__) or key by the source folder's path;
+    this one keys by content, like the table cache, so a fresh clone and a worktree share nothing by
+    accident and an edited kernel never meets a stale entry.
+    """
+
+    def __init__(self, py_func):
+        self._lineno = py_func.__code__.co_firstlineno
+
+    def get_cache_path(self):
+        return str(_state["root"])
+
+    def get_source_stamp(self):
+        return _state["root"].name
+
+    def get_disambiguator(self):
+        return str(self._lineno)
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        if _state["root"] is None or not any(py_func is k.py_func for k in _KERNELS):
+            return None
+        locator = cls(py_func)
+        locator.ensure_cache_path()
+        return locator

@@ -1,0 +1,82 @@
+"""Same sources, same bytes, whatever the load and the CPU: a small book of bubble scenes built beside a busy
+CPU, and with its kernels compiled for the host CPU instead of the portable target, against a quiet build."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+BOOK = """+++
+title = "Bubbles"
++++
+
+# Bubbles
+
+```scene
+model: bubble
+id: driven
+fix R0: 4.5
+slider p_a: 0.5..1.5 step 0.5 default 1.5
+slider f: 10, 26.5 default 26.5
+effects: gas, vdw_hard_core, surface_tension, viscosity, drive, keller_miksis
+readouts: driven_R_max driven_t_Rmax driven_R_min driven_t_Rmin driven_mach driven_flag driven_solver
+```
+
+```scene
+model: bubble
+id: blake
+slider R0: 0.1, 1, 10 default 1
+slider p_target: 0.98..1.02 step 0.02 default 1
+effects: gas, vapour, surface_tension, viscosity, ramp
+fix kappa: 1
+readouts: ramp_growth ramp_R_max ramp_flag ramp_solver
+```
+"""
+
+
+def _book(folder: Path) -> Path:
+    """A one-page book of two small bubble scenes that shares the project's compiled code (not its tables)."""
+    (folder / "content").mkdir(parents=True)
+    (folder / "content" / "index.md").write_text(BOOK)
+    (folder / "node_modules").symlink_to(ROOT / "node_modules")
+    (folder / ".cache").mkdir()
+    (ROOT / ".cache" / "compiled").mkdir(parents=True, exist_ok=True)
+    (folder / ".cache" / "compiled").symlink_to(ROOT / ".cache" / "compiled")
+    return folder
+
+
+def _build(root: Path, out: Path, **env: str) -> str:
+    done = subprocess.run([sys.executable, "-m", "sitegen.cli", "build", "--root", str(root), "--out", str(out), "--no-cache"],
+                          capture_output=True, text=True, env={**os.environ, **env}, check=False)
+    assert done.returncode == 0, done.stderr
+    return done.stdout
+
+
+def _tree(folder: Path) -> dict[str, bytes]:
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_a_build_beside_a_busy_cpu_is_byte_identical_to_a_quiet_one(tmp_path):
+    """Every core kept busy by spinning processes while the second build runs: no output depends on the clock."""
+    root = _book(tmp_path / "book")
+    _build(root, tmp_path / "quiet")
+    spinners = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(os.cpu_count() or 2)]
+    try:
+        _build(root, tmp_path / "busy")
+    finally:
+        for spinner in spinners:
+            spinner.kill()
+            spinner.wait()
+    assert _tree(tmp_path / "busy") == _tree(tmp_path / "quiet")
+
+
+def test_kernels_compiled_for_the_host_cpu_show_the_same_bytes_as_the_portable_ones(tmp_path):
+    """The same book with the kernels compiled for this machine's CPU (its FMA and vector units allowed)
+    gives the same site as with the portable target the build uses (first run: one compile of the host's)."""
+    root = _book(tmp_path / "book")
+    generic = _build(root, tmp_path / "generic")
+    host = _build(root, tmp_path / "host", SITEGEN_COMPILE_TARGET="host")
+    assert "compile   bubble" in generic and "compile   bubble" in host
+    assert _tree(tmp_path / "host") == _tree(tmp_path / "generic")

@@ -11,8 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from sitegen.build import BuildConfig, read_pages, resolve_scenes
-from sitegen.errors import ErrorLog
+from sitegen.build import BuildConfig, resolve_book
 from sitegen.physics import bubble_kernel_terms as kernel
 from sitegen.physics.bubble import ALL, preset_problem
 from sitegen.physics.bubble_point import compose, read_run
@@ -78,9 +77,8 @@ def test_compiled_stepper_follows_scipys(preset, scipy_method, compiled_method, 
 
 def _scene_stops(scene_id: str, count: int = 5):
     """`count` stops of a book scene (its defaults, corners and seeded random ones) as model points."""
-    log = ErrorLog()
-    items = resolve_scenes(read_pages(BuildConfig.at(ROOT, cache=None), log), log)
-    scene = next(item.scene for item in items if item.scene.id == scene_id)
+    book = resolve_book(BuildConfig.at(ROOT, cache=None))
+    scene = next(record.scene for record in book.scenes if record.scene.id == scene_id)
     rng = np.random.default_rng(15)
     stops = [scene.default_stops, tuple(0 for _ in scene.axes), tuple(a.count - 1 for a in scene.axes)]
     stops += [tuple(int(rng.integers(a.count)) for a in scene.axes) for _ in range(count - 3)]

@@ -15,9 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..build import BuildConfig, needed_outputs, read_pages, resolve_scenes
+from ..build import BuildConfig, needed_outputs, resolve_book
 from ..compute.grid import CHOICE
-from ..errors import ErrorLog
 from ..physics.bubble import ALL, CLOSED_FORMS, PREFIX, Bubble, run_difference, shown_difference
 from ..physics.bubble_point import compose, read_run
 from ..physics.bubble_solve import (
@@ -33,9 +32,7 @@ def digit_sweep(root: Path, rtols=RTOLS, progress=None) -> dict:
     """For every bubble scene of the book: per rtol, its wrong and near-boundary values over all stops and the
     seconds its solves take (one thread, compiled, uncached), against the tight reference."""
     ensure_compiled()
-    log = ErrorLog()
-    items = [i for i in resolve_scenes(read_pages(BuildConfig.at(root, cache=None), log), log) if i.scene.model.name == "bubble"]
-    log.raise_if_any()
+    items = [r for r in resolve_book(BuildConfig.at(root, cache=None)).scenes if r.scene.model.name == "bubble"]
     results = {}
     for item in items:
         name = f"{item.page.slug}#{item.scene.id}"

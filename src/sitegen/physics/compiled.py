@@ -97,7 +97,8 @@ class ContentLocator(caching._CacheLocator):
     accident and an edited kernel never meets a stale entry.
     """
 
-    def __init__(self, py_func):
+    def __init__(self, py_func, py_file):
+        self._py_file = py_file  # numba names it when it warns that a function cannot be cached
         self._lineno = py_func.__code__.co_firstlineno
 
     def get_cache_path(self):
@@ -113,6 +114,6 @@ class ContentLocator(caching._CacheLocator):
     def from_function(cls, py_func, py_file):
         if _state["root"] is None or not any(py_func is k.py_func for k in _KERNELS):
             return None
-        locator = cls(py_func)
+        locator = cls(py_func, py_file)
         locator.ensure_cache_path()
         return locator

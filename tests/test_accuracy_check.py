@@ -34,7 +34,7 @@ effects: gas, vdw_hard_core, surface_tension, viscosity, drive, keller_miksis
 readouts: driven_R_min"""
 BLAKE = """model: bubble
 id: blake
-slider p_target: 0.9, 0.99 default 0.99
+slider depth: 0.9, 0.99 default 0.99
 effects: gas, vapour, surface_tension, viscosity, ramp
 fix kappa: 1
 fix R0: 1

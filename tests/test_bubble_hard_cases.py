@@ -14,7 +14,7 @@ from scipy.integrate import solve_ivp
 from sitegen.physics.bubble import PRESETS, Bubble, preset_problem
 from sitegen.physics.bubble_point import FLAGS, compose, read_run
 from sitegen.physics.bubble_solve import (
-    CAP_NFEV, CORE, FAILED, KM_STOP, MACH, OK, SOLVERS, Caps, choose_method, integrate, solve,
+    CAP_NFEV, CORE, FAILED, KM_STOP, MACH, OK, SOLVERS, Caps, choose_method, integrate, method_for, solve,
 )
 from sitegen.physics.bubble_terms import EPSILON, make_rhs, rayleigh_radius, rayleigh_tau
 
@@ -256,3 +256,39 @@ def test_peak_mach_number_comes_from_event_detection():
     sampled = np.max(np.abs(sol.y[1])) / pb.sound
     assert f"{event_value:.4f}" == "0.4578"
     assert sampled < 0.97 * event_value
+
+
+# --- the Blake threshold: the verdict at every nucleus of the scene's grid --------------------------------
+
+BLAKE_R0 = (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100)  # µm, the blake-threshold scene's stops
+SETTLES, FELL_BACK, GROWING, GROWING_SLOWLY, UNBOUNDED = range(5)  # indices into BLAKE_LABELS
+
+
+def _blake_runs(r0: float, depth: float):
+    """(verdict, run, problem) with the scene's hold of 100 µs, and the same with the hold ten times longer."""
+    runs = []
+    for hold in (100.0, 1000.0):
+        pb, scales = compose(_point("C", R0=r0, depth=depth, t_hold=hold), PRESETS["C"][0])
+        method, rtol, atol = method_for(pb, Bubble.numerics)
+        run = solve(pb, method, rtol, atol=atol)
+        runs.append((read_run(run, pb, scales, PRESETS["C"][0])["growth"], run, pb))
+    return runs
+
+
+@pytest.mark.parametrize("r0", BLAKE_R0, ids=[f"R0={r}um" for r in BLAKE_R0])
+def test_blake_nucleus_just_short_of_the_threshold_settles(r0):
+    """Depth 0.99: the verdict is "settles", and held ten times longer the nucleus still never passes R_B."""
+    (verdict, _, _), (longer, run, pb) = _blake_runs(r0, 0.99)
+    assert verdict == SETTLES
+    assert longer == SETTLES
+    assert max(np.nanmax(run.r), *run.maxima[:, 1]) < pb.r_unbounded / 10
+
+
+@pytest.mark.parametrize("r0", BLAKE_R0, ids=[f"R0={r}um" for r in BLAKE_R0])
+def test_blake_nucleus_just_past_the_threshold_keeps_growing(r0):
+    """Depth 1.01: the verdict says it keeps growing, and held ten times longer it has grown further and is
+    still growing (or has reached 10 R_B): a large nucleus grows slowly, but it grows."""
+    (verdict, run, _), (longer, run_longer, _) = _blake_runs(r0, 1.01)
+    assert verdict in (GROWING, GROWING_SLOWLY, UNBOUNDED)
+    if longer != UNBOUNDED:
+        assert run_longer.end[1] > run.end[1] and run_longer.end[2] > 0.0

@@ -13,7 +13,7 @@ from scipy.special import betainc, betaincinv
 
 from sitegen.compute.quantize import fmt
 from sitegen.physics.bubble import PRESETS, Bubble, preset_problem, run_preset
-from sitegen.physics.bubble_point import SOLVER_LABELS, compose, read_run
+from sitegen.physics.bubble_point import BLAKE_LABELS, SOLVER_LABELS, compose, read_run
 from sitegen.physics.bubble_solve import ANALYTIC, EXPLICIT, IMPLICIT, MACH, OK, UNBOUNDED_GROWTH, choose_method, integrate, solve
 from sitegen.physics.bubble_terms import (
     P0, WATER, Problem, blake, energy, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau,
@@ -200,22 +200,32 @@ def test_blake_threshold_is_the_minimum_of_the_quasi_static_pressure():
 
 @pytest.mark.parametrize(
     "output, shown",
-    [("two_sigma_R0", "145.6"), ("R_B", "2.2449"), ("p_blake", "\u221240.9"), ("ramp_growth", "bounded: R stayed below the Blake radius"),
+    [("two_sigma_R0", "145.6"), ("R_B", "2.2449"), ("p_blake", "\u221240.9"), ("ramp_growth", BLAKE_LABELS[0]),
      ("ramp_solver", SOLVER_LABELS[2])],
-    ids=["2sigma/R0", "R_B", "p_Blake", "bounded", "solver"],
+    ids=["2sigma/R0", "R_B", "p_Blake", "settles", "solver"],
 )
 def test_preset_C_defaults_show_the_reference_readouts(output, shown):
-    """Preset C (R0 = 1 µm, 0.99 p_Blake): 2σ/R0 = 1.456e5 Pa, R_B = 2.2449 µm, p_Blake = −40 900 Pa, bounded."""
+    """Preset C (R0 = 1 µm, depth 0.99): 2σ/R0 = 1.456e5 Pa, R_B = 2.2449 µm, p_Blake = −40 900 Pa, it settles."""
     assert _shown("C", output) == shown
 
 
-@pytest.mark.parametrize("ratio, status", [(0.99, OK), (1.01, UNBOUNDED_GROWTH)], ids=["0.99:bounded", "1.01:unbounded"])
-def test_ramp_across_the_blake_threshold(ratio, status):
-    """R0 = 1 µm: bounded (R < R_B throughout) at 0.99 p_Blake; R reaches 10 R_B at 1.01 p_Blake."""
-    pb, _ = preset_problem("C", p_target=ratio)
+@pytest.mark.parametrize("depth, status", [(0.99, OK), (1.01, UNBOUNDED_GROWTH)], ids=["0.99:bounded", "1.01:unbounded"])
+def test_ramp_across_the_blake_threshold(depth, status):
+    """R0 = 1 µm: bounded (R < R_B throughout) at depth 0.99; R reaches 10 R_B at depth 1.01."""
+    pb, _ = preset_problem("C", depth=depth)
     run = solve(pb)
     assert run.status == status
     assert (np.nanmax(run.r) < pb.r_unbounded / 10) == (status == OK)
+
+
+def test_depth_one_puts_the_far_field_at_the_blake_threshold():
+    """The depth x = (p0 − p_target)/(p0 − p_Blake): x = 1 ends the ramp at p_Blake, x = 0 at p0, for a large
+    nucleus (p_Blake > 0) as for a small one (p_Blake < 0)."""
+    for r0 in (1.0, 100.0):
+        blake_kpa = float(Bubble().evaluate({"R0": r0}, wanted=["p_blake"], effects=PRESETS["C"][0])["p_blake"])
+        for depth, expected in ((0.0, P0 * 1e-3), (1.0, blake_kpa), (0.5, (P0 * 1e-3 + blake_kpa) / 2)):
+            pb, _ = preset_problem("C", R0=r0, depth=depth)
+            assert pb.ramp_to * P0 * 1e-3 == pytest.approx(expected, rel=1e-12, abs=1e-12)
 
 
 # --- reference 5 and the presets' readouts -------------------------------------------------------------------
@@ -252,8 +262,8 @@ def test_equilibrium_gas_pressure_includes_only_enabled_terms(effects, gas):
 
 @pytest.mark.parametrize(
     "param, value",
-    [("sigma", 0.5), ("mu", 0.3), ("kappa", 1.2), ("h_frac", 0.3), ("p_a", 0.4), ("D_g", 1.0), ("p_target", 0.5)],
-    ids=["sigma", "mu", "kappa", "h", "p_a", "D_g", "p_target"],
+    [("sigma", 0.5), ("mu", 0.3), ("kappa", 1.2), ("h_frac", 0.3), ("p_a", 0.4), ("D_g", 1.0), ("depth", 0.5)],
+    ids=["sigma", "mu", "kappa", "h", "p_a", "D_g", "depth"],
 )
 def test_parameters_of_disabled_effects_are_never_used(param, value):
     """Preset A (vapour, step only): changing a parameter of an effect it does not name leaves every output bitwise equal."""
@@ -314,8 +324,8 @@ VANISHING = [
                  id="thermal:D->0"),
     pytest.param("B", _MILD_B, ("gas", "surface_tension", "drive", "step"), {"p_inf": 1.0, "gas_content": 1.0 + 2 * 0.0728 / (P0 * 4.5e-6)},
                  ("step",), id="step:p_inf->p0"),
-    pytest.param("C", {"R0": 5.0, "p_target": 0.9}, _C_EFFECTS, {"p_v": 1e-9}, ("vapour",), id="C:p_v->0"),
-    pytest.param("C", {"R0": 5.0, "p_target": 0.9}, _C_EFFECTS, {"mu": 1e-12}, ("viscosity",), id="C:mu->0"),
+    pytest.param("C", {"R0": 5.0, "depth": 0.9}, _C_EFFECTS, {"p_v": 1e-9}, ("vapour",), id="C:p_v->0"),
+    pytest.param("C", {"R0": 5.0, "depth": 0.9}, _C_EFFECTS, {"mu": 1e-12}, ("viscosity",), id="C:mu->0"),
     pytest.param("A", {}, ("vapour", "step", "surface_tension"), {"sigma": 1e-12}, ("surface_tension",), id="A:sigma->0"),
     pytest.param("A", {}, ("vapour", "step", "viscosity"), {"mu": 1e-12}, ("viscosity",), id="A:mu->0"),
 ]

@@ -28,7 +28,7 @@ readouts: driven_R_max driven_t_Rmax driven_R_min driven_t_Rmin driven_mach driv
 model: bubble
 id: blake
 slider R0: 0.1, 1, 10 default 1
-slider p_target: 0.98..1.02 step 0.02 default 1
+slider depth: 0.98..1.02 step 0.02 default 1
 effects: gas, vapour, surface_tension, viscosity, ramp
 fix kappa: 1
 readouts: ramp_growth ramp_R_max ramp_flag ramp_solver

@@ -66,8 +66,10 @@ INDEX: dict[str, list[str]] = {
         LEVER + "test_every_mass_pair_has_one_or_two_balanced_stops",
     ],
     "Branches and non-events: K4 Blake threshold": [
-        BUBBLE + "test_ramp_across_the_blake_threshold",  # bounded at 0.99, unbounded at 1.01 p_Blake
+        BUBBLE + "test_ramp_across_the_blake_threshold",  # bounded at depth 0.99, unbounded at 1.01 (R0 = 1 µm)
         BUBBLE + "test_blake_threshold_is_the_minimum_of_the_quasi_static_pressure",
+        BUBBLE_HARD + "test_blake_nucleus_just_short_of_the_threshold_settles",  # every R0 of the grid, 10x hold
+        BUBBLE_HARD + "test_blake_nucleus_just_past_the_threshold_keeps_growing",
     ],
     "Branches and non-events: K4 resonance foldover": [
         EXTRA + "test_resonance_response_jumps_between_adjacent_frequencies_so_interpolation_fails",

@@ -776,7 +776,7 @@ _A_EFFECTS = ("vapour", "step")
 _MILD_BUBBLE = st.fixed_dictionaries({
     "R0": _log_uniform(math.log10(3.0), math.log10(20.0)), "p_a": st.floats(0.2, 0.9), "f": st.floats(20.0, 80.0),
 })
-_NUCLEUS = st.fixed_dictionaries({"R0": _log_uniform(0.0, 1.0), "kappa": st.just(1.0), "p_target": st.floats(0.5, 0.95)})
+_NUCLEUS = st.fixed_dictionaries({"R0": _log_uniform(0.0, 1.0), "kappa": st.just(1.0), "depth": st.floats(0.5, 0.95)})
 _CAVITY = st.fixed_dictionaries({"R0": _log_uniform(2.0, 4.0), "p_inf": st.floats(0.25, 10.0)})
 
 
@@ -810,9 +810,9 @@ def _step_neutral(d, x):
 
 
 def _ramp_neutral(d, x):
-    """p_target with p_end = p0(1 + δ): the ramp is flat at δ = 0 (p_Blake from the model's closed form)."""
+    """The depth with p_end = p0(1 + δ): the ramp is flat at δ = 0 (p_Blake from the model's closed form)."""
     p_blake = float(MODELS["bubble"]().evaluate({"R0": x["R0"]}, wanted=["p_blake"], effects=_C_EFFECTS)["p_blake"])
-    return P0 * 1e-3 * (1.0 + d) / p_blake
+    return -d * P0 * 1e-3 / (P0 * 1e-3 - p_blake)
 
 
 _BUBBLE_LIMITS = [
@@ -842,7 +842,7 @@ _BUBBLE_LIMITS = [
             effects=("gas", "step"), compare=_at_rest("step", ("R_min",))),
     Limit("bubble", "step", "gas_content", "gas_content", skip="gas_content is tied to p_inf: the step's neutral "
           "point is p_inf = p0 with the gas at its equilibrium p_g0, tested as p_inf->p0"),
-    _bubble("ramp", "p_target", "p_end->p0", _small(-9.0, signed=True), effects=_C_EFFECTS, inputs=_NUCLEUS,
+    _bubble("ramp", "depth", "p_end->p0", _small(-9.0, signed=True), effects=_C_EFFECTS, inputs=_NUCLEUS,
             value=_ramp_neutral, compare=(*_at_rest("ramp", ("R_max",))[:-1],
                                           Compare(f"{_HISTORY_PREFIX['ramp']}_growth", lambda x, off: 0.0, lambda d, x, ref: 0.0))),
     Limit("bubble", "ramp", "t_ramp", "t_ramp", skip="a duration, not a strength: the ramp vanishes with p_end->p0"),

@@ -31,7 +31,7 @@ EFFECTS = ("inertia", "gas", "vdw_hard_core", "vapour", "surface_tension", "visc
            "step", "drive", "ramp", "radiation", "keller_miksis")
 THREADS = min(2, os.cpu_count() or 1)  # the solves of a block of points run on this many threads
 LIQUID_AND_GAS = ("R0", "rho", "c", "kappa", "h_frac", "p_v", "sigma", "mu", "D_g")
-HISTORY_PARAMS = {"step": ("p_inf", "gas_content"), "drive": ("p_a", "f"), "ramp": ("p_target", "t_ramp", "t_hold")}
+HISTORY_PARAMS = {"step": ("p_inf", "gas_content"), "drive": ("p_a", "f"), "ramp": ("depth", "t_ramp", "t_hold")}
 PREFIX = {"step": "collapse", "drive": "driven", "ramp": "ramp"}
 ALL = LIQUID_AND_GAS + tuple(p for names in HISTORY_PARAMS.values() for p in names)
 
@@ -101,7 +101,8 @@ class Bubble(Model):
         Param("f", "f", "kHz", 26.5, lo=0.0, hi=1e4, lo_open=True, description="drive frequency").with_effect("drive"),
         Param("p_inf", "p<sub>∞</sub>", "atm", 1.0, lo=0.0, hi=1e3, lo_open=True, description="liquid pressure from t = 0").with_effect("step"),
         Param("gas_content", "p<sub>gi</sub>/p<sub>∞</sub>", "", 0.0, lo=0.0, hi=1.0, description="initial gas pressure").with_effect("step"),
-        Param("p_target", "p<sub>target</sub>/p<sub>Blake</sub>", "", 0.99, description="end of the pressure ramp").with_effect("ramp"),
+        Param("depth", "depth x", "", 0.99, description="how far the ramp goes from p0 towards the Blake threshold: "
+              "x = (p0 − p_target)/(p0 − p_Blake), 1 at the threshold").with_effect("ramp"),
         Param("t_ramp", "t<sub>ramp</sub>", "µs", 200.0, lo=0.0, hi=1e3, lo_open=True, description="ramp duration").with_effect("ramp"),
         Param("t_hold", "t<sub>hold</sub>", "µs", 100.0, lo=0.0, hi=1e3, description="hold after the ramp").with_effect("ramp"),
     )
@@ -114,7 +115,7 @@ class Bubble(Model):
         Output("two_sigma_R0", "2σ/R<sub>0</sub>", "kPa", ("R0", "sigma"), decimals=1, effect="surface_tension"),
         Output("R_B", "Blake radius R<sub>B</sub>", "µm", ("R0", "sigma", "p_v"), decimals=4, special="—", effect="surface_tension"),
         Output("p_blake", "Blake threshold p<sub>Blake</sub>", "kPa", ("R0", "sigma", "p_v"), decimals=1, effect="surface_tension"),
-        Output("p_end", "p<sub>∞</sub> after the ramp", "kPa", ("R0", "sigma", "p_v", "p_target"), decimals=1, effect="ramp"),
+        Output("p_end", "p<sub>∞</sub> after the ramp", "kPa", ("R0", "sigma", "p_v", "depth"), decimals=1, effect="ramp"),
         Output("driven_p_far", "figure: p∞(t)/p0 over two periods", "", ("p_a",), decimals=3, size=CURVE_POINTS, effect="drive"),
     ) + _history_outputs()
     effects = EFFECTS
@@ -216,7 +217,7 @@ CLOSED_FORMS = {
     "two_sigma_R0": lambda x, e: 2.0 * x["sigma"] / (x["R0"] * 1e-6) * 1e-3,
     "R_B": lambda x, e: _blake(x, e)[0],
     "p_blake": lambda x, e: _blake(x, e)[1],
-    "p_end": lambda x, e: x["p_target"] * _blake(x, e)[1],
+    "p_end": lambda x, e: P0 * 1e-3 - x["depth"] * (P0 * 1e-3 - _blake(x, e)[1]),
     "driven_p_far": lambda x, e: 1.0 - x["p_a"][..., None] * np.sin(2.0 * np.pi * DRIVE_PERIODS * np.linspace(0.0, 1.0, CURVE_POINTS)),
 }
 
@@ -315,7 +316,7 @@ def run_difference(run: Run, reference: Run, pb: Problem, scales, effects) -> fl
 PRESETS = {  # name: (effects, parameters that differ from the defaults), physics.md K4 and §11.2
     "A": (("inertia", "vapour", "step"), {"R0": 1000.0, "p_inf": 1.0}),
     "B": (("gas", "vdw_hard_core", "surface_tension", "viscosity", "drive", "keller_miksis"), {"R0": 4.5, "p_a": 1.3, "f": 26.5}),
-    "C": (("gas", "vapour", "surface_tension", "viscosity", "ramp"), {"R0": 1.0, "kappa": 1.0, "p_target": 0.99}),
+    "C": (("gas", "vapour", "surface_tension", "viscosity", "ramp"), {"R0": 1.0, "kappa": 1.0, "depth": 0.99}),
     "stiff": (("gas", "surface_tension", "viscosity", "drive"), {"R0": 1.0, "mu": 1.0, "rho": 1260.0, "p_a": 0.5, "f": 20.0, "kappa": 1.4}),
 }
 

@@ -47,7 +47,13 @@ SCENE_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA", EXPLICIT, IMPLICIT)
 SOLVER_LABELS = ("analytic (betaincinv)", f"DOP853 (compiled), rtol {_power(EXPLICIT_RTOL)}",
                  f"Radau IIA (compiled; stiff: 4µT/ρR₀² > 10³), rtol {_power(IMPLICIT_RTOL)}", "other") + tuple(
     f"{method}, at the scene's rtol" for method in SCENE_METHODS)
-BLAKE_LABELS = ("bounded: R stayed below the Blake radius", "R passed R_B but stayed below 10 R_B", "unbounded: R reached 10 R_B")
+BLAKE_LABELS = (
+    "settles: it stays below the Blake radius, at a size in equilibrium",
+    "passed the Blake radius, then fell back below it",
+    "keeps growing: past the Blake radius and still growing",
+    "keeps growing, slowly: still below the Blake radius, but past the threshold no size is in equilibrium",
+    "unbounded: reached 10 Blake radii",
+)
 
 GUARDS = (MACH, KM_STOP, POINT, CORE)  # terminal events that end a run before its window does
 TERMINAL = GUARDS + (UNBOUNDED_GROWTH,)
@@ -111,7 +117,10 @@ def compose(point: dict, effects) -> tuple[Problem, Scales]:
         fields["compressible"] = terms.KELLER_MIKSIS if "keller_miksis" in on else terms.RADIATION
     if "ramp" in on:
         r_b, p_blake = terms.blake_nucleus(sigma, vapour)
-        fields.update(ramp_to=point["p_target"] * float(p_blake), ramp_time=point["t_ramp"] * 1e-6 / t_ref,
+        # The depth x = (p0 − p_target)/(p0 − p_Blake): the share of the way from p0 down to the threshold,
+        # so x > 1 lies beyond it for every nucleus (p_Blake > 0 for large ones, where p_target/p_Blake
+        # would run the wrong way).
+        fields.update(ramp_to=1.0 - point["depth"] * (1.0 - float(p_blake)), ramp_time=point["t_ramp"] * 1e-6 / t_ref,
                       r_unbounded=terms.UNBOUNDED * float(r_b))
     pb = Problem(**fields, tau_end=_window(point, on, Problem(**fields), t_ref))
     return pb, Scales(point, on, pb)
@@ -301,8 +310,20 @@ def _solver_label(run: Run, pb: Problem) -> int:
 
 
 def _blake_state(run: Run, pb: Problem) -> int:
-    """Index into BLAKE_LABELS: unbounded, past R_B, or bounded below R_B."""
+    """Index into BLAKE_LABELS: the verdict on the nucleus at the end of the ramp and hold.
+
+    A large nucleus grows slowly: within the hold it may not reach R_B even beyond the threshold, so the
+    verdict reads the end of the run too (R > R_B and Ṙ > 0: past the unstable size, it goes on growing)
+    and, below R_B, whether any size is in equilibrium at the final pressure (beyond the threshold, none
+    is: a pressure below p_Blake pulls every nucleus open, however slowly).
+    """
     if run.status == UNBOUNDED_GROWTH:
+        return 4
+    r_b, p_blake = terms.blake_nucleus(pb.sigma, pb.vapour)
+    _, r_end, v_end = run.end
+    if r_end > r_b and v_end > 0.0:
         return 2
+    if pb.ramp_to < float(p_blake):
+        return 3
     largest = max([float(np.nanmax(run.r))] + list(run.maxima[:, 1]))
-    return 1 if largest > pb.r_unbounded / terms.UNBOUNDED else 0
+    return 1 if largest > r_b else 0

@@ -12,7 +12,7 @@ import pytest
 
 from sitegen.content.pages import discover_pages, read_page
 from sitegen.review.goldens import accept_figures, changed_paths, check_figure, golden_names, golden_path
-from sitegen.review.tree import page_figures
+from sitegen.review.tree import NARROW_SUFFIX, page_figures
 
 ROOT = Path(__file__).resolve().parents[1]
 GOLDENS = ROOT / "tests" / "goldens"
@@ -20,12 +20,13 @@ ACCEPT = "run `make accept-figures`"
 
 
 def _source_scenes() -> list[str]:
-    """"<page>/<scene id>" for every scene of the book, read from content/ at collection time."""
+    """"<page>/<scene id>" for every scene of the book, read from content/ at collection time, and
+    "<page>/<scene id>.narrow" for its phone figure (every figure of the book draws one)."""
     names = []
     for path in discover_pages(ROOT / "content"):
         page, _ = read_page(path, ROOT)
         if page is not None:
-            names += [f"{page.slug}/{spec.id}" for spec in page.found.scenes]
+            names += [f"{page.slug}/{spec.id}{variant}" for spec in page.found.scenes for variant in ("", NARROW_SUFFIX)]
     return names
 
 

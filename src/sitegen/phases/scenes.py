@@ -10,10 +10,8 @@ from ..compute.cache import digest, library_version, source_digest
 from ..compute.check import check_scenes as check_accuracy
 from ..compute.executors import executor_for, results_in_order
 from ..compute.tabulate import assemble_tables, evaluate_unit, plan_scene
-from ..render.figures.base import figure_label
+from ..render.figures.base import scene_figures
 from ..render.layers import layer_points
-from ..render.style import laid_out
-from ..render.svg import figure_svg
 from ..site.assemble import RenderedScene, dom_id
 from .record import Book, SceneRecord
 from .run import BuildRun
@@ -129,8 +127,8 @@ def _figure(record: SceneRecord, run: BuildRun) -> RenderedScene:
     layers = view.layers(scene)
     points = layer_points(layers, scene, tables, scene.default_stops)
 
-    def draw() -> bytes:
-        return figure_svg(laid_out(view.draw(scene, tables)), layers, points, dom_id(scene), figure_label(view, scene)).encode()
+    def draw() -> bytes:  # the wide figure, then (if the view draws one) the phone's
+        return "".join(scene_figures(view, scene, tables, layers, points, dom_id(scene))).encode()
 
     # The layers are drawn at the defaults, so the defaults (through the points) belong in the key.
     key = digest(scene_digest(record), source_digest(FIGURE_MODULES | {type(view).__module__}), repr(points), "figure")

@@ -13,6 +13,12 @@ from .style import RC
 
 _ID_ATTR = re.compile(r'\bid="([^"]+)"')
 _ID_REF = re.compile(r'(url\(#|xlink:href="#|href="#)([^")]+)')
+_GROUP_ID = re.compile(r'<g id="([^"]+)"')
+_BETWEEN_TAGS = re.compile(r">\s+<")
+_TEXT = re.compile(r"<text\b.*?</text>", re.S)
+_GEOMETRY = re.compile(r'\b(d|x|y|width|height|transform)="([^"]*)"')
+_LONG_NUMBER = re.compile(r"-?\d+\.\d{3,}")
+VARIANTS = ("wide", "narrow")  # the figure for a text column, and for a phone (panels stacked)
 
 
 @dataclass(frozen=True)
@@ -23,8 +29,12 @@ class AxesFrame:
     box: tuple[float, float, float, float]  # x, y, width, height in SVG units
 
 
-def figure_svg(fig, layers: list[Layer], points: list[list[tuple[float, float]]], prefix: str, label: str) -> str:
-    """Save `fig` as inline SVG, add the layers at the given vertices, and make its ids unique."""
+def figure_svg(fig, layers: list[Layer], points: list[list[tuple[float, float]]], prefix: str, label: str,
+               variant: str = "wide") -> str:
+    """Save `fig` as inline SVG, add the layers at the given vertices, and make its ids unique.
+
+    `variant` ("wide" or "narrow") becomes a class, by which the stylesheet shows the one that suits the screen.
+    """
     frames = [_frame(fig, ax) for ax in fig.axes]
     buffer = io.StringIO()
     with plt.rc_context(RC):
@@ -34,10 +44,29 @@ def figure_svg(fig, layers: list[Layer], points: list[list[tuple[float, float]]]
     svg = svg[svg.index("<svg") :]
     svg = re.sub(r"<metadata>.*?</metadata>\s*", "", svg, flags=re.S)
     svg = re.sub(r"\s*<!--.*?-->", "", svg, flags=re.S)  # matplotlib's comments repeat the label TeX
-    svg = re.sub(r'<svg[^>]*?(viewBox="[^"]+")[^>]*>', rf'<svg xmlns="http://www.w3.org/2000/svg" \1 class="scene-svg" role="img" aria-label="{escape(label)}">', svg, count=1)
+    svg = _compact(svg)
+    head = f'class="scene-svg {variant}" role="img" aria-label="{escape(label)}"'
+    svg = re.sub(r'<svg[^>]*?(viewBox="[^"]+")[^>]*>', lambda m: f'<svg xmlns="http://www.w3.org/2000/svg" {m[1]} {head}>', svg, count=1)
     svg = svg.replace("</svg>", _layers_svg(layers, points, frames) + "</svg>")
     svg = _ID_ATTR.sub(lambda m: f'id="{prefix}-{m[1]}"', svg)
     return _ID_REF.sub(lambda m: f"{m[1]}{prefix}-{m[2]}", svg).strip() + "\n"
+
+
+def _compact(svg: str) -> str:
+    """matplotlib's SVG made smaller and exact to the browser's text layout: one tag a line without indentation
+    (lines keep a figure's diff readable), nothing between the <tspan>s of a <text> (there a line break is laid out
+    as a space and widens the text's box beyond its glyphs), no ids on groups nothing refers to, and coordinates
+    to 0.01 pt (a figure is never drawn above 2 px per pt)."""
+    svg = _BETWEEN_TAGS.sub(">\n<", svg)
+    svg = _TEXT.sub(lambda m: m[0].replace(">\n<", "><"), svg)
+    used = {m[2] for m in _ID_REF.finditer(svg)}
+    svg = _GROUP_ID.sub(lambda m: f'<g id="{m[1]}"' if m[1] in used else "<g", svg)
+    return _GEOMETRY.sub(lambda m: f'{m[1]}="{_LONG_NUMBER.sub(_rounded, m[2])}"', svg)
+
+
+def _rounded(match: re.Match) -> str:
+    text = f"{float(match[0]):.2f}".rstrip("0").rstrip(".")
+    return "0" if text == "-0" else text
 
 
 def _frame(fig, ax) -> AxesFrame:

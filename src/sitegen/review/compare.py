@@ -138,8 +138,10 @@ def compare_scenes(page: str, a: Scene | None, b: Scene | None) -> SceneChange:
     """How one scene differs: figure, tables, controls and the text of its panel."""
     some = b or a
     change = SceneChange(page, some.id, some.model, _status(a, b), table_count=len(some.data.get("tables", {})))
-    svg_a, svg_b = a.svg if a else "", b.svg if b else ""
-    if svg_a != svg_b:
+    figures_a, figures_b = (a.svg, a.narrow_svg) if a else ("", ""), (b.svg, b.narrow_svg) if b else ("", "")
+    if figures_a != figures_b:  # the wide figure shown, or the phone's when only that changed
+        which = 0 if figures_a[0] != figures_b[0] else 1
+        svg_a, svg_b = figures_a[which], figures_b[which]
         change.figure = FigureChange(svg_a, svg_b, svg_change(svg_a, svg_b) if a and b else None)
     if a is None or b is None:  # a whole scene came or went: its outputs in one line, not one row each
         change.controls = [f"{change.table_count} tables, all {change.status}"]

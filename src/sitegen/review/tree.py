@@ -10,6 +10,7 @@ from pathlib import Path
 _FIGURE_OPEN = re.compile(r"<figure\b([^>]*)>")
 _ATTR = re.compile(r'([\w:-]+)="([^"]*)"')
 _SVG = re.compile(r"<svg\b.*?</svg>", re.S)
+_NARROW = re.compile(r'^<svg\b[^>]*\bclass="scene-svg narrow"')
 _DATA = re.compile(r'<script\b[^>]*\bclass="scene-data"[^>]*>(.*?)</script>', re.S)
 _TITLES = (re.compile(r"<h1\b[^>]*>(.*?)</h1>", re.S), re.compile(r"<title>(.*?)</title>", re.S))
 
@@ -21,9 +22,10 @@ class Scene:
     id: str  # the element id without the "scene-" prefix
     model: str
     html: str  # the whole <figure> element
-    svg: str  # the inline figure, exactly as in the page
+    svg: str  # the inline figure (the wide one), exactly as in the page
     data: dict  # the parsed scene-data JSON
-    panel: str  # the element without its figure and data: controls, readouts, caption
+    panel: str  # the element without its figures and data: controls, readouts, caption
+    narrow_svg: str = ""  # the phone's figure, if the scene has one
 
 
 @dataclass(frozen=True)
@@ -61,20 +63,21 @@ def parse_page(name: str, html: str) -> PageDoc:
 
 
 def _scene(attrs: dict[str, str], block: str) -> Scene:
-    svg = _SVG.search(block)
+    svgs = [m[0] for m in _SVG.finditer(block)]
     data = _DATA.search(block)
     panel = block
-    for found in (svg, data):
+    for found in [*svgs, data[0] if data else None]:
         if found:
-            panel = panel.replace(found[0], "", 1)
+            panel = panel.replace(found, "", 1)
     scene_id = attrs.get("id", "")
     return Scene(
         scene_id.removeprefix("scene-"),
         attrs.get("data-scene", ""),
         block,
-        svg[0] if svg else "",
+        svgs[0] if svgs else "",
         json.loads(data[1]) if data else {},
         panel,
+        next((svg for svg in svgs[1:] if _NARROW.search(svg)), ""),
     )
 
 
@@ -85,13 +88,18 @@ def standalone_svg(svg: str) -> str:
     return svg if svg.endswith("\n") else svg + "\n"
 
 
+NARROW_SUFFIX = ".narrow"  # "<page>/<scene id>.narrow": the phone's figure of a scene
+
+
 def page_figures(build: Path) -> dict[str, str]:
-    """Every scene figure of a built site, standalone, by name "<page>/<scene id>"."""
+    """Every scene figure of a built site, standalone, by name "<page>/<scene id>" (and "….narrow" for a phone's)."""
     figures = {}
     for path in sorted(build.rglob("*.html")):
         name = path.relative_to(build).as_posix()
         for scene in parse_page(name, path.read_text(encoding="utf-8")).scenes:
             figures[f"{name.removesuffix('.html')}/{scene.id}"] = standalone_svg(scene.svg)
+            if scene.narrow_svg:
+                figures[f"{name.removesuffix('.html')}/{scene.id}{NARROW_SUFFIX}"] = standalone_svg(scene.narrow_svg)
     return figures
 
 

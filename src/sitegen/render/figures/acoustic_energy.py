@@ -1,7 +1,6 @@
 """K5: kinetic and potential energy density and intensity along one wavelength, and the local balance."""
 from __future__ import annotations
 
-import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
 
@@ -45,11 +44,8 @@ class AcousticEnergyFigure:
             layers.insert(0, Layer("probe", "polyline", 0, (("in:x_probe", ENERGY_LIMITS[0]), ("in:x_probe", ENERGY_LIMITS[1])), style=probe))
         return layers
 
-    def draw(self, scene, tables):
-        with plt.rc_context(s.RC):
-            fig, (ax_e, ax_r) = plt.subplots(
-                2, 1, figsize=(s.WIDTH_IN, 4.3), sharex=True, gridspec_kw={"height_ratios": [3, 2]}
-            )
+    def draw(self, scene, tables, narrow=False):
+        fig, (ax_e, ax_r) = s.new_rows(5.4 if narrow else 4.3, 2, narrow, sharex=True, gridspec_kw={"height_ratios": [3, 2]})
         for ax, limits in ((ax_e, ENERGY_LIMITS), (ax_r, RATE_LIMITS)):
             ax.set_xlim(-1.0, 0.06)
             ax.set_ylim(*limits)
@@ -61,7 +57,7 @@ class AcousticEnergyFigure:
         ax_r.set_ylabel("rate (units\nof ω⟨e⟩ᵢ)")
         ax_r.set_xticks([-1, -0.75, -0.5, -0.25, 0], ["−1", "−¾", "−½", "−¼", "0"])
         ax_r.set_xlabel("position x/λ (reflector at x = 0)")
-        ax_e.legend(handles=_energy_legend(), loc="lower center", bbox_to_anchor=(0.47, 1.0), ncols=4, frameon=False, fontsize=9, handlelength=1.8, columnspacing=1.1)
+        ax_e.legend(handles=_energy_legend(), loc="lower center", bbox_to_anchor=(0.47, 1.0), ncols=2 if narrow else 4, frameon=False, fontsize=9, handlelength=1.8, columnspacing=1.1)
         ax_r.legend(handles=_rate_legend(), loc="lower left", bbox_to_anchor=(0.0, 0.98), ncols=2, frameon=False, fontsize=9)
         fig.tight_layout(pad=0.4, h_pad=1.4)
         return fig

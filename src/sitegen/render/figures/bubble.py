@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.lines import Line2D
 
@@ -57,14 +56,17 @@ class BubbleFigure:
             layers.append(Layer("drive", "polyline", 1, xs=xs, ys="out:driven_p_far", style={**_LINE, "stroke": s.ORANGE, "stroke-width": "1.8"}))
         return layers
 
-    def draw(self, scene, tables):
+    def draw(self, scene, tables, narrow=False):
         view = _view(scene)
         if view == "driven":
-            fig, (ax, ax_p) = _two_rows(3.4)
-            _draw_driven(ax, ax_p, scene, tables)
+            fig, (ax, ax_p) = s.new_rows(4.2 if narrow else 3.4, 2, narrow, sharex=True, gridspec_kw={"height_ratios": [3, 1]})
+            handles = _draw_driven(ax, ax_p, scene, tables)
         else:
-            fig, (ax,) = s.new_figure(2.7)
-            (_draw_ramp if view == "ramp" else _draw_collapse)(ax, scene, tables)
+            fig, (ax,) = s.new_figure(3.2 if narrow else 2.7, narrow=narrow)
+            handles = (_draw_ramp if view == "ramp" else _draw_collapse)(ax, scene, tables)
+        # Above the axes: the curve and its dots can reach any corner inside them.
+        ax.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=2 if narrow else len(handles),
+                  frameon=False, fontsize=9, handlelength=1.6, columnspacing=1.0, handletextpad=0.5)
         fig.tight_layout(pad=0.4, h_pad=0.6)
         return fig
 
@@ -87,17 +89,6 @@ class BubbleEventsFigure(BubbleFigure):
         return [replace(layer, style={**layer.style, "stroke-width": "11"}) if layer.name == "extrema" else layer for layer in layers]
 
 
-def _two_rows(height_in: float):
-    """A figure with a tall and a short panel sharing the time axis (style.new_figure makes one row)."""
-    with plt.rc_context(s.RC):
-        fig, axes = plt.subplots(2, 1, figsize=(s.WIDTH_IN, height_in), sharex=True, gridspec_kw={"height_ratios": [3, 1]})
-    return fig, list(axes)
-
-
-def _legend(ax, handles, **where) -> None:
-    ax.legend(handles=handles, frameon=False, fontsize=9, **where)
-
-
 def _model_handles(stop_label: str, extrema_label: str | None = None, curve: bool = True) -> list:
     """The legend of the model's layers; without the curve (bubble_events) its event dots are drawn larger."""
     handles = [Line2D([], [], color=s.BLUE, lw=2.2, label="model R(t)")] if curve else []
@@ -107,7 +98,7 @@ def _model_handles(stop_label: str, extrema_label: str | None = None, curve: boo
     return handles
 
 
-def _draw_collapse(ax, scene, tables) -> None:
+def _draw_collapse(ax, scene, tables) -> list:
     """R/R0 against t/t_c with the exact Rayleigh curve (static: it is universal in these units)."""
     fraction = np.linspace(0.0, 1.0, 801)
     ax.plot(fraction, rayleigh_radius(fraction), color=s.FILL_BLUE, lw=6, solid_capstyle="round", zorder=1)
@@ -117,10 +108,10 @@ def _draw_collapse(ax, scene, tables) -> None:
     ax.set_xlabel("time t / t$_c$ (Rayleigh collapse time)")
     ax.set_ylabel("radius R / R$_0$")
     handles = [Line2D([], [], color=s.FILL_BLUE, lw=6, label="Rayleigh, exact")]
-    _legend(ax, handles + _model_handles("stopped: |Ṙ| = c", "R$_{min}$ (event)"), loc="lower right")
+    return handles + _model_handles("stopped: |Ṙ| = c", "R$_{min}$ (event)")
 
 
-def _draw_driven(ax, ax_p, scene, tables) -> None:
+def _draw_driven(ax, ax_p, scene, tables) -> list:
     """log10(R/R0) against t/T above the drive p∞(t)/p0."""
     low, high = _y_range(tables, "driven")
     ax.set_xlim(0.0, float(DRIVE_PERIODS))
@@ -129,13 +120,14 @@ def _draw_driven(ax, ax_p, scene, tables) -> None:
     ax.axhline(0.0, color=s.MUTED, lw=0.8)
     ax.set_ylabel("radius R / R$_0$ (log scale)")
     curve = "driven_curve_y" in tables  # the bubble_events view does not tabulate the curve
-    _legend(ax, _model_handles("stopped by an event", "R$_{max}$, R$_{min}$ (events)", curve), loc="upper right")
+    handles = _model_handles("stopped by an event", "R$_{max}$, R$_{min}$ (events)", curve)
     amplitude = max(param_range(scene, "p_a")[1], 0.1)
     ax_p.set_ylim(1.0 - 1.15 * amplitude, 1.0 + 1.15 * amplitude)
     ax_p.axhline(0.0, color=s.MUTED, lw=0.8)
     ax_p.set_xticks(np.arange(0, DRIVE_PERIODS + 0.5, 0.5))
     ax_p.set_xlabel("time t / T (acoustic periods)")
     ax_p.set_ylabel("p$_∞$ / p$_0$")
+    return handles
 
 
 _LOG_TICKS = (0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100)
@@ -154,7 +146,7 @@ def _y_range(tables, view: str) -> tuple[float, float]:
     return min(r[0] for r in ranges), max(r[1] for r in ranges)
 
 
-def _draw_ramp(ax, scene, tables) -> None:
+def _draw_ramp(ax, scene, tables) -> list:
     """log10(R/R_B) against time, with the Blake radius and the 10 R_B stop as reference lines."""
     low, high = _y_range(tables, "ramp")
     ax.set_xlim(0.0, _x_end(scene))
@@ -169,4 +161,4 @@ def _draw_ramp(ax, scene, tables) -> None:
     ax.text(0.01 * _x_end(scene), 1.03, "10 R$_B$: unbounded", color=s.MUTED, fontsize=8, va="bottom")
     ax.set_xlabel("time t (µs)")
     ax.set_ylabel("radius R / R$_B$ (log scale)")
-    _legend(ax, _model_handles("reached 10 R$_B$"), loc="lower right")
+    return _model_handles("reached 10 R$_B$")

@@ -41,9 +41,10 @@ class ChainFigure:
             Layer("modes", "dots", 1, xs="out:log_k", ys="out:log_omega", style={**dots, "stroke-width": "4"}),
         ] + (_wall_layers() if "boundary" in scene.effects else [])
 
-    def draw(self, scene, tables):
-        fig, (ax, ax_w) = s.new_figure(2.6, ncols=2, gridspec_kw={"width_ratios": [2.5, 1]})
-        _draw_string_axes(ax, tables, static_walls="boundary" not in scene.effects)
+    def draw(self, scene, tables, narrow=False):
+        shape = {"height_ratios": [1, 1.15]} if narrow else {"width_ratios": [2.5, 1]}
+        fig, (ax, ax_w) = s.new_figure(5.6 if narrow else 2.6, ncols=2, narrow=narrow, gridspec_kw=shape)
+        _draw_string_axes(ax, tables, static_walls="boundary" not in scene.effects, legend_columns=1 if narrow else 2)
         _draw_dispersion_axes(ax_w)
         fig.tight_layout(pad=0.4, w_pad=1.4)
         return fig
@@ -58,7 +59,7 @@ def _wall_layers() -> list[Layer]:
     ]
 
 
-def _draw_string_axes(ax, tables, static_walls: bool = True) -> None:
+def _draw_string_axes(ax, tables, static_walls: bool = True, legend_columns: int = 2) -> None:
     """Fixed walls, the rest line, and u limits that fit the string and every resolved chain.
 
     The limits leave 20 % above the string's range: a chain with σ/a ≥ 1 overshoots it by at most
@@ -80,7 +81,7 @@ def _draw_string_axes(ax, tables, static_walls: bool = True) -> None:
             Line2D([], [], color=s.BLUE, marker="o", ls="none", ms=5, label="chain of N masses"),
             Line2D([], [], color=s.ORANGE, lw=1.8, ls=(0, (6, 4)), label="continuous string"),
         ],
-        loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=2, frameon=False, fontsize=9,
+        loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=legend_columns, frameon=False, fontsize=9,
     )
 
 
@@ -101,5 +102,7 @@ def _draw_dispersion_axes(ax) -> None:
             Line2D([], [], color=s.BLUE, marker="o", ls="none", ms=4, label="modes"),
             Patch(facecolor=s.FILL_BLUE, alpha=0.6, label="pulse"),
         ],
-        loc="lower right", frameon=False, fontsize=9, handletextpad=0.3, borderaxespad=0.2,
+        # above the panel: the pulse's band can shade any part of it
+        loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=2, frameon=False, fontsize=9, handletextpad=0.3,
+        columnspacing=0.8, handlelength=1.2, borderaxespad=0.2,
     )

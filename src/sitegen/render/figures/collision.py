@@ -42,13 +42,17 @@ class CollisionFigure:
             Layer("K-lost", "polygon", 1, bar(1.0, "out:K_kept_pct", 100.0), style={"fill": s.LOST, "fill-opacity": "0.6", "stroke": s.MUTED, "stroke-width": "1", "stroke-dasharray": "3 2"}),
         ] + (_contact_layers() if CONTACT in scene.effects else [])
 
-    def draw(self, scene, tables):
+    def draw(self, scene, tables, narrow=False):
         if CONTACT in scene.effects:
-            fig, named = s.new_mosaic(4.9, [["v", "K"], ["F", "F"]], gridspec_kw={"width_ratios": [3, 2], "height_ratios": [3, 1.9]})
+            if narrow:  # three rows, in the wide figure's order of axes
+                fig, named = s.new_mosaic(7.4, [["v"], ["K"], ["F"]], narrow=True, gridspec_kw={"height_ratios": [3, 2.2, 2]})
+            else:
+                fig, named = s.new_mosaic(4.9, [["v", "K"], ["F", "F"]], gridspec_kw={"width_ratios": [3, 2], "height_ratios": [3, 1.9]})
             ax_v, ax_k = named["v"], named["K"]
             _draw_force_axes(named["F"], tables)
         else:
-            fig, (ax_v, ax_k) = s.new_figure(3.0, ncols=2, gridspec_kw={"width_ratios": [3, 2]})
+            shape = {"height_ratios": [3, 2.2]} if narrow else {"width_ratios": [3, 2]}
+            fig, (ax_v, ax_k) = s.new_figure(5.4 if narrow else 3.0, ncols=2, narrow=narrow, gridspec_kw=shape)
         lows, highs = zip(*(table_range(tables[n]) for n in ("v1f", "v2f", "v_cm")), param_range(scene, "v1i"), param_range(scene, "v2i"))
         v_lo, v_hi = min(lows), max(highs)
         pad = 0.06 * (v_hi - v_lo or 1.0)
@@ -65,9 +69,9 @@ class CollisionFigure:
                 Line2D([], [], color=s.ORANGE, lw=2.4, label="body 2"),
                 Line2D([], [], color=s.MUTED, lw=1.6, ls=(0, (5, 4)), label="centre of mass"),
             ],
-            loc="upper center",
-            bbox_to_anchor=(0.5, 1.16),
-            ncols=3,
+            loc="lower center",
+            bbox_to_anchor=(0.5, 1.0),
+            ncols=2 if narrow else 3,
             frameon=False,
             fontsize=9,
         )
@@ -78,7 +82,8 @@ class CollisionFigure:
         ax_k.set_xticks([0, 1], ["before", "after"])
         ax_k.grid(axis="x", visible=False)
         ax_k.set_ylabel("kinetic energy (% of before)")
-        ax_k.legend(handles=[Patch(facecolor=s.LOST, edgecolor=s.MUTED, ls="--", label="lost")], loc="upper right", frameon=False, fontsize=9)
+        ax_k.legend(handles=[Patch(facecolor=s.LOST, edgecolor=s.MUTED, ls="--", label="lost")], loc="lower right",
+                    bbox_to_anchor=(1.0, 1.0), frameon=False, fontsize=9)  # above the bars, never over them
         fig.tight_layout(pad=0.4, w_pad=1.2)
         return fig
 
@@ -106,5 +111,5 @@ def _draw_force_axes(ax, tables) -> None:
     ax.legend(
         handles=[Line2D([], [], color=s.ORANGE, lw=2.2, label="contact force F(t)"),
                  Patch(color=s.FILL_ORANGE, label="area = impulse J")],
-        loc="upper right", frameon=False, fontsize=9,
+        loc="lower right", bbox_to_anchor=(1.0, 1.0), ncols=2, frameon=False, fontsize=9,  # above: clear of the curve
     )

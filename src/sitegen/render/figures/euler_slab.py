@@ -40,9 +40,10 @@ class EulerSlabFigure:
             Layer("a-point", "polygon", 1, bar(1.0, "out:bar_point"), style={"fill": s.FILL_BLUE, "stroke": s.BLUE, "stroke-width": "1.2"}),
         ]
 
-    def draw(self, scene, tables):
-        fig, (ax_w, ax_a) = s.new_figure(3.1, ncols=2, gridspec_kw={"width_ratios": [3.2, 1]})
-        _draw_wave_axes(ax_w)
+    def draw(self, scene, tables, narrow=False):
+        shape = {"height_ratios": [3, 2]} if narrow else {"width_ratios": [3.2, 1]}
+        fig, (ax_w, ax_a) = s.new_figure(5.6 if narrow else 3.1, ncols=2, narrow=narrow, gridspec_kw=shape)
+        _draw_wave_axes(ax_w, legend_columns=2 if narrow else 3)
         _draw_bar_axes(ax_a)
         for ax in (ax_w, ax_a):  # larger than the house default: the figure is read down to phone width
             ax.tick_params(labelsize=TEXT_SIZE)
@@ -50,7 +51,7 @@ class EulerSlabFigure:
         return fig
 
 
-def _draw_wave_axes(ax):
+def _draw_wave_axes(ax, legend_columns: int = 3):
     """Fixed frame of the wave panel: x in wavelengths about the slab centre, p′ in units of P."""
     ax.set_xlim(WAVE_X[0], WAVE_X[-1])
     ax.set_ylim(-Y_LIMIT, Y_LIMIT)
@@ -71,7 +72,8 @@ def _draw_wave_axes(ax):
             Patch(facecolor=s.ORANGE, alpha=0.3, edgecolor=s.ORANGE, label="slab Δx"),
             Line2D([], [], color=s.ORANGE, lw=0, marker="o", ms=7, label="face pressures"),
         ],
-        loc="lower center", bbox_to_anchor=(0.6, 1.0), ncols=3, frameon=False, fontsize=NOTE_SIZE,
+        loc="lower center", bbox_to_anchor=(0.6 if legend_columns == 3 else 0.5, 1.0), ncols=legend_columns,
+        frameon=False, fontsize=NOTE_SIZE,
         handlelength=1.6, columnspacing=1.2,
     )
 

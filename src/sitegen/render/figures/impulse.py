@@ -51,13 +51,13 @@ class ImpulseFigure:
             Layer("velocity-after", "polyline", 1, (("out:t_end", "out:v_after"), (FAR, "out:v_after")), style=velocity),
         ]
 
-    def draw(self, scene, tables):
+    def draw(self, scene, tables, narrow=False):
         with_velocity = "initial_velocity" in scene.effects
         if with_velocity:
-            fig, named = s.new_mosaic(4.3, [["F"], ["v"]], sharex=True, gridspec_kw={"height_ratios": [3, 2]})
+            fig, named = s.new_mosaic(4.6 if narrow else 4.3, [["F"], ["v"]], narrow=narrow, sharex=True, gridspec_kw={"height_ratios": [3, 2]})
             ax, ax_v = named["F"], named["v"]
         else:
-            fig, (ax,) = s.new_figure(2.5)
+            fig, (ax,) = s.new_figure(2.7 if narrow else 2.5, narrow=narrow)
         t_max, f_lo, f_hi = _extent(scene, tables)
         ax.set_xlim(0, t_max * 1.04)
         ax.set_ylim(f_lo * 1.08, f_hi * 1.08)
@@ -66,8 +66,11 @@ class ImpulseFigure:
             ax.axhline(0, color=s.MUTED, lw=0.6)
         ax.legend(
             handles=[Line2D([], [], color=s.BLUE, lw=2.2, label="F(t)"), Patch(color=s.FILL_BLUE, label="area = impulse J")],
-            loc="upper right",
+            loc="lower right",  # above the axes: the pulse can reach any corner of them
+            bbox_to_anchor=(1.0, 1.0),
+            ncols=2,
             frameon=False,
+            fontsize=9,
         )
         if with_velocity:
             _draw_velocity_axes(ax_v, tables)
@@ -99,4 +102,5 @@ def _draw_velocity_axes(ax, tables) -> None:
     ax.set_ylim(min(low, 0.0) - pad, max(high, 0.0) + pad)
     ax.axhline(0, color=s.MUTED, lw=0.6)
     ax.set_ylabel("velocity v (m/s)")
-    ax.legend(handles=[Line2D([], [], color=s.ORANGE, lw=2.2, label="v(t)")], loc="upper left", frameon=False)
+    ax.legend(handles=[Line2D([], [], color=s.ORANGE, lw=2.2, label="v(t)")], loc="lower right", bbox_to_anchor=(1.0, 1.0),
+              frameon=False, fontsize=9, borderaxespad=0.1)

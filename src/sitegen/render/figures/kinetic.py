@@ -47,11 +47,11 @@ class KineticFigure:
                   style={"fill": "none", "stroke": s.ORANGE, "stroke-width": "2"}),
         ]
 
-    def draw(self, scene, tables):
-        fig, (ax_train, ax_run, ax_hist) = _axes()
+    def draw(self, scene, tables, narrow=False):
+        fig, (ax_train, ax_run, ax_hist) = _axes(narrow)
         _draw_train(ax_train, PULSE_TOP if "contact_duration" in scene.effects else TRAIN_TOP)
         _draw_running(ax_run, sample_limit="wall_law" not in scene.effects)
-        _draw_histogram(ax_hist)
+        _draw_histogram(ax_hist, legend_columns=2 if narrow else 1)
         fig.tight_layout(pad=0.4, h_pad=0.6, w_pad=1.4)
         return fig
 
@@ -65,14 +65,15 @@ def _time_outputs(effects) -> tuple[str, str]:
     return "train", "running"
 
 
-def _axes():
-    """Two stacked time panels on the left, the velocity histogram on the right (fig.axes in that order)."""
+def _axes(narrow: bool):
+    """Two stacked time panels on the left, the velocity histogram on the right (fig.axes in that order);
+    narrow, the histogram goes under them."""
     with plt.rc_context(s.RC):
-        fig = plt.figure(figsize=(s.WIDTH_IN, 4.0))
-        grid = fig.add_gridspec(2, 2, width_ratios=[1.45, 1.0])
+        fig = plt.figure(figsize=(s.width(narrow), 7.4 if narrow else 4.0))
+        grid = fig.add_gridspec(3, 1, height_ratios=[1, 1, 1.5]) if narrow else fig.add_gridspec(2, 2, width_ratios=[1.45, 1.0])
         ax_train = fig.add_subplot(grid[0, 0])
         ax_run = fig.add_subplot(grid[1, 0], sharex=ax_train)
-        ax_hist = fig.add_subplot(grid[:, 1])
+        ax_hist = fig.add_subplot(grid[2, 0] if narrow else grid[:, 1])
     return fig, (ax_train, ax_run, ax_hist)
 
 
@@ -100,24 +101,26 @@ def _draw_running(ax, sample_limit: bool):
             *([Line2D([], [], color=s.ORANGE, lw=1.6, ls=(0, (5, 4)), label=r"sample, $t\to\infty$")] if sample_limit else []),
             Line2D([], [], color=s.INK, lw=1.0, ls=(0, (4, 3)), label="ideal gas"),
         ],
-        loc="upper center", bbox_to_anchor=(0.45, -0.2), ncols=3, frameon=False, fontsize=9, handlelength=1.6,
+        loc="upper center", bbox_to_anchor=(0.45, -0.2), ncols=2, frameon=False, fontsize=9, handlelength=1.6,
         columnspacing=1.0, handletextpad=0.5,
     )
 
 
-def _draw_histogram(ax):
+def _draw_histogram(ax, legend_columns: int):
     ax.set_xlim(-HIST_SPAN, HIST_SPAN)
     ax.set_ylim(0, DENSITY_TOP)
     ax.set_xticks([-4, -2, 0, 2, 4])
     ax.set_xlabel(r"$v_x\,/\,v_\mathrm{th}$")
     ax.set_ylabel("probability density")
-    ax.set_title("velocities along x at t = 0", fontsize=10, loc="left", color=s.INK)
+    # The legend between the axes and the title: a few molecules' histogram can reach any height.
+    ax.set_title("velocities along x at t = 0", fontsize=10, loc="left", color=s.INK, pad=4 + 13 * (3 - legend_columns))
     ax.legend(
         handles=[
             Patch(facecolor=s.FILL_BLUE, edgecolor=s.BLUE, label="molecules"),
             Line2D([], [], color=s.ORANGE, lw=1.8, label="Maxwellian"),
         ],
-        loc="upper left", frameon=False, fontsize=9, handlelength=1.4,
+        loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=legend_columns, frameon=False, fontsize=9, handlelength=1.4,
+        borderaxespad=0.1, columnspacing=1.0,
     )
 
 

@@ -45,8 +45,8 @@ class LeverFigure:
             Layer("arm-right", "polyline", 0, _dimension("in:x_p", LENGTH), style={"fill": "none", "stroke": s.ORANGE, "stroke-width": "1.5"}),
         ]
 
-    def draw(self, scene, tables):
-        fig, (ax,) = s.new_figure(3.3)
+    def draw(self, scene, tables, narrow=False):
+        fig, (ax,) = s.new_figure(2.9 if narrow else 3.3, narrow=narrow)
         top = _top(scene, tables)
         bottom = ARM_LINE - 0.08
         ax.set_xlim(table_range(tables["left_block_x0"])[0] - 0.12, table_range(tables["right_block_x1"])[1] + 0.12)
@@ -57,7 +57,7 @@ class LeverFigure:
         ax.set_xticks([0.0, 0.5, 1.0, 1.5, 2.0])
         ax.set_xlabel("position along the bar x (m)")
         _label_masses_and_arms(ax, top)
-        _legend(ax)
+        _legend(ax, columns=1 if narrow else 2)
         fig.tight_layout(pad=0.4)
         _equal_aspect(ax, bottom, top + 0.16)
         _ground(ax, *ax.get_xlim())
@@ -72,13 +72,13 @@ def _label_masses_and_arms(ax, top: float) -> None:
     ax.text(LENGTH + 0.04, ARM_LINE, "L$_R$", ha="left", va="center", color=s.ORANGE, fontsize=10)
 
 
-def _legend(ax) -> None:
+def _legend(ax, columns: int = 2) -> None:
     """The two marks that are not self-explanatory, in a row above the picture."""
     handles = [
         Line2D([], [], color=s.MUTED, lw=1.3, ls=(0, (5, 4)), marker="^", markersize=7, markeredgewidth=0, label="balance point x*"),
         Patch(facecolor=s.LOST, edgecolor=s.INK, label="fulcrum (pivot at x$_p$)"),
     ]
-    ax.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=2, frameon=False, fontsize=9)
+    ax.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=columns, frameon=False, fontsize=9)
 
 
 def _ground(ax, left: float, right: float) -> None:

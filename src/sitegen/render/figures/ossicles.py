@@ -49,21 +49,26 @@ class OssiclesFigure:
             Layer("T-with", "polygon", 2, _bar(1.0, "out:T1_dB"), style={**bar, "fill": s.FILL_BLUE, "stroke": s.BLUE}),
         ]
 
-    def draw(self, scene, tables):
+    def draw(self, scene, tables, narrow=False):
         with plt.rc_context(s.RC):
-            fig = plt.figure(figsize=(s.WIDTH_IN, 4.6))
-            grid = fig.add_gridspec(2, 2, height_ratios=[1.05, 1.0], width_ratios=[1.0, 1.15])
-            ax_lever = fig.add_subplot(grid[0, :])
-            ax_gain = fig.add_subplot(grid[1, 0])
-            ax_power = fig.add_subplot(grid[1, 1])
-        _draw_lever(ax_lever, scene, tables)
+            if narrow:  # the lever over the two ledgers, one under the other
+                fig = plt.figure(figsize=(s.NARROW_WIDTH_IN, 7.2))
+                grid = fig.add_gridspec(3, 1, height_ratios=[1.2, 1.0, 1.0])
+                ax_lever, ax_gain, ax_power = (fig.add_subplot(grid[k, 0]) for k in range(3))
+            else:
+                fig = plt.figure(figsize=(s.WIDTH_IN, 4.6))
+                grid = fig.add_gridspec(2, 2, height_ratios=[1.05, 1.0], width_ratios=[1.0, 1.15])
+                ax_lever = fig.add_subplot(grid[0, :])
+                ax_gain = fig.add_subplot(grid[1, 0])
+                ax_power = fig.add_subplot(grid[1, 1])
+        _draw_lever(ax_lever, scene, tables, narrow)
         _draw_gain(ax_gain, tables)
         _draw_power(ax_power, tables)
         fig.tight_layout(pad=0.4, h_pad=0.6, w_pad=1.6)
         return fig
 
 
-def _draw_lever(ax, scene, tables) -> None:
+def _draw_lever(ax, scene, tables, narrow: bool = False) -> None:
     """Axes without ticks; the ground under the fulcrum's range, the labels of pistons and arms."""
     top = _largest_radius(scene) + 0.9
     arm_line = _arm_line(scene)
@@ -76,12 +81,15 @@ def _draw_lever(ax, scene, tables) -> None:
         x = low + 0.02 + 0.03 * k
         ax.plot([x, x - 0.015], [GROUND, GROUND - 0.45], color=s.MUTED, lw=0.8)
     eardrum = "eardrum (area A$_{TM}$)" if "area_ratio" in scene.effects else "eardrum (area A$_{FP}$)"
-    ax.text(-PLATE, top, eardrum, ha="center", va="bottom", color=s.BLUE, fontsize=10)
-    ax.text(1.0 + PLATE, top, "footplate (area A$_{FP}$)", ha="center", va="bottom", color=s.ORANGE, fontsize=10)
+    footplate = "footplate (area A$_{FP}$)"
+    if narrow:  # two lines each, so that the names keep clear of each other and of the edges
+        eardrum, footplate = (name.replace(" (", "\n(") for name in (eardrum, footplate))
+    ax.text(-PLATE, top, eardrum, ha="center", va="bottom", color=s.BLUE, fontsize=10, linespacing=1.1)
+    ax.text(1.0 + PLATE, top, footplate, ha="center", va="bottom", color=s.ORANGE, fontsize=10, linespacing=1.1)
     ax.text(-0.03, arm_line, "malleus ℓ", ha="right", va="center", color=s.BLUE, fontsize=10)
     ax.text(1.03, arm_line, "incus 1", ha="left", va="center", color=s.ORANGE, fontsize=10)
     ax.annotate("", xy=(-0.07, 0.0), xytext=(-0.3, 0.0), arrowprops={"arrowstyle": "-|>", "color": s.MUTED, "lw": 1.4})
-    ax.text(-0.3, 0.5, "sound, p$_{TM}$", ha="left", va="bottom", color=s.INK, fontsize=9)
+    ax.text(-0.3, 0.5, "p$_{TM}$" if narrow else "sound, p$_{TM}$", ha="left", va="bottom", color=s.INK, fontsize=9)
     ax.annotate("", xy=(1.3, 0.0), xytext=(1.07, 0.0), arrowprops={"arrowstyle": "-|>", "color": s.MUTED, "lw": 1.4})
     ax.text(1.31, 0.5, "p$_{OW}$", ha="right", va="bottom", color=s.INK, fontsize=9)
 

@@ -43,11 +43,12 @@ class WorkFigure:
             Layer("anchor-hole", "dots", 0, xs="out:anchor_x", ys=(0.0,), style=_dots("#ffffff", 5)),
         ]
 
-    def draw(self, scene, tables):
+    def draw(self, scene, tables, narrow=False):
         x_lo, x_hi, y_lo, y_hi = _limits(scene)
-        # Equal scales: the axes take about 86 % of the width; 0.9 in holds the legend and the x label.
-        height = s.WIDTH_IN * 0.86 * (y_hi - y_lo) / (x_hi - x_lo) + 0.9
-        fig, (ax,) = s.new_figure(height)
+        # Equal scales: the axes take about 86 % of the width (80 % narrow); the rest of the height holds the
+        # legend (three rows narrow, two wide) and the x label.
+        height = s.width(narrow) * (0.8 if narrow else 0.86) * (y_hi - y_lo) / (x_hi - x_lo) + (1.3 if narrow else 0.9)
+        fig, (ax,) = s.new_figure(height, narrow=narrow)
         ax.set_xlim(x_lo, x_hi)
         ax.set_ylim(y_lo, y_hi)
         ax.set_aspect("equal", adjustable="box")
@@ -59,7 +60,8 @@ class WorkFigure:
         ax.plot([-HALF_CHORD, HALF_CHORD], [0.0, 0.0], color=s.MUTED, lw=1.3, ls=(0, (5, 4)))
         for x, name in ((-HALF_CHORD, "A"), (HALF_CHORD, "B")):
             ax.annotate(name, (x, 0.0), xytext=(0, -9), textcoords="offset points", ha="center", va="top", fontsize=12, fontweight="bold", color=s.INK)
-        ax.legend(handles=_legend(scene), loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=3, frameon=False, handlelength=2.0, columnspacing=1.2)
+        ax.legend(handles=_legend(scene), loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=2 if narrow else 3, frameon=False,
+                  handlelength=2.0, columnspacing=1.2, fontsize=9 if narrow else 10)
         fig.tight_layout(pad=0.4)
         ax.apply_aspect()  # now, not at save time: the layers are placed with the axes' transform as it is here
         return fig

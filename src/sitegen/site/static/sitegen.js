@@ -64,8 +64,8 @@
     this.readouts = data.readouts.map(function (r) {
       return root.querySelector('[data-out="' + r.out + '"]');
     });
-    this.layers = data.layers.map(function (l) {
-      return root.querySelector('[data-layer="' + l.name + '"]');
+    this.layers = data.layers.map(function (l) { // in the wide figure and the phone's
+      return root.querySelectorAll('[data-layer="' + l.name + '"]');
     });
     var update = this.update.bind(this);
     this.controls.forEach(function (control) {
@@ -208,14 +208,13 @@
       if (self.readouts[i].textContent !== text) self.readouts[i].textContent = text;
     });
     data.layers.forEach(function (layer, i) {
-      var element = self.layers[i];
-      if (!element) return;
-      var vertices = self.vertices(layer, stops);
-      if (layer.kind === "dots") {
-        element.setAttribute("d", vertices.map(function (p) { return "M" + short(p[0]) + "," + short(p[1]) + "h0"; }).join(" "));
-      } else {
-        element.setAttribute("points", vertices.map(function (p) { return short(p[0]) + "," + short(p[1]); }).join(" "));
-      }
+      var elements = self.layers[i];
+      if (!elements.length) return;
+      var vertices = self.vertices(layer, stops), dots = layer.kind === "dots";
+      var text = vertices.map(function (p) {
+        return dots ? "M" + short(p[0]) + "," + short(p[1]) + "h0" : short(p[0]) + "," + short(p[1]);
+      }).join(" ");
+      for (var j = 0; j < elements.length; j++) elements[j].setAttribute(dots ? "d" : "points", text);
     });
   };
 

@@ -22,7 +22,8 @@ _SCENE_FENCE = re.compile(r"^```\s*scene\s*$")
 _REPORT_FENCE = re.compile(r"^```\s*accuracy-report\s*$")
 _CODE_FENCE = re.compile(r"^(```|~~~)")
 _INLINE_MATH = re.compile(r"(?<![\\$\w])\$(?=[^\s$])(?P<tex>[^$\n]*?[^\s\\$])\$(?![\w$])")
-_SLOT = re.compile(r'<(div|span) data-(math|scene|report)-slot="(\d+)"></\1>')
+_SLOT = re.compile(r'<(div|span) data-(math|scene|report)-slot="(\d+)(?:-(\d+))?"></\1>')
+_LIST_BREAK = re.compile(r"\\(qquad|begin|end)\b|[{}]")
 _DISPLAY_END = re.compile(r"^(?P<tex>.*)\$\$\s*(?:\{#(?P<label>eq-[a-z0-9-]+)\})?\s*$")
 _EQ_REF = re.compile(r"\(@(?P<label>eq-[a-z0-9-]+)\)")
 _EQ_REF_SLOT = re.compile(r'<a data-eqref="(eq-[a-z0-9-]+)"></a>')
@@ -145,14 +146,17 @@ class _SlotPreprocessor(Preprocessor):
             closing = _DISPLAY_END.match(lines[end])
             tex = "\n".join([first, *lines[i + 1 : end], closing["tex"]])
         label = closing["label"]
+        pieces = split_display(tex.strip())
         if label:
             if label in self.found.numbers:
                 self.found.errors.append(AuthorError(loc, f"equation label '{label}' is used twice on this page"))
             self.found.numbers.setdefault(label, len(self.found.numbers) + 1)
-            tex = f"{tex.strip()} \\tag{{{self.found.numbers[label]}}}"
-        self.found.maths.append(MathItem(tex.strip(), True, loc, label))
-        slot = f'<div data-math-slot="{len(self.found.maths) - 1}"></div>'
-        out.extend(["", slot, ""])
+            if len(pieces) == 1:  # a list's number is set after its last item by fill_slots
+                pieces[0] = f"{pieces[0]} \\tag{{{self.found.numbers[label]}}}"
+        first = len(self.found.maths)
+        self.found.maths += [MathItem(piece, True, loc, label) for piece in pieces]
+        span = f"{first}-{len(self.found.maths) - 1}" if len(pieces) > 1 else f"{first}"
+        out.extend(["", f'<div data-math-slot="{span}"></div>', ""])
         return end + 1
 
     def _reference(self, match: re.Match, loc: SourceLoc) -> str:
@@ -162,6 +166,23 @@ class _SlotPreprocessor(Preprocessor):
     def _inline_math(self, match: re.Match, loc: SourceLoc) -> str:
         self.found.maths.append(MathItem(match["tex"], False, loc))
         return f'<span data-math-slot="{len(self.found.maths) - 1}"></span>'
+
+
+def split_display(tex: str) -> list[str]:
+    """A displayed list of equations ("a = b, \\qquad c = d") as its items, split at each \\qquad outside braces
+    and environments, so that a narrow screen can stack them; any other display is one piece."""
+    pieces, depth, start = [], 0, 0
+    for match in _LIST_BREAK.finditer(tex):
+        token = match[0]
+        if token in ("{", "\\begin"):
+            depth += 1
+        elif token in ("}", "\\end"):
+            depth -= 1
+        elif depth == 0:
+            pieces.append(tex[start : match.start()].strip())
+            start = match.end()
+    pieces.append(tex[start:].strip())
+    return [piece for piece in pieces if piece] or [tex]
 
 
 class SlotExtension(Extension):
@@ -201,7 +222,13 @@ def fill_slots(html: str, found: Extracted, mathml, scenes, reports=()) -> str:
             return mathml[index]
         label = found.maths[index].label
         anchor = f' id="{label}"' if label else ""
-        return f'<div class="equation"{anchor}>{mathml[index]}</div>'
+        if match[4] is None:
+            return f'<div class="equation"{anchor}>{mathml[index]}</div>'
+        # a list of equations: its items wrap onto lines of their own where the line is too short for all,
+        # and its number (if any) keeps to the right margin of the last line
+        items = "".join(mathml[index : int(match[4]) + 1])
+        number = f'<span class="eqno">({found.numbers[label]})</span>' if label else ""
+        return f'<div class="equation list"{anchor}>{items}{number}</div>'
 
     html = _SLOT.sub(substitute, html)
     return _EQ_REF_SLOT.sub(lambda m: f'<a class="eqref" href="#{m[1]}">({found.numbers[m[1]]})</a>', html)

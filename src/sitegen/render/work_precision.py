@@ -1,14 +1,18 @@
 """Static diagrams of the accuracy page: work–precision (error against time) and resolution against bytes.
 
 They take plain points, not bench.json, and draw them in the house style; `figure_svg` turns
-them into byte-stable inline SVG. Point labels are placed after the layout is fixed, each at the
-first free spot around its point, and dropped rather than drawn over another label or marker.
+them into byte-stable inline SVG. Nothing is written over the data: each panel's legend (with the
+ring that marks the chosen setting) sits above it, its title above the legend; point labels are
+placed once the layout is fixed, each at the first spot around its point where its measured text
+box covers no marker, line or other label, and dropped where there is none.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import matplotlib.pyplot as plt
+import numpy as np
 from matplotlib.ticker import LogLocator, NullFormatter
 
 from . import style as s
@@ -17,9 +21,10 @@ GREEN, PURPLE = "#2a7a3b", "#7b3fa0"
 COLOURS = (s.BLUE, s.ORANGE, GREEN, PURPLE, s.MUTED, s.INK)
 MARKERS = ("o", "s", "^", "D", "v", "P")
 LABEL_SIZE = 7.5
-CHAR_WIDTH = 4.4  # pt per character of a point label (DejaVu Sans at 7.5 pt, digits)
-CALLOUT_CHAR = 5.6  # pt per character of the bold callout
+LEGEND_SIZE = LABEL_SIZE + 1
 MARKER_HALF = 3.5  # pt: half the size of a marker, an obstacle for labels
+LINE_HALF = 1.5  # pt: half the width of a line, an obstacle for labels
+RING_SIZE = 15  # pt: the ring round the chosen setting
 
 
 @dataclass(frozen=True)
@@ -46,7 +51,7 @@ class Panel:
 
     title: str
     series: tuple[Series, ...]
-    chosen: Point | None = None  # drawn with a ring and `chosen.text` as a callout
+    chosen: Point | None = None  # drawn with a ring; `chosen.text` names the ring in the legend
     exact: Point | None = None  # a method with no error to plot: a star on the floor
     floor: float = 1e-16  # errors below this are drawn on it
     ceiling: float = 10.0  # errors above this are drawn on it, as an upward triangle
@@ -55,46 +60,72 @@ class Panel:
     ylim: tuple[float, float] | None = None
 
 
-def work_precision_figure(panels: list[Panel], xlabel: str, ylabel: str, note: str) -> plt.Figure:
-    """Log–log panels stacked vertically, one line per series, points labelled, the chosen one ringed."""
+def work_precision_figure(panels: list[Panel], xlabel: str, ylabel: str, note: str, narrow: bool = False) -> plt.Figure:
+    """Log–log panels stacked vertically, one line per series, points labelled, the chosen one ringed.
+
+    `narrow`: the same panels for a phone's width (style.NARROW_WIDTH_IN), the legend in more rows.
+    """
+    columns = 3 if narrow else 6
     with plt.rc_context(s.RC):
-        fig, axes = plt.subplots(len(panels), 1, figsize=(s.WIDTH_IN, 0.5 + 3.6 * len(panels)), squeeze=False)
+        fig, axes = plt.subplots(len(panels), 1, figsize=(s.width(narrow), 0.5 + (4.0 if narrow else 3.6) * len(panels)),
+                                 squeeze=False)
         for ax, panel in zip(axes[:, 0], panels):
             _draw_panel(ax, panel, xlabel, ylabel)
-            ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=len(panel.series), fontsize=LABEL_SIZE + 1,
-                      frameon=False, handlelength=1.5, columnspacing=0.9, handletextpad=0.4, borderaxespad=0.2)
-        fig.text(0.01, 0.005, note, fontsize=LABEL_SIZE + 0.5, color=s.MUTED, ha="left", va="bottom")
-        fig.tight_layout(rect=(0, 0.025, 1, 1), h_pad=1.4)
+            _legend_and_title(ax, panel, columns)
+        _note(fig, note)
+        fig.tight_layout(rect=(0, 0.025 * (1.6 if narrow else 1), 1, 1), h_pad=1.4)
         for ax, panel in zip(axes[:, 0], panels):
             _annotate(ax, panel)
     return fig
 
 
-def resolution_figure(panels: list[Panel], note: str) -> plt.Figure:
-    """A 2-column grid of panels: interpolation error (in display digits) against bytes stored."""
-    rows = (len(panels) + 1) // 2
+def resolution_figure(panels: list[Panel], note: str, narrow: bool = False) -> plt.Figure:
+    """A 2-column grid of panels (one column when `narrow`): interpolation error (in display digits) against bytes stored."""
+    columns = 1 if narrow else 2
+    rows = (len(panels) + columns - 1) // columns
     with plt.rc_context(s.RC):
-        fig, axes = plt.subplots(rows, 2, figsize=(s.WIDTH_IN, 0.7 + 2.9 * rows), squeeze=False)
+        fig, axes = plt.subplots(rows, columns, figsize=(s.width(narrow), 0.9 + 2.9 * rows), squeeze=False)
         for ax, panel in zip(axes.ravel(), panels):
             _draw_panel(ax, panel, "bytes stored (float32)", "error ÷ ½ last digit")
+            ax.set_title(panel.title, fontsize=9.5, loc="left", color=s.INK)
         for ax in axes.ravel()[len(panels):]:
             ax.set_visible(False)
         names = [series.name for series in panels[0].series]
         handles = [plt.Line2D([], [], color=COLOURS[i], marker=MARKERS[i], lw=1.5, ms=5) for i in range(len(names))]
-        fig.legend(handles, names, loc="upper center", ncol=len(names), fontsize=LABEL_SIZE + 1, frameon=False,
-                   handlelength=1.5, columnspacing=1.0)
-        fig.text(0.01, 0.005, note, fontsize=LABEL_SIZE + 0.5, color=s.MUTED, ha="left", va="bottom")
-        fig.tight_layout(rect=(0, 0.03, 1, 0.95), h_pad=1.2, w_pad=1.2)
+        legend = fig.legend(handles, names, loc="upper center", ncol=2 if narrow else len(names), fontsize=LEGEND_SIZE,
+                            frameon=False, handlelength=1.5, columnspacing=1.0)
+        _note(fig, note)
+        top = 1 - (legend.get_window_extent().height + 6) / (fig.get_figheight() * 72)
+        fig.tight_layout(rect=(0, 0.03 * (1.6 if narrow else 1), 1, top), h_pad=1.2, w_pad=1.2)
         for ax, panel in zip(axes.ravel(), panels):
             _annotate(ax, panel)
     return fig
+
+
+def _note(fig, note: str) -> None:
+    fig.text(0.01, 0.005, note, fontsize=LABEL_SIZE + 0.5, color=s.MUTED, ha="left", va="bottom", wrap=True)
+
+
+def _legend_and_title(ax, panel: Panel, columns: int) -> None:
+    """The series and the chosen setting's ring in a legend above the axes, and the title above the legend."""
+    handles, labels = ax.get_legend_handles_labels()
+    if panel.chosen:
+        handles.append(plt.Line2D([], [], marker="o", ms=RING_SIZE * 0.7, mfc="none", mec=s.INK, mew=1.8, ls="none"))
+        labels.append(panel.chosen.text)
+    width = ax.get_window_extent().width
+    for ncol in range(min(columns, len(handles)), 0, -1):  # as many columns as fit over the axes
+        legend = ax.legend(handles, labels, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=ncol, fontsize=LEGEND_SIZE,
+                           frameon=False, handlelength=1.5, columnspacing=0.9, handletextpad=0.4, borderaxespad=0.2)
+        if legend.get_window_extent().width <= width:
+            break
+    height = legend.get_window_extent().height
+    ax.set_title(panel.title, fontsize=9.5, loc="left", color=s.INK, pad=height + 0.2 * LEGEND_SIZE + 3)
 
 
 def _draw_panel(ax, panel: Panel, xlabel: str, ylabel: str) -> None:
     """Axes, lines and markers; labels wait for the final layout (`_annotate`)."""
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_title(panel.title, fontsize=9.5, loc="left", color=s.INK, pad=16)
     ax.set_xlabel(xlabel, fontsize=9)
     ax.set_ylabel(ylabel, fontsize=9)
     ax.tick_params(labelsize=8)
@@ -111,8 +142,8 @@ def _draw_panel(ax, panel: Panel, xlabel: str, ylabel: str) -> None:
                     textcoords="offset points", ha="right", va="bottom", fontsize=LABEL_SIZE, color=s.MUTED)
     _limits(ax, panel)
     if panel.chosen:
-        ax.plot([panel.chosen.x], [_clamped(panel, panel.chosen.y)], marker="o", ms=15, mfc="none", mec=s.INK, mew=1.8,
-                ls="none", zorder=6)
+        ax.plot([panel.chosen.x], [_clamped(panel, panel.chosen.y)], marker="o", ms=RING_SIZE, mfc="none", mec=s.INK,
+                mew=1.8, ls="none", zorder=6)
 
 
 def _clamped(panel: Panel, y: float) -> float:
@@ -138,28 +169,42 @@ def _limits(ax, panel: Panel) -> None:
 
 # --- labels, placed once the layout is final ------------------------------------------------------------------
 
+# Where a label may go, in the order tried: right and up, right and down, left and up, left and down,
+# over, under, right, left of its point.
+_SPOTS = ((1, 1), (1, -1), (-1, 1), (-1, -1), (0, 1), (0, -1), (1, 0), (-1, 0))
+
 
 def _annotate(ax, panel: Panel) -> None:
-    """The chosen setting's callout, then each point's label where it collides with nothing."""
+    """Each point's label (major ones first) where it covers no marker, ring, line or earlier label."""
     to_pt = ax.transData.transform
     frame = ax.get_window_extent()
     bounds = (frame.x0, frame.y0, frame.x1, frame.y1)
     points = [(p, COLOURS[i % len(COLOURS)]) for i, series in enumerate(panel.series) for p in series.points]
-    markers = [_square(to_pt((p.x, _clamped(panel, p.y))), MARKER_HALF) for p, _ in points]
-    placed: list[tuple] = []
+    obstacles = [_square(to_pt((p.x, _clamped(panel, p.y))), MARKER_HALF) for p, _ in points]
+    for series in panel.series:
+        obstacles += _line_boxes([to_pt((p.x, _clamped(panel, p.y))) for p in series.points])
     if panel.chosen:
-        centre = to_pt((panel.chosen.x, _clamped(panel, panel.chosen.y)))
-        markers.append(_square(centre, 7.5))
-        placed.append(_callout(ax, panel, centre, bounds, markers))
+        obstacles.append(_square(to_pt((panel.chosen.x, _clamped(panel, panel.chosen.y))), RING_SIZE / 2 + 1))
+    if panel.exact:
+        obstacles.append(_square(to_pt((panel.exact.x, panel.floor)), 7))
     for point, colour in sorted(points, key=lambda item: not item[0].major):
         if point.text:
-            box = _label(ax, panel, point, colour, to_pt((point.x, _clamped(panel, point.y))), bounds, markers, placed)
+            box = _label(ax, panel, point, colour, bounds, obstacles)
             if box:
-                placed.append(box)
+                obstacles.append(box)
 
 
 def _square(centre, half: float) -> tuple:
     return (centre[0] - half, centre[1] - half, centre[0] + half, centre[1] + half)
+
+
+def _line_boxes(vertices) -> list[tuple]:
+    """Small squares every few points along a polyline (in display points), standing for the line."""
+    boxes = []
+    for (x0, y0), (x1, y1) in zip(vertices, vertices[1:]):
+        steps = max(1, math.ceil(math.hypot(x1 - x0, y1 - y0) / (2 * LINE_HALF)))
+        boxes += [_square((x, y), LINE_HALF) for x, y in zip(np.linspace(x0, x1, steps + 1), np.linspace(y0, y1, steps + 1))]
+    return boxes
 
 
 def _overlaps(a: tuple, b: tuple) -> bool:
@@ -174,34 +219,22 @@ def _free(box: tuple, bounds: tuple, obstacles: list[tuple]) -> bool:
     return _inside(box, bounds) and not any(_overlaps(box, o) for o in obstacles)
 
 
-def _label(ax, panel: Panel, point: Point, colour: str, centre, bounds, markers, placed) -> tuple | None:
-    """A point's label at the first free spot right, below-right, left or below-left of it; None if none is free."""
-    width, height = CHAR_WIDTH * len(point.text) + 1.0, 8.0
-    gap = MARKER_HALF + 0.5  # clear of the point's own marker
-    for dx, dy in ((gap, 1.0), (gap, -9.0), (-gap - width, 1.0), (-gap - width, -9.0)):
-        box = (centre[0] + dx, centre[1] + dy, centre[0] + dx + width, centre[1] + dy + height)
-        if _free(box, bounds, markers + placed):
-            ax.annotate(point.text, (point.x, _clamped(panel, point.y)), xytext=(dx, dy), textcoords="offset points",
+def _label(ax, panel: Panel, point: Point, colour: str, bounds, obstacles) -> tuple | None:
+    """A point's label at the first free spot around it, measured as drawn; None (and no label) if none is free."""
+    label = ax.annotate(point.text, (point.x, _clamped(panel, point.y)), xytext=(0, 0), textcoords="offset points",
                         ha="left", va="bottom", fontsize=LABEL_SIZE, color=colour, zorder=4)
+    extent = label.get_window_extent()  # measured with the figure's own renderer
+    width, height = extent.width, extent.height
+    gap = MARKER_HALF + 0.5  # clear of the point's own marker
+    for sx, sy in _SPOTS:
+        dx = gap if sx > 0 else -gap - width if sx < 0 else -width / 2
+        if sx:  # beside the point, level with its centre or just above or below it
+            dy = 1.0 if sy > 0 else -height - 1.0 if sy < 0 else -height / 2
+        else:  # over or under it
+            dy = gap if sy > 0 else -gap - height
+        label.xyann = (dx, dy)
+        box = tuple(label.get_window_extent().extents)
+        if _free(box, bounds, obstacles):
             return box
+    label.remove()
     return None
-
-
-def _callout(ax, panel: Panel, centre, bounds, markers) -> tuple:
-    """The chosen setting's name in a box, joined to its ring, at the first spot that covers no marker."""
-    width, height = CALLOUT_CHAR * len(panel.chosen.text) + 8.0, 13.0
-    candidates = [(18, 18), (18, -31), (-18 - width, 18), (-18 - width, -31), (24, -6), (-24 - width, -6),
-                  (18, 40), (18, -53), (-18 - width, 40), (-18 - width, -53)]
-    chosen = candidates[0]
-    for dx, dy in candidates:
-        box = (centre[0] + dx, centre[1] + dy, centre[0] + dx + width, centre[1] + dy + height)
-        if _free(box, bounds, markers):
-            chosen = (dx, dy)
-            break
-    dx, dy = chosen
-    ax.annotate(panel.chosen.text, (panel.chosen.x, _clamped(panel, panel.chosen.y)), xytext=(dx + 4, dy + 3.5),
-                textcoords="offset points", ha="left", va="bottom", fontsize=LABEL_SIZE + 1, color=s.INK,
-                fontweight="bold", zorder=7, bbox={"boxstyle": "round,pad=0.25", "fc": "white", "ec": s.GRID, "alpha": 0.95},
-                arrowprops={"arrowstyle": "-", "color": s.INK, "lw": 1.0, "shrinkA": 0, "shrinkB": 7.5})
-    return (centre[0] + dx, centre[1] + dy, centre[0] + dx + width, centre[1] + dy + height)
-

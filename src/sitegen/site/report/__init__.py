@@ -63,10 +63,10 @@ def resolution_part(context: ReportContext) -> str:
     rows = context.bench["resolution"]
     label = "Interpolation error against stored bytes for four outputs, by choice of axis and number of nodes."
 
-    def draw():
+    def draw(narrow):
         xlim = (min(r["bytes_float32"] for r in rows) / 2.5, max(r["bytes_float32"] for r in rows) * 2.5)
         panels = [_resolution_panel([r for r in rows if r["line"] == key], xlim) for key in dict.fromkeys(r["line"] for r in rows)]
-        return resolution_figure(panels, "labels: number of nodes; dashed: half of the last displayed digit")
+        return resolution_figure(panels, "labels: number of nodes; dashed: half of the last displayed digit", narrow)
 
     svg = figure(context, "resolution", rows, label, draw)
     caption = ("Each output is stored at a few nodes and interpolated back to every slider stop; the error is the "

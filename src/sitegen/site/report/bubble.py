@@ -36,9 +36,9 @@ def bubble_part(case: str):
         data = context.bench["bubble"][case]
         label = f"Work–precision diagram of bubble case {case}: error against time for five solvers over rtol 10⁻³ to 10⁻¹²."
 
-        def draw():
+        def draw(narrow):
             return work_precision_figure([_bubble_panel(data)], "median wall time per solve (ms)", data["metric"].split(" over")[0],
-                                         "labels: rtol = 10⁻ⁿ; ▲: error above the plot")
+                                         "labels: rtol = 10⁻ⁿ; ▲: error above the plot", narrow)
 
         svg = figure(context, f"bubble-{case}", data, label, draw)
         return figure_html(f"bubble-{case}", svg, label, _bubble_caption(data), _bubble_table(case, data))
@@ -120,9 +120,9 @@ def settings_part(context) -> str:
         return MISSING
     label = "Time per solve against the largest error in units of the last shown digit, every stop of each bubble scene."
 
-    def draw():
+    def draw(narrow):
         return work_precision_figure([sweep_panel(sweep)], "time per solve, all stops (ms)", "largest error (last shown digits)",
-                                     "labels: rtol = 10⁻ⁿ; below 0.5 every shown digit can be right")
+                                     "labels: rtol = 10⁻ⁿ; below 0.5 every shown digit can be right", narrow)
 
     rows = table(["scene", "rtol", "ms per solve", "wrong values", "near a boundary", "largest error (digits)"], sweep_rows(sweep),
                  "Every stop of every bubble scene against the tight reference", text=(0,))

@@ -33,9 +33,10 @@ def chain_part(context) -> str:
     sizes = sorted({run["N"] for run in chain["runs"]})
     label = "Work–precision diagram of the chain of masses: error against time for each method, one panel per chain size."
 
-    def draw():
+    def draw(narrow):
         return work_precision_figure([_chain_panel(chain, n) for n in sizes], "median wall time per run (ms)",
-                                     "max |u − u_DST| / A", "labels: ν = cΔt/a for Verlet, rtol = 10⁻ⁿ for RK45 and DOP853")
+                                     "max |u − u_DST| / A", "labels: ν = cΔt/a for Verlet, rtol = 10⁻ⁿ for RK45 and DOP853",
+                                     narrow)
 
     svg = figure(context, "chain", chain, label, draw)
     caption = ("One round trip (t = 2L/c) of the Gaussian pulse, σ = 0.05 L. Each line is a method; the number "

@@ -62,16 +62,21 @@ def rtol_exponent(rtol: float) -> str:
 
 
 def figure(context, name: str, data, label: str, draw) -> str:
-    """A diagram's inline SVG, remembered by its data and the drawing code (same data, same bytes)."""
+    """A diagram's inline SVG, wide and narrow (`draw(narrow)`), remembered by its data and the drawing code
+    (same data, same bytes)."""
     key = digest(name, json.dumps(data, sort_keys=True), source_digest(DRAWING_CODE), f"matplotlib {library_version('matplotlib')}")
-    svg = context.remember("report-figures", key, lambda: figure_svg(laid_out(draw()), [], [], f"acc-{name}", label).encode())
-    return svg.decode()
+
+    def both() -> bytes:
+        wide = figure_svg(laid_out(draw(False)), [], [], f"acc-{name}", label)
+        return (wide + figure_svg(laid_out(draw(True)), [], [], f"acc-{name}-narrow", label, "narrow")).encode()
+
+    return context.remember("report-figures", key, both).decode()
 
 
 def figure_html(name: str, svg: str, label: str, caption: str, data_table: str) -> str:
-    """The diagram on a white card that scrolls on a phone, its caption, and its numbers behind a disclosure."""
-    return (f'<figure class="report-figure" id="fig-{name}">\n<div class="report-scroll report-card" tabindex="0" '
-            f'role="region" aria-label="{escape(label)}">\n{svg}</div>\n<figcaption>{caption}</figcaption>\n</figure>\n'
+    """The diagram on a white card (wide, or narrow on a phone), its caption, and its numbers behind a disclosure."""
+    return (f'<figure class="report-figure" id="fig-{name}">\n<div class="report-card">\n{svg}</div>\n'
+            f'<figcaption>{caption}</figcaption>\n</figure>\n'
             f'<details class="report-data">\n<summary>The numbers behind this diagram</summary>\n{data_table}</details>\n')
 
 

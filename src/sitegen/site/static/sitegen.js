@@ -266,14 +266,16 @@
     this.scene.update();
   };
 
-  /* A box that scrolls sideways (an equation wider than the text) must be reachable by keyboard
-   * and say that it scrolls; which boxes overflow depends on the font and the width, so it is
-   * decided here, on load and on every resize, rather than at build time. */
+  /* A box that scrolls sideways (an equation or a table wider than the text) shows that it does,
+   * and an equation's box becomes reachable by keyboard and says so (a table's is a labelled region
+   * already); which boxes overflow depends on the font and the width, so it is decided here, on
+   * load and on every resize, rather than at build time. */
   function markScrollers() {
-    var boxes = document.querySelectorAll(".equation");
+    var boxes = document.querySelectorAll(".equation, .report-scroll");
     for (var i = 0; i < boxes.length; i++) {
       var box = boxes[i], scrolls = box.scrollWidth > box.clientWidth + 1;
       box.classList.toggle("scrolls", scrolls);
+      if (!box.classList.contains("equation")) continue;
       if (scrolls) {
         box.setAttribute("tabindex", "0");
         box.setAttribute("role", "group");

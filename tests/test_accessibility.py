@@ -201,11 +201,16 @@ def test_page_reads_at_360px(open_page, name):
     assert all(w >= 120 for w in sizes["sliders"]), sizes
 
 
+A4_TEXT_WIDTH = 718  # CSS px: an A4 page (793.7 px) less Chromium's default margins of 0.4 in each side
+
+
 @pytest.mark.parametrize("name", PAGES, ids=[n[:-5] for n in PAGES])
 def test_print_shows_scenes_as_they_are_without_controls(open_page, name):
-    """Printed (even from the dark scheme): dark text on white, no sliders, radio buttons or play
-    buttons, and each scene's figure, control values and readouts in the state the reader left."""
-    page = open_page(name, color_scheme="dark")
+    """Printed (even from the dark scheme, laid out at an A4 page's width): dark text on white, no
+    sliders, radio buttons, play, reset or navigation buttons, and each scene's figure (the wide one,
+    not the phone's), control values and readouts in the state the reader left; nothing reaches past
+    the right edge of the text, not even inside a box that would scroll on screen (paper cannot)."""
+    page = open_page(name, color_scheme="dark", viewport={"width": A4_TEXT_WIDTH, "height": 1000})
     page.evaluate(
         """() => document.querySelectorAll('[data-scene] input[type="range"]').forEach(el => {
              el.value = el.max; el.dispatchEvent(new Event('input', {bubbles: true})); })"""
@@ -220,7 +225,12 @@ def test_print_shows_scenes_as_they_are_without_controls(open_page, name):
             unchosen: [...document.querySelectorAll('fieldset label')].filter(l => !l.querySelector('input:checked') && shown(l)).map(l => l.textContent.trim()),
             chosen: [...document.querySelectorAll('fieldset label')].filter(l => l.querySelector('input:checked') && shown(l)).length,
             groups: document.querySelectorAll('fieldset').length,
-            hidden: [...document.querySelectorAll('[data-out], output, .scene-svg')].filter(e => !shown(e)).map(e => e.outerHTML.slice(0, 80)),
+            hidden: [...document.querySelectorAll('[data-out], output, .scene-svg.wide')].filter(e => !shown(e)).map(e => e.outerHTML.slice(0, 80)),
+            phone: [...document.querySelectorAll('.scene-svg.narrow')].filter(shown).length,
+            cut: [...document.querySelectorAll('main *')].filter(e => !e.closest('svg') || e.localName === 'svg')
+              .filter(e => shown(e) && e.getBoundingClientRect().right > document.querySelector('article').getBoundingClientRect().right + 0.5)
+              .map(e => `${e.localName}.${e.className.baseVal ?? e.className}: right ${e.getBoundingClientRect().right.toFixed(0)}`).slice(0, 10),
+            article: document.querySelector('article').getBoundingClientRect().right,
             texts: [...document.querySelectorAll('[data-out], output')].map(e => e.textContent),
             ink: getComputedStyle(document.body).color,
             paper: getComputedStyle(document.body).backgroundColor,
@@ -229,7 +239,8 @@ def test_print_shows_scenes_as_they_are_without_controls(open_page, name):
     )
     assert printed["controls"] == [] and printed["unchosen"] == []
     assert printed["chosen"] == printed["groups"]
-    assert printed["hidden"] == []
+    assert printed["hidden"] == [] and printed["phone"] == 0
+    assert printed["article"] <= A4_TEXT_WIDTH and printed["cut"] == [], printed["cut"]
     assert printed["texts"] == on_screen
     assert printed["ink"] == "rgb(0, 0, 0)" and printed["paper"] == "rgb(255, 255, 255)", printed
     assert page.pdf(format="A4")[:5] == b"%PDF-"

@@ -56,27 +56,38 @@ def test_output_holds_no_absolute_paths_or_dates(built_site):
 
 
 def _page_load_bytes(site: Path, page: str) -> tuple[int, int]:
-    """Raw and gzip bytes of a page plus every asset it links."""
+    """Raw and gzip bytes of a page plus every asset it links, the search index (loaded when the search
+    box is first used) counted as if always loaded."""
     html = (site / page).read_text()
-    assets = sorted(set(re.findall(r'(?:href|src)="(assets/[^"]+)"', html)) | {"assets/latinmodern-math.woff2"})
-    files = [site / page, *(site / a for a in assets)]
+    assets = set(re.findall(r'(?:href|src|data-index)="(assets/[^"]+)"', html)) | {"assets/latinmodern-math.woff2"}
+    assert "assets/search.js" in assets, "the search box names its index"
+    files = [site / page, *(site / a for a in sorted(assets))]
     return sum(f.stat().st_size for f in files), sum(len(gzip.compress(f.read_bytes(), 9, mtime=0)) for f in files)
 
 
-@pytest.mark.parametrize("page", ["index.html", "newtons-laws.html"])
+PAGES = sorted(p.name for p in (ROOT / "content").glob("*.md"))
+
+
+@pytest.mark.parametrize("page", [name.replace(".md", ".html") for name in PAGES])
 def test_page_and_what_it_loads_fit_the_budget(built_site, page):
-    """Each page with its script, stylesheet and math font stays within 400 KB gzip."""
+    """Each page with its script, stylesheet, math font and search index stays within 400 KB gzip."""
     raw, packed = _page_load_bytes(built_site, page)
     assert packed <= PAGE_BUDGET_GZIP, f"{page}: {packed / 1024:.0f} KB gzip (raw {raw / 1024:.0f} KB)"
 
 
 def test_one_small_script(built_site):
-    """One script, within 16 KB unminified, loaded as a classic script by every page."""
-    assert sorted(p.name for p in (built_site / "assets").glob("*.js")) == ["sitegen.js"]
+    """The page script is one file within 16 KB unminified, loaded as a classic script by every page;
+    the only other script is the search index with its code, a classic script that the search box
+    loads when first used (assets/search.js)."""
+    assert sorted(p.name for p in (built_site / "assets").glob("*.js")) == ["search.js", "sitegen.js"]
     assert (built_site / "assets" / "sitegen.js").stat().st_size <= SCRIPT_BUDGET
+    assert (built_site / "assets" / "search.js").read_text().startswith("window.sitegenSearchIndex = {")
     for page in built_site.glob("*.html"):
-        scripts = re.findall(r"<script\b[^>]*>", page.read_text())
+        html = page.read_text()
+        scripts = re.findall(r"<script\b[^>]*>", html)
         assert all('type="module"' not in s for s in scripts)
+        assert '<script src="assets/sitegen.js" defer></script>' in html
+        assert 'data-index="assets/search.js"' in html
 
 
 @pytest.mark.parametrize("page", ["index.html", "newtons-laws.html"])

@@ -10,7 +10,7 @@ from ..compute.cache import digest, source_digest
 from ..compute.check import caption_sentence
 from ..content.bench_results import BENCH_NAME, load_results
 from ..content.markdown_ext import fill_slots
-from ..site import assets
+from ..site import assets, search
 from ..site.assemble import page_html, scene_html, scene_payload
 from ..site.report import ReportContext, report_part
 from .record import Book, SceneRecord
@@ -61,6 +61,7 @@ def write_page(book: Book, run: BuildRun) -> Book:
     html = page_html(page, body, list(book.pages), book.title)
     run.tree.write(page.output_name, html.encode())
     run.math_characters |= assets.math_characters(html)
+    run.searchable[page.output_name] = search.page_sections(html)
     return book.with_records(r.finished() for r in records)
 
 
@@ -72,9 +73,11 @@ def _report_context(book: Book, run: BuildRun) -> ReportContext:
 
 
 def write_assets(book: Book, run: BuildRun) -> Book:
-    """The script, the stylesheet and the math font (cut down to the characters the pages use)."""
+    """The script, the stylesheet, the math font (cut down to the characters the pages use) and the
+    search index of every page with its code."""
     if not run.failed:
         run.tree.write("assets/sitegen.js", assets.script())
+        run.tree.write(search.SEARCH_SCRIPT, search.search_script(run.searchable, list(book.pages)))
         run.tree.write("assets/sitegen.css", assets.stylesheet(run.config.node_modules))
         run.tree.write(f"assets/{assets.FONT_FILE}", assets.math_font(run.math_characters, run.remember))
     return book

@@ -60,6 +60,7 @@ class BuildRun:
         self.remember = self.cache.remember if self.cache else compute_now
         self.tree = None  # the staging folder the pages are written into (site.writer.StagedTree)
         self.math_characters: set[str] = set()  # what the pages' formulas show: the math font's subset
+        self.searchable: dict[str, list] = {}  # each written page's sections: the search index
 
     def phase(self, name: str, function, book):
         """Run one phase over the book, adding its seconds to the phase's total."""

@@ -14,6 +14,7 @@ from .style import RC
 _ID_ATTR = re.compile(r'\bid="([^"]+)"')
 _ID_REF = re.compile(r'(url\(#|xlink:href="#|href="#)([^")]+)')
 _GROUP_ID = re.compile(r'<g id="([^"]+)"')
+_KEPT_GROUP = re.compile(r"(axes|legend)_\d+$")  # tests find a figure's panels and legends by them
 _BETWEEN_TAGS = re.compile(r">\s+<")
 _TEXT = re.compile(r"<text\b.*?</text>", re.S)
 _GEOMETRY = re.compile(r'\b(d|x|y|width|height|transform)="([^"]*)"')
@@ -54,13 +55,13 @@ def figure_svg(fig, layers: list[Layer], points: list[list[tuple[float, float]]]
 
 def _compact(svg: str) -> str:
     """matplotlib's SVG made smaller and exact to the browser's text layout: one tag a line without indentation
-    (lines keep a figure's diff readable), nothing between the <tspan>s of a <text> (there a line break is laid out
-    as a space and widens the text's box beyond its glyphs), no ids on groups nothing refers to, and coordinates
-    to 0.01 pt (a figure is never drawn above 2 px per pt)."""
+    (lines keep a figure's diff readable), nothing between the <tspan>s of a <text> (there a line break is laid
+    out as a space and widens the text's box beyond its glyphs), no ids on groups that nothing refers to (but
+    panels and legends), and coordinates to 0.01 pt (a figure is never drawn above 2 px per pt)."""
     svg = _BETWEEN_TAGS.sub(">\n<", svg)
     svg = _TEXT.sub(lambda m: m[0].replace(">\n<", "><"), svg)
     used = {m[2] for m in _ID_REF.finditer(svg)}
-    svg = _GROUP_ID.sub(lambda m: f'<g id="{m[1]}"' if m[1] in used else "<g", svg)
+    svg = _GROUP_ID.sub(lambda m: f'<g id="{m[1]}"' if m[1] in used or _KEPT_GROUP.match(m[1]) else "<g", svg)
     return _GEOMETRY.sub(lambda m: f'{m[1]}="{_LONG_NUMBER.sub(_rounded, m[2])}"', svg)
 
 

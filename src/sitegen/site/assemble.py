@@ -15,6 +15,7 @@ from ..compute.structure import Structured
 from ..compute.table import Table
 from ..content.pages import Page
 from ..render.layers import Layer
+from . import navigation
 
 _ENV = jinja2.Environment(
     loader=jinja2.FileSystemLoader(Path(__file__).with_name("templates")),
@@ -24,6 +25,7 @@ _ENV = jinja2.Environment(
 )
 
 
+SEARCH_SCRIPT = "assets/search.js"  # the search index and its code, loaded when the search box is first used
 _BIG_SVG, _BIG_DATA, _BIG_BODY = (f"\x00sitegen-{name}\x00" for name in ("svg", "data", "body"))
 
 
@@ -224,17 +226,22 @@ class TocEntry:
 
 
 def page_html(page: Page, body: str, pages: list[Page], book_title: str) -> str:
-    """A whole page: header with the trail of parents, the article, and (on the home page) the contents."""
+    """A whole page: header with the trail of parents and the search box, the book's contents, the
+    article with anchored headings and links to the previous and next page, and (on the home page) the
+    contents with summaries."""
     by_slug = {p.slug: p for p in pages}
     crumbs, parent = [], page.parent
     while parent and parent in by_slug and len(crumbs) < len(pages):
         crumbs.insert(0, by_slug[parent])
         parent = by_slug[parent].parent
     contents = _contents(pages) if page.slug == "index" else []
+    previous, following = navigation.neighbours(page, pages)
     html = _ENV.get_template("base.html").render(
-        page=page, body=_BIG_BODY, crumbs=crumbs, contents=contents, book_title=book_title
+        page=page, body=_BIG_BODY, crumbs=crumbs, contents=contents, book_title=book_title,
+        outline=navigation.outline(pages), previous=previous, next=following, has_scenes=bool(page.found.scenes),
+        search_index=SEARCH_SCRIPT,
     )
-    return html.replace(_BIG_BODY, body, 1)
+    return html.replace(_BIG_BODY, navigation.with_anchors(body), 1)
 
 
 def _contents(pages: list[Page]) -> list[TocEntry]:

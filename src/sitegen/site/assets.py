@@ -28,6 +28,11 @@ def script() -> bytes:
     return (STATIC / "sitegen.js").read_bytes()
 
 
+def search_code() -> bytes:
+    """The code of the search box (it follows the index in assets/search.js)."""
+    return (STATIC / "search.js").read_bytes()
+
+
 def stylesheet(node_modules: Path) -> bytes:
     """Our stylesheet followed by the rules Temml's MathML needs (its font faces removed)."""
     temml_css = (node_modules / "temml" / "dist" / "Temml-Latin-Modern.css").read_text(encoding="utf-8")

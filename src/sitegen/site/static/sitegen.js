@@ -1,6 +1,5 @@
-/* sitegen page script: moves scenes by selecting precomputed results.
- * It knows controls, tables and layers, and nothing of physics: every number it shows was
- * computed and rounded when the book was built; here it is only looked up and written out. */
+/* sitegen page script: moves scenes by selecting precomputed results. It knows controls, tables
+ * and layers, and nothing of physics: every number it shows was computed when the book was built. */
 (function () {
   "use strict";
 
@@ -67,28 +66,72 @@
     this.layers = data.layers.map(function (l) { // in the wide figure and the phone's
       return root.querySelectorAll('[data-layer="' + l.name + '"]');
     });
-    var update = this.update.bind(this);
+    this.root = root;
+    this.name = root.id.slice(6); // "scene-collision" -> "collision"
+    this.defaults = data.sliders.map(function (s, i) { return this.stop(i, true); }, this);
+    var self = this, moved = function () { self.update(); self.remember(); };
     this.controls.forEach(function (control) {
-      control.addEventListener("input", update);
-      control.addEventListener("change", update);
+      control.addEventListener("input", moved);
+      control.addEventListener("change", moved);
     });
     var button = root.querySelector("button[data-animate]");
     if (button) this.animation = new Animation(this, root, button);
+    root.querySelector("button[data-reset]").addEventListener("click", function () {
+      self.setStops(self.defaults);
+    });
     this.update();
   }
 
-  /* The stop index of one control: evenly spaced sliders carry values, listed ones indices. */
-  Scene.prototype.stop = function (i) {
-    var s = this.data.sliders[i], control = this.controls[i], k;
+  /* A control's stop (`initial`: as built); evenly spaced sliders hold values, the others indices. */
+  Scene.prototype.stop = function (i, initial) {
+    var s = this.data.sliders[i], control = this.controls[i], k = 0;
     if (s.kind === "choice") {
-      var checked = control.querySelector("input:checked");
-      k = checked ? parseInt(checked.value, 10) : 0;
-    } else if (s.kind === "list") {
-      k = Math.round(parseFloat(control.value));
+      var radios = control.querySelectorAll("input");
+      for (var j = 0; j < radios.length; j++) if (initial ? radios[j].defaultChecked : radios[j].checked) k = j;
     } else {
-      k = Math.round((parseFloat(control.value) * Math.pow(10, s.d) - s.lo) / s.step);
+      var v = parseFloat(initial ? control.defaultValue : control.value);
+      k = Math.round(s.kind === "list" ? v : (v * Math.pow(10, s.d) - s.lo) / s.step);
     }
     return Math.min(s.count - 1, Math.max(0, k));
+  };
+
+  Scene.prototype.setStop = function (i, k) {
+    var s = this.data.sliders[i], control = this.controls[i];
+    if (s.kind === "choice") control.querySelectorAll("input")[k].checked = true;
+    else control.value = String(s.kind === "list" ? k : this.sliderValue(i, k));
+  };
+
+  /* Every control to `stops`, the animation paused, the scene redrawn and its link written. */
+  Scene.prototype.setStops = function (stops) {
+    if (this.animation) this.animation.pause();
+    for (var i = 0; i < stops.length; i++) this.setStop(i, stops[i]);
+    this.update();
+    this.remember();
+  };
+
+  /* The state as a link, "#collision:m1=2,e=0.5" (controls off their defaults; at the defaults the
+   * scene's id), replacing the address once the controls rest: Back still leaves the page. */
+  Scene.prototype.remember = function () {
+    var self = this;
+    clearTimeout(this.pending);
+    this.pending = setTimeout(function () {
+      var pairs = self.stops().map(function (k, i) {
+        var s = self.data.sliders[i];
+        if (k === self.defaults[i]) return "";
+        return s.param + "=" + encodeURIComponent(s.kind === "choice" ? s.texts[k] : short(self.sliderValue(i, k)));
+      }).filter(Boolean);
+      var hash = pairs.length ? self.name + ":" + pairs.join(",") : self.root.id;
+      history.replaceState(history.state, "", "#" + hash);
+    }, 300);
+  };
+
+  /* The stop of control i that `text` names (an option or a value), else its default. */
+  Scene.prototype.findStop = function (i, text) {
+    var s = this.data.sliders[i], x = /^-?(\d+\.?\d*|\.\d+)$/.test(text) ? Number(text) : NaN;
+    for (var k = 0; k < s.count; k++) {
+      if (s.kind === "choice" ? s.texts[k] === text : short(this.sliderValue(i, k)) === short(x)) return k; // as written
+    }
+    return this.defaults[i];
   };
 
   Scene.prototype.stops = function () {
@@ -109,9 +152,8 @@
     return s.values ? s.values[k] : (s.lo + k * s.step) / Math.pow(10, s.d);
   };
 
-  /* What an output shows at the stops: a phrase's index, null (shown in words), or an integer
-   * count of its last digit (a list of them for a vector). A table is looked up; an expression
-   * (an output the build proved exact in a few pieces) is evaluated and rounded. */
+  /* What an output shows at the stops: a phrase's index, null (shown in words), or a count of its
+   * last digit (a list for a vector): looked up, or an expression the build proved exact, rounded. */
   Scene.prototype.quantum = function (name, stops) {
     var table = this.data.tables[name];
     if (!table.expr) return lookup(table, stops);
@@ -120,9 +162,8 @@
     return Array.isArray(v) ? v.map(function (x) { return toQuantum(x, table.d); }) : toQuantum(v, table.d);
   };
 
-  /* An expression of the build (compute/structure.py evaluates the same, in the same order):
-   * a constant, a control's value, a table's value, a polynomial through nodes, a branch, a
-   * threshold, a ratio or a logarithm. */
+  /* An expression of the build, evaluated as compute/structure.py does: a constant, a control's or
+   * a table's value, a polynomial through nodes, a branch, a threshold, a ratio or a logarithm. */
   Scene.prototype.compute = function (e, stops) {
     if ("c" in e) return e.c;
     if ("x" in e) return this.sliderValue(e.x, stops[e.x]);
@@ -252,6 +293,7 @@
     this.setAnnouncements("polite");
     this.button.setAttribute("aria-pressed", "false");
     this.button.textContent = "Play";
+    this.scene.remember();
   };
 
   Animation.prototype.setAnnouncements = function (mode) {
@@ -260,16 +302,14 @@
   };
 
   Animation.prototype.step = function () {
-    var s = this.scene.data.sliders[this.index], control = this.scene.controls[this.index];
-    var k = (this.scene.stop(this.index) + 1) % s.count;
-    control.value = s.kind === "list" ? String(k) : String((s.lo + k * s.step) / Math.pow(10, s.d));
-    this.scene.update();
+    var scene = this.scene;
+    scene.setStop(this.index, (scene.stop(this.index) + 1) % scene.data.sliders[this.index].count);
+    scene.update();
   };
 
-  /* A box that scrolls sideways (an equation or a table wider than the text) shows that it does,
-   * and an equation's box becomes reachable by keyboard and says so (a table's is a labelled region
-   * already); which boxes overflow depends on the font and the width, so it is decided here, on
-   * load and on every resize, rather than at build time. */
+  /* A box wider than the text (an equation, a table) scrolls and shows it; an equation's becomes
+   * focusable and says so (a table's is a labelled region already). Which boxes overflow depends
+   * on the font and the width: decided here, on load and on resize. */
   function markScrollers() {
     var boxes = document.querySelectorAll(".equation, .report-scroll");
     for (var i = 0; i < boxes.length; i++) {
@@ -288,6 +328,33 @@
     }
   }
 
+  /* A link to a scene's state sets its controls (ignoring a name that is no control and a value
+   * that is no stop) and shows the scene. */
+  function openLink(scenes) {
+    var link = /^#([^:]+):(.*)$/.exec(location.hash), given = {}; // "#collision:m1=2,e=0.5"
+    var scene = link && scenes.filter(function (s) { return s.name === link[1]; })[0];
+    if (!scene) return;
+    link[2].split(",").forEach(function (pair) {
+      var kv = pair.split("=");
+      try { given[kv[0]] = decodeURIComponent(kv[1]); } catch (error) { /* malformed: ignored */ }
+    });
+    scene.setStops(scene.defaults.map(function (k, i) {
+      var text = given[scene.data.sliders[i].param];
+      return text === undefined ? k : scene.findStop(i, text);
+    }));
+    scene.root.scrollIntoView();
+  }
+
+  /* Search loads its index (a classic script: it works from disk) when first used. */
+  function searchOnDemand() {
+    var input = document.querySelector("input[data-index]");
+    if (input) input.addEventListener("focus", function () {
+      var script = document.createElement("script");
+      script.src = input.getAttribute("data-index");
+      document.head.appendChild(script);
+    }, { once: true });
+  }
+
   function start() {
     markScrollers();
     window.addEventListener("resize", markScrollers);
@@ -298,6 +365,11 @@
     window.addEventListener("pageshow", function () {
       scenes.forEach(function (scene) { scene.update(); });
     });
+    openLink(scenes);
+    window.addEventListener("hashchange", function () { openLink(scenes); });
+    searchOnDemand();
+    var contents = document.getElementById("book-contents"); // the phone's panel closes on a link
+    if (contents) contents.addEventListener("click", function (e) { if (e.target.closest("a") && contents.matches(":popover-open")) contents.hidePopover(); });
   }
 
   if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", start);

@@ -1,0 +1,108 @@
+"""The book on a phone, a tablet and a desktop, in the light and the dark scheme, in headless Chromium.
+
+At 320, 390, 768 and 1280 px: the page never scrolls sideways, a box whose content is wider than it
+(an equation, a table) shows that it scrolls, every scene shows one figure and all of it, no text
+of a figure reaches outside it or shrinks below 8 px, no legend covers a panel where data is drawn,
+and no slider's label runs into the slider or its value. Print is checked in test_accessibility.py.
+"""
+from __future__ import annotations
+
+import pytest
+
+from browser import ROOT
+from layout import control_label_problems, figure_problems, legend_problems, overflow_problems, svg_text_problems
+from sitegen.content.pages import discover_pages
+
+PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
+WIDTHS = (320, 390, 768, 1280)
+SCHEMES = ("light", "dark")
+
+
+@pytest.fixture(scope="module")
+def page_at(chromium, built_site):
+    """page_at(name, width, scheme) -> the page opened from disk in a viewport of that width (one
+    context per width and scheme, reused by the tests that only read the page)."""
+    contexts, pages = {}, {}
+
+    def _get(name: str, width: int, scheme: str):
+        if (width, scheme) not in contexts:
+            contexts[width, scheme] = chromium.new_context(viewport={"width": width, "height": 844}, color_scheme=scheme)
+        if (name, width, scheme) not in pages:
+            page = contexts[width, scheme].new_page()
+            errors = []
+            page.on("pageerror", lambda e: errors.append(str(e)))
+            page.goto((built_site / name).as_uri(), wait_until="load")
+            page.evaluate("document.fonts.ready.then(() => true)")
+            page.evaluate("new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
+            assert not errors, errors
+            pages[name, width, scheme] = page
+        return pages[name, width, scheme]
+
+    yield _get
+    for context in contexts.values():
+        context.close()
+
+
+def _params():
+    return [pytest.param(name, width, scheme, id=f"{name[:-5]}-{width}-{scheme}")
+            for name in PAGES for width in WIDTHS for scheme in SCHEMES]
+
+
+@pytest.mark.parametrize("name,width,scheme", _params())
+def test_nothing_wider_than_its_box_without_a_scroller(page_at, name, width, scheme):
+    """The page does not scroll sideways; a box that does (an equation, a table) shows it."""
+    problems = overflow_problems(page_at(name, width, scheme))
+    assert not problems, "\n".join(problems[:15])
+
+
+@pytest.mark.parametrize("name,width,scheme", _params())
+def test_every_scene_shows_its_whole_figure(page_at, name, width, scheme):
+    """One figure per scene (the phone's below 480 px), inside the scene and the screen, never scrolled."""
+    page = page_at(name, width, scheme)
+    problems = figure_problems(page)
+    assert not problems, "\n".join(problems[:15])
+    variants = page.evaluate("""() => [...document.querySelectorAll('svg.scene-svg')]
+        .filter(s => s.getBoundingClientRect().width > 0).map(s => s.classList.contains('narrow') ? 'narrow' : 'wide')""")
+    assert set(variants) <= ({"narrow"} if width < 480 else {"wide"}), variants
+
+
+@pytest.mark.parametrize("name,width,scheme", _params())
+def test_figure_text_stays_inside_and_legible(page_at, name, width, scheme):
+    """No text of a shown figure (scenes and the accuracy page's diagrams) reaches outside its SVG,
+    and none is drawn smaller than 8 px."""
+    problems = svg_text_problems(page_at(name, width, scheme))
+    assert not problems, "\n".join(problems[:15])
+
+
+@pytest.mark.parametrize("name,width,scheme", _params())
+def test_no_legend_covers_a_panel(page_at, name, width, scheme):
+    """Legends sit outside the plotting areas, where the data is drawn (the accuracy diagrams too)."""
+    problems = legend_problems(page_at(name, width, scheme))
+    assert not problems, "\n".join(problems[:15])
+
+
+@pytest.mark.parametrize("name,width,scheme", _params())
+def test_no_label_runs_into_a_control(page_at, name, width, scheme):
+    """A slider's label, the slider and its value text never overlap (e.g. "incident SPL (dB)")."""
+    problems = control_label_problems(page_at(name, width, scheme))
+    assert not problems, "\n".join(problems[:15])
+
+
+def test_the_checks_find_what_they_look_for(page_at):
+    """The checks are not blind: text pushed outside a figure, a legend moved onto a panel, a label
+    widened over its slider and an equation made to overflow without its shadow are all reported."""
+    page = page_at("newtons-laws.html", 1280, "light")
+    try:
+        page.evaluate("""() => {
+            const svg = document.querySelector('#scene-collision svg.wide');
+            svg.querySelector('text').setAttribute('x', '-40');
+            const legend = svg.querySelector('g[id*="-legend_"]');
+            legend.setAttribute('transform', 'translate(0 80)');
+            const label = document.querySelector('#scene-collision .control label');
+            label.style.whiteSpace = 'nowrap'; label.textContent = 'a very long name that runs on and on';
+            const eq = document.querySelector('.equation'); eq.style.width = '40px'; eq.classList.remove('scrolls');
+        }""")
+        assert svg_text_problems(page) and legend_problems(page) and control_label_problems(page) and overflow_problems(page)
+    finally:
+        page.reload(wait_until="load")
+        page.evaluate("document.fonts.ready.then(() => true)")

@@ -86,6 +86,38 @@ def svg_text_problems(page, minimum: float = MIN_FIGURE_TEXT_PX) -> list[str]:
     )
 
 
+def text_collision_problems(page) -> list[str]:
+    """Pieces of text of a shown figure that overlap one another (point labels, titles, legends, ticks).
+
+    A text's box is its glyphs' box: the browser's box less the top 0.2 em, which holds no glyph but
+    an accent (DejaVu Sans: ascent 0.93 em, capitals 0.73 em), on whichever side is up for the text.
+    """
+    return page.evaluate(
+        "() => {" + _WHERE_JS + r"""
+        const problems = [];
+        const glyphs = text => {
+          const r = text.getBoundingClientRect(), m = text.getScreenCTM();
+          const sizes = [text, ...text.querySelectorAll('tspan')].map(t => parseFloat(getComputedStyle(t).fontSize));
+          const cut = 0.2 * Math.max(...sizes) * Math.hypot(m.c, m.d);
+          const box = {left: r.left, right: r.right, top: r.top, bottom: r.bottom};
+          if (Math.abs(m.d) >= Math.abs(m.c)) { if (m.d > 0) box.top += cut; else box.bottom -= cut; }
+          else if (m.c > 0) box.left += cut; else box.right -= cut;
+          return box;
+        };
+        for (const svg of [...document.querySelectorAll('svg.scene-svg')].filter(shown)) {
+          const name = (svg.closest('[id]') || svg).id + (svg.classList.contains('narrow') ? ' (narrow)' : '');
+          const texts = [...svg.querySelectorAll('text')].filter(t => t.textContent.trim() && t.getBoundingClientRect().width)
+            .map(t => [t.textContent.trim(), glyphs(t)]);
+          for (let i = 0; i < texts.length; i++) for (let j = i + 1; j < texts.length; j++) {
+            const covered = overlap(texts[i][1], texts[j][1]);
+            if (covered > 2) problems.push(`${name}: "${texts[i][0].slice(0, 20)}" and "${texts[j][0].slice(0, 20)}" overlap by ${covered.toFixed(0)} px²`);
+          }
+        }
+        return problems;
+      }"""
+    )
+
+
 def legend_problems(page) -> list[str]:
     """Legends of a shown figure that cover a panel's plotting area (where data is drawn)."""
     return page.evaluate(

@@ -10,7 +10,14 @@ from __future__ import annotations
 import pytest
 
 from browser import ROOT
-from layout import control_label_problems, figure_problems, legend_problems, overflow_problems, svg_text_problems
+from layout import (
+    control_label_problems,
+    figure_problems,
+    legend_problems,
+    overflow_problems,
+    svg_text_problems,
+    text_collision_problems,
+)
 from sitegen.content.pages import discover_pages
 
 PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
@@ -75,6 +82,13 @@ def test_figure_text_stays_inside_and_legible(page_at, name, width, scheme):
 
 
 @pytest.mark.parametrize("name,width,scheme", _params())
+def test_no_two_texts_of_a_figure_collide(page_at, name, width, scheme):
+    """Point labels, titles, legends and ticks of a shown figure never overlap one another."""
+    problems = text_collision_problems(page_at(name, width, scheme))
+    assert not problems, "\n".join(problems[:15])
+
+
+@pytest.mark.parametrize("name,width,scheme", _params())
 def test_no_legend_covers_a_panel(page_at, name, width, scheme):
     """Legends sit outside the plotting areas, where the data is drawn (the accuracy diagrams too)."""
     problems = legend_problems(page_at(name, width, scheme))
@@ -89,8 +103,9 @@ def test_no_label_runs_into_a_control(page_at, name, width, scheme):
 
 
 def test_the_checks_find_what_they_look_for(page_at):
-    """The checks are not blind: text pushed outside a figure, a legend moved onto a panel, a label
-    widened over its slider and an equation made to overflow without its shadow are all reported."""
+    """The checks are not blind: text pushed outside a figure or onto other text, a legend moved onto a
+    panel, a label widened over its slider and an equation made to overflow without its shadow are
+    all reported."""
     page = page_at("newtons-laws.html", 1280, "light")
     try:
         page.evaluate("""() => {
@@ -103,6 +118,9 @@ def test_the_checks_find_what_they_look_for(page_at):
             const eq = document.querySelector('.equation'); eq.style.width = '40px'; eq.classList.remove('scrolls');
         }""")
         assert svg_text_problems(page) and legend_problems(page) and control_label_problems(page) and overflow_problems(page)
+        page.evaluate("""() => { const texts = document.querySelectorAll('#scene-collision svg.wide text');
+            texts[1].setAttribute('x', texts[0].getAttribute('x')); texts[1].setAttribute('y', texts[0].getAttribute('y')); }""")
+        assert text_collision_problems(page)
     finally:
         page.reload(wait_until="load")
         page.evaluate("document.fonts.ready.then(() => true)")

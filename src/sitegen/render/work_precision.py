@@ -24,6 +24,7 @@ LABEL_SIZE = 7.5
 LEGEND_SIZE = LABEL_SIZE + 1
 MARKER_HALF = 3.5  # pt: half the size of a marker, an obstacle for labels
 LINE_HALF = 1.5  # pt: half the width of a line, an obstacle for labels
+LABEL_MARGIN = 1.0  # pt kept clear round a label: a browser draws a text's box a little taller than matplotlib measures it
 RING_SIZE = 15  # pt: the ring round the chosen setting
 
 
@@ -233,7 +234,8 @@ def _label(ax, panel: Panel, point: Point, colour: str, bounds, obstacles) -> tu
         else:  # over or under it
             dy = gap if sy > 0 else -gap - height
         label.xyann = (dx, dy)
-        box = tuple(label.get_window_extent().extents)
+        x0, y0, x1, y1 = label.get_window_extent().extents
+        box = (x0 - LABEL_MARGIN, y0 - LABEL_MARGIN, x1 + LABEL_MARGIN, y1 + LABEL_MARGIN)
         if _free(box, bounds, obstacles):
             return box
     label.remove()

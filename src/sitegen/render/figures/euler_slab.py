@@ -83,6 +83,8 @@ def _draw_bar_axes(ax):
     ax.set_xlim(-0.6, 1.6)
     ax.set_ylim(-1.1, 1.1)
     ax.set_xticks([0, 1], ["slab\nā", "point\na$_m$"])
+    for label in ax.get_xticklabels():
+        label.set_linespacing(1.35)  # room for the subscript
     ax.set_yticks([-1, 0, 1])
     ax.grid(axis="x", visible=False)
     ax.axhline(0, color=s.MUTED, lw=0.8)

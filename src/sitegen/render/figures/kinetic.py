@@ -113,7 +113,7 @@ def _draw_histogram(ax, legend_columns: int):
     ax.set_xlabel(r"$v_x\,/\,v_\mathrm{th}$")
     ax.set_ylabel("probability density")
     # The legend between the axes and the title: a few molecules' histogram can reach any height.
-    ax.set_title("velocities along x at t = 0", fontsize=10, loc="left", color=s.INK, pad=4 + 13 * (3 - legend_columns))
+    ax.set_title("velocities along x at t = 0", fontsize=10, loc="left", color=s.INK, pad=6 + 15 * (3 - legend_columns))
     ax.legend(
         handles=[
             Patch(facecolor=s.FILL_BLUE, edgecolor=s.BLUE, label="molecules"),

@@ -18,6 +18,7 @@ PLATE = 0.022  # bar lengths: how far each piston's face sits outside the bar's 
 PISTON_WIDTH = "9"  # px: the pistons are drawn edge-on, as thick plates
 MEASURED_PEAK_DB = 23.5  # Aibara et al. 2001: measured peak middle-ear pressure gain, at 1.2 kHz
 BAR_HALF = 0.3  # half-width of a bar in the level diagrams
+LINES = 1.35  # line spacing of two-line labels: room for a subscript without touching the line below
 
 
 class OssiclesFigure:
@@ -84,8 +85,8 @@ def _draw_lever(ax, scene, tables, narrow: bool = False) -> None:
     footplate = "footplate (area A$_{FP}$)"
     if narrow:  # two lines each, so that the names keep clear of each other and of the edges
         eardrum, footplate = (name.replace(" (", "\n(") for name in (eardrum, footplate))
-    ax.text(-PLATE, top, eardrum, ha="center", va="bottom", color=s.BLUE, fontsize=10, linespacing=1.1)
-    ax.text(1.0 + PLATE, top, footplate, ha="center", va="bottom", color=s.ORANGE, fontsize=10, linespacing=1.1)
+    ax.text(-PLATE, top, eardrum, ha="center", va="bottom", color=s.BLUE, fontsize=10, linespacing=LINES)
+    ax.text(1.0 + PLATE, top, footplate, ha="center", va="bottom", color=s.ORANGE, fontsize=10, linespacing=LINES)
     ax.text(-0.03, arm_line, "malleus ℓ", ha="right", va="center", color=s.BLUE, fontsize=10)
     ax.text(1.03, arm_line, "incus 1", ha="left", va="center", color=s.ORANGE, fontsize=10)
     ax.annotate("", xy=(-0.07, 0.0), xytext=(-0.3, 0.0), arrowprops={"arrowstyle": "-|>", "color": s.MUTED, "lw": 1.4})
@@ -101,9 +102,9 @@ def _draw_gain(ax, tables) -> None:
     ax.set_ylim(0, top)
     ax.set_xticks([0.0], ["ideal G"])
     ax.grid(axis="x", visible=False)
-    ax.set_ylabel("pressure gain\n20 log$_{10}$ G (dB)")
+    ax.set_ylabel("pressure gain\n20 log$_{10}$ G (dB)", linespacing=LINES)
     ax.axhline(MEASURED_PEAK_DB, xmin=0.05, color=s.ORANGE, lw=1.4, ls=(0, (5, 3)))
-    ax.text(0.45, MEASURED_PEAK_DB + 0.8, "measured peak\n23.5 dB at 1.2 kHz", ha="left", va="bottom", color=s.ORANGE, fontsize=8.5, linespacing=1.1)
+    ax.text(0.45, MEASURED_PEAK_DB + 0.8, "measured peak\n23.5 dB at 1.2 kHz", ha="left", va="bottom", color=s.ORANGE, fontsize=8.5, linespacing=LINES)
 
 
 def _draw_power(ax, tables) -> None:
@@ -115,7 +116,7 @@ def _draw_power(ax, tables) -> None:
     ax.set_xticks([0.0, 1.0], ["without", "with"])
     ax.set_xlabel("transformer", labelpad=2)
     ax.grid(axis="x", visible=False)
-    ax.set_ylabel("power transmitted\n10 log$_{10}$ T (dB)")
+    ax.set_ylabel("power transmitted\n10 log$_{10}$ T (dB)", linespacing=LINES)
     ax.text(1.57, 0.0, "T = 1", ha="right", va="bottom", color=s.INK, fontsize=8.5)
 
 

@@ -63,7 +63,7 @@ def page_bytes(site: Path, page: Path) -> dict:
     """Raw and gzip bytes of a built page, alone and with every asset it loads (the stylesheet's
     font included)."""
     html = page.read_text()
-    assets = set(re.findall(r'(?:href|src)="(assets/[^"]+)"', html))
+    assets = set(re.findall(r'(?:href|src|data-index)="(assets/[^"]+)"', html))  # data-index: the search script, loaded on first use
     for sheet in [a for a in assets if a.endswith(".css")]:
         assets |= {f"assets/{u}" for u in re.findall(r'url\("?([^")]+)"?\)', (site / sheet).read_text())}
     files = [page, *(site / a for a in sorted(assets) if (site / a).is_file())]

@@ -518,7 +518,10 @@ def test_scenes_after_history_navigation(open_page, site_url, name, transport):
         assert scene_problems(scene, state) == []
     page.goto(site_url("index.html", transport), wait_until="load")
     page.go_back(wait_until="load")
-    assert page.url == site_url(name, transport)
+    # the address may carry a moved scene's state (written in place once its controls rest)
+    address, _, fragment = page.url.partition("#")
+    assert address == site_url(name, transport)
+    assert not fragment or fragment.split(":")[0] in {s.id for s in scenes}, fragment
     for scene in scenes:
         state = read_state(page, scene)
         assert all(k in (m, d) for k, m, d in zip(state.stops, moved[scene.key], scene.defaults)), (scene, state.stops)
@@ -833,7 +836,7 @@ def test_animation_pauses_out_of_view(scene_page, scene, transport):
 def test_home_links_to_chapters(built_site, open_page):
     """The contents on the home page link to every chapter, and the links work from disk."""
     home, _ = open_page("index.html", "file")
-    hrefs = home.eval_on_selector_all('article nav[aria-label="Contents"] a[href]', "els => els.map(e => e.getAttribute('href'))")
+    hrefs = home.eval_on_selector_all('article nav[aria-label="Contents"] a[href]:not(.anchor)', "els => els.map(e => e.getAttribute('href'))")
     chapters = [p for p in PAGES if p.slug != "index"]
     assert "newtons-laws.html" in hrefs
     assert sorted(hrefs) == sorted(p.output_name for p in chapters)

@@ -1,7 +1,7 @@
 """Every internal link, anchor and asset reference of the built site resolves.
 
-The checker reads the built files (no browser): in HTML every `href`, `src` and SVG `url(#…)`
-reference, in CSS every `url(…)`. A reference must name a file inside the site (not a folder:
+The checker reads the built files (no browser): in HTML every `href`, `src`, the search box's
+`data-index` (the script it loads when first used) and SVG `url(#…)` reference, in CSS every `url(…)`. A reference must name a file inside the site (not a folder:
 from file:// a folder shows a listing, not its index.html), and a `#fragment` must be an id
 in the target page. Pages make no request outside the site; only links a reader follows
 (`<a href>`) may point to the web, and those are not fetched.
@@ -21,7 +21,7 @@ from sitegen.content.pages import discover_pages
 
 PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
 _CSS_URL = re.compile(r"""url\(\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)'|(?P<bare>[^'"()\s]+))\s*\)""")
-_LINK_ATTRIBUTES = {"href", "src", "xlink:href", "poster", "data"}
+_LINK_ATTRIBUTES = {"href", "src", "xlink:href", "poster", "data", "data-index"}  # data-index: the search box's script
 _WEB = ("http", "https", "mailto")
 
 

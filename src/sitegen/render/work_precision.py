@@ -226,7 +226,7 @@ def _label(ax, panel: Panel, point: Point, colour: str, bounds, obstacles) -> tu
                         ha="left", va="bottom", fontsize=LABEL_SIZE, color=colour, zorder=4)
     extent = label.get_window_extent()  # measured with the figure's own renderer
     width, height = extent.width, extent.height
-    gap = MARKER_HALF + 0.5  # clear of the point's own marker
+    gap = MARKER_HALF + LABEL_MARGIN + 0.5  # clear of the point's own marker
     for sx, sy in _SPOTS:
         dx = gap if sx > 0 else -gap - width if sx < 0 else -width / 2
         if sx:  # beside the point, level with its centre or just above or below it

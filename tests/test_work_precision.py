@@ -36,7 +36,7 @@ def _overlap(a, b) -> float:
     return max(0.0, min(a[2], b[2]) - max(a[0], b[0])) * max(0.0, min(a[3], b[3]) - max(a[1], b[1]))
 
 
-@pytest.fixture(params=[False, True], ids=["wide", "narrow"])
+@pytest.fixture(scope="module", params=[False, True], ids=["wide", "narrow"])
 def drawn(request):
     panel = _crowded_panel()
     fig = wp.work_precision_figure([panel], "time (ms)", "error", "labels: rtol = 10⁻ⁿ", narrow=request.param)

@@ -224,8 +224,9 @@ def _label(ax, panel: Panel, point: Point, colour: str, bounds, obstacles) -> tu
     """A point's label at the first free spot around it, measured as drawn; None (and no label) if none is free."""
     label = ax.annotate(point.text, (point.x, _clamped(panel, point.y)), xytext=(0, 0), textcoords="offset points",
                         ha="left", va="bottom", fontsize=LABEL_SIZE, color=colour, zorder=4)
-    extent = label.get_window_extent()  # measured with the figure's own renderer
-    width, height = extent.width, extent.height
+    # Measured once, with the figure's own renderer; at 72 dpi an offset in points moves it as many pixels.
+    x0, y0, x1, y1 = label.get_window_extent().extents
+    width, height = x1 - x0, y1 - y0
     gap = MARKER_HALF + LABEL_MARGIN + 0.5  # clear of the point's own marker
     for sx, sy in _SPOTS:
         dx = gap if sx > 0 else -gap - width if sx < 0 else -width / 2
@@ -233,10 +234,9 @@ def _label(ax, panel: Panel, point: Point, colour: str, bounds, obstacles) -> tu
             dy = 1.0 if sy > 0 else -height - 1.0 if sy < 0 else -height / 2
         else:  # over or under it
             dy = gap if sy > 0 else -gap - height
-        label.xyann = (dx, dy)
-        x0, y0, x1, y1 = label.get_window_extent().extents
-        box = (x0 - LABEL_MARGIN, y0 - LABEL_MARGIN, x1 + LABEL_MARGIN, y1 + LABEL_MARGIN)
+        box = (x0 + dx - LABEL_MARGIN, y0 + dy - LABEL_MARGIN, x1 + dx + LABEL_MARGIN, y1 + dy + LABEL_MARGIN)
         if _free(box, bounds, obstacles):
+            label.xyann = (dx, dy)
             return box
     label.remove()
     return None

@@ -17,9 +17,10 @@ from matplotlib.ticker import LogLocator, NullFormatter
 
 from . import style as s
 
-GREEN, PURPLE = "#2a7a3b", "#7b3fa0"
-COLOURS = (s.BLUE, s.ORANGE, GREEN, PURPLE, s.MUTED, s.INK)
-MARKERS = ("o", "s", "^", "D", "v", "P")
+GREEN, PURPLE, TEAL, BROWN = "#2a7a3b", "#7b3fa0", "#0f7a82", "#8a5a14"
+# Eight series told apart by colour and marker (the bubble diagrams have seven solvers).
+COLOURS = (s.BLUE, s.ORANGE, GREEN, PURPLE, s.MUTED, s.INK, TEAL, BROWN)
+MARKERS = ("o", "s", "^", "D", "v", "P", "X", "h")
 LABEL_SIZE = 7.5
 LEGEND_SIZE = LABEL_SIZE + 1
 MARKER_HALF = 3.5  # pt: half the size of a marker, an obstacle for labels

@@ -11,7 +11,7 @@ export DEBIAN_FRONTEND := noninteractive
 
 .PHONY: site test check serve bench clean tools-node tools-chromium tools-java review accept-figures
 
-site: $(VENV)/.site-installed node_modules/.installed
+site: $(VENV)/.site-installed tools-node
 	$(BIN)/sitegen build
 
 test: $(VENV)/.test-installed node_modules/.installed tools-chromium tools-java
@@ -45,10 +45,10 @@ review: $(VENV)/.test-installed node_modules/.installed tools-chromium
 	$(BIN)/sitegen build
 	$(BIN)/sitegen review --base $(BASE)
 
-# Rewrite tests/goldens/ from a fresh build, deliberately (refused when CI=true).
-accept-figures: $(VENV)/.site-installed node_modules/.installed
+# Rewrite the book's figure goldens (goldens/) from a fresh build, deliberately (refused when CI=true).
+accept-figures: $(VENV)/.site-installed tools-node
 	$(BIN)/sitegen build
-	$(BIN)/sitegen accept-figures --build build --goldens tests/goldens
+	$(BIN)/sitegen accept-figures
 
 clean:
 	rm -rf build .build.new-* .build.old build-bench .cache build-review
@@ -66,7 +66,7 @@ node_modules/.installed: package.json package-lock.json | tools-node
 	npm ci --ignore-scripts --no-audit --no-fund --loglevel=error
 	touch $@
 
-# Temml (TeX -> MathML) runs on node at build time.
+# Temml (TeX -> MathML, vendored in the package) runs on node at build time; npm installs the test tools.
 tools-node:
 	@command -v node >/dev/null && command -v npm >/dev/null || { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q nodejs npm; }
 

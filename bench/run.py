@@ -46,7 +46,7 @@ def rebuild_times(runs: int = 3) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp)
         shutil.copytree(ROOT / "content", root / "content")
-        config = BuildConfig(root, root / "content", root / "build", ROOT / "node_modules", cache=root / ".cache")
+        config = BuildConfig(root, root / "content", root / "build", cache=root / ".cache")
 
         def timed(cfg):
             start = time.perf_counter()
@@ -77,7 +77,7 @@ def rebuild_times(runs: int = 3) -> dict:
         except ImportError:
             return result
         with LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster:
-            dask_config = BuildConfig(root, root / "content", root / "build-dask", ROOT / "node_modules", cache=None,
+            dask_config = BuildConfig(root, root / "content", root / "build-dask", cache=None,
                                       scheduler=cluster.scheduler_address)
             seconds, report = timed(dask_config)
         result.update(dask_cold_s=seconds, dask_evaluations=report.evaluations)

@@ -34,9 +34,11 @@ from sitegen.compute.quantize import MINUS, fmt
 from sitegen.compute.scenes import ResolvedScene
 from sitegen.content.pages import Page
 from sitegen.errors import ErrorLog
-from sitegen.render.figures import FIGURES
+from sitegen.registry import builtin_registry
 from sitegen.review.figures import CHROMIUM, LAUNCH_ARGS  # one place for Chromium's settings
 from sitegen.site.assemble import with_unit
+
+FIGURES = builtin_registry().figures
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -14,7 +14,9 @@ from pathlib import Path
 
 import pytest
 
+import sitegen.build
 from sitegen.build import BuildConfig, build
+from sitegen.registry import builtin_registry
 
 ROOT = Path(__file__).resolve().parents[1]
 BOOK = Path(__file__).resolve().parent / "book"  # the tiny book: a few pages, one scene per model family
@@ -48,12 +50,32 @@ def pytest_collection_modifyitems(items) -> None:
 
 
 def copy_book(root: Path, cache: Path | None = None) -> BuildConfig:
-    """A copy of the tiny book at `root` (node_modules linked in), with a copy of `cache` when given."""
+    """A copy of the tiny book at `root` (its book.toml, content and goldens), with a copy of `cache` when given."""
     shutil.copytree(BOOK / "content", root / "content")
-    (root / "node_modules").symlink_to(ROOT / "node_modules")
+    shutil.copytree(BOOK / "goldens", root / "goldens")
+    shutil.copy(BOOK / "book.toml", root / "book.toml")
     if cache is not None:
         shutil.copytree(cache, root / ".cache")
     return BuildConfig.at(root)
+
+
+@pytest.fixture
+def register(monkeypatch):
+    """register(models, figures): models and figure views defined by a test, added to the registry that
+    every build of the test loads (as if a plugin declared them)."""
+    added = {"models": {}, "figures": {}}
+    load = sitegen.build.load_registry
+    monkeypatch.setattr(sitegen.build, "load_registry",
+                        lambda book=None: load(book).adding(added["models"], added["figures"], "the test"))
+
+    def _register(models: dict, figures: dict) -> None:
+        added["models"].update(models)
+        added["figures"].update(figures)
+
+    return _register
+
+
+BUILTIN = builtin_registry()  # the built-in models and figures, for tests that use them directly
 
 
 @pytest.fixture(scope="session")

@@ -16,7 +16,7 @@ import pytest
 
 from sitegen.build import BuildConfig, build
 from sitegen.errors import BuildFailed
-from sitegen.physics import MODELS
+from sitegen.registry import builtin_registry
 from sitegen.site.report import report_parts, summary
 from sitegen.accuracy.experiments import (
     CHAIN_T, bubble_problem, case_errors, chain_by_eigh, chain_error, chain_exact, collapse_errors, extrema,
@@ -26,6 +26,8 @@ from sitegen.site.report.html import sci
 from sitegen.accuracy.resolution import LINES, interpolation_error, resolution_experiment
 from sitegen.cli import main
 from sitegen.content.bench_results import BENCH_NAME, load_results
+
+MODELS = builtin_registry().models
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -194,7 +196,7 @@ def test_quick_bench_writes_strict_json_with_the_expected_keys(tmp_path):
     """`sitegen bench --quick` on a one-scene book writes strict, sorted JSON with every section."""
     root = tmp_path / "book"
     (root / "content").mkdir(parents=True)
-    (root / "node_modules").symlink_to(ROOT / "node_modules")
+    (root / "book.toml").write_text("")
     (root / "content" / "index.md").write_text('+++\ntitle = "Try"\n+++\n\n```scene\nmodel: impulse\nid: pulse\n'
                                                "slider m: 1..4 step 1 default 2\n```\n")
     out = tmp_path / "bench.json"
@@ -232,7 +234,7 @@ def _book_with(tmp_path: Path, block: str) -> BuildConfig:
     content.mkdir(exist_ok=True)
     (content / "index.md").write_text('+++\ntitle = "Book"\n+++\n\nHome.\n')
     (content / "accuracy.md").write_text(f'+++\ntitle = "Accuracy"\n+++\n\nText.\n\n```accuracy-report\n{block}\n```\n')
-    return BuildConfig(tmp_path, content, tmp_path / "build", ROOT / "node_modules", cache=None)
+    return BuildConfig(tmp_path, content, tmp_path / "build", cache=None)
 
 
 def test_unknown_report_part_is_an_author_error_at_its_line(tmp_path):

@@ -11,10 +11,12 @@ from sitegen.build import BuildConfig, build
 from sitegen.compute.scenes import resolve_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import BuildFailed, SourceLoc
-from sitegen.physics import MODELS
+from sitegen.registry import builtin_registry
 from sitegen.physics.bubble import PRESETS, Bubble
 from sitegen.physics.bubble_point import SOLVER_LABELS
 from sitegen.physics.numerics import Numerics, configure
+
+MODELS = builtin_registry().models
 
 ROOT = Path(__file__).resolve().parents[1]
 HOME = '+++\ntitle = "Test book"\n+++\n\nA home page.\n'
@@ -207,5 +209,5 @@ def _book(tmp_path: Path, pages: dict[str, str]) -> BuildConfig:
     content.mkdir()
     for name, text in {"index": HOME, **pages}.items():
         (content / f"{name}.md").write_text(text, encoding="utf-8")
-    return BuildConfig(tmp_path, content, tmp_path / "build", ROOT / "node_modules", cache=tmp_path / ".cache")
+    return BuildConfig(tmp_path, content, tmp_path / "build", cache=tmp_path / ".cache")
 

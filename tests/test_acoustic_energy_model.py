@@ -13,7 +13,7 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
-from sitegen.physics import MODELS
+from sitegen.registry import builtin_registry
 from sitegen.physics.acoustic_energy import (
     C,
     INVALID,
@@ -26,6 +26,8 @@ from sitegen.physics.acoustic_energy import (
     standing_factor,
 )
 from sitegen.site.assemble import readout_text, scene_payload
+
+MODELS = builtin_registry().models
 
 EPS = np.finfo(float).eps
 ALL = ("reflection", "absorption", "spherical_spreading")

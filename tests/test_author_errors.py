@@ -8,9 +8,9 @@ import pytest
 
 from sitegen.build import BuildConfig, build
 from sitegen.errors import BuildFailed
-from sitegen.physics import MODELS, Model, Output, Param
+from sitegen.physics import Model, Output, Param
 from sitegen.render.style import new_figure
-from sitegen.render.figures import FIGURES
+from sitegen.registry import builtin_registry
 
 HERE = Path(__file__).parent
 INVALID = HERE / "invalid"
@@ -25,13 +25,13 @@ def make_book(tmp_path: Path, pages: dict[str, str]) -> BuildConfig:
     content.mkdir()
     for name, text in {"index": HOME, **pages}.items():
         (content / f"{name}.md").write_text(text, encoding="utf-8")
-    return BuildConfig(tmp_path, content, tmp_path / "build", ROOT / "node_modules")
+    return BuildConfig(tmp_path, content, tmp_path / "build")
 
 
 def _expected(name: str) -> list[str]:
     """The messages a fixture must produce ({models} stands for the registry's model names)."""
     text = (INVALID / f"{name}.expected").read_text(encoding="utf-8")
-    return text.replace("{models}", ", ".join(sorted(MODELS))).splitlines()
+    return text.replace("{models}", ", ".join(sorted(builtin_registry().models))).splitlines()
 
 
 def build_errors(config: BuildConfig) -> list[str]:
@@ -156,10 +156,9 @@ class _Singular(Model):
             return {"inverse": 1.0 / x["x"]}
 
 
-def test_non_finite_output_fails_the_build_naming_the_stop(tmp_path, monkeypatch):
+def test_non_finite_output_fails_the_build_naming_the_stop(tmp_path, register):
     """A model returning inf at some stop fails the build, naming the scene and the slider values."""
-    monkeypatch.setitem(MODELS, "singular", _Singular)
-    monkeypatch.setitem(FIGURES, "singular", _BareFigure())
+    register({"singular": _Singular}, {"singular": _BareFigure()})
     page = '+++\ntitle = "Pole"\n+++\n\n```scene\nmodel: singular\nslider x: -1..1 step 0.5 default 1\n```\n'
     assert build_errors(make_book(tmp_path, {"pole": page})) == [
         "content/pole.md:5: scene 'singular': output 'inverse' is not finite (inf) at x=0.0; the model must return finite numbers"

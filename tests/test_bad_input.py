@@ -15,8 +15,8 @@ import pytest
 from sitegen import cli
 from sitegen.build import BuildConfig, build
 from sitegen.errors import BuildFailed
-from sitegen.physics import MODELS, Model, Output, Param
-from sitegen.render.figures import FIGURES
+from sitegen.physics import Model, Output, Param
+from sitegen.registry import builtin_registry
 from sitegen.render.style import new_figure
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -30,9 +30,8 @@ def make_book(root: Path, pages: dict[str, str | bytes]) -> BuildConfig:
     for name, text in {"index": HOME, **pages}.items():
         data = text if isinstance(text, bytes) else text.encode("utf-8")
         (content / f"{name}.md").write_bytes(data)
-    if not (root / "node_modules").exists():
-        (root / "node_modules").symlink_to(ROOT / "node_modules")
-    return BuildConfig(root, content, root / "build", ROOT / "node_modules")
+    (root / "book.toml").write_text("")  # a book with every default
+    return BuildConfig(root, content, root / "build")
 
 
 def build_errors(config: BuildConfig) -> list[str]:
@@ -76,20 +75,19 @@ SCENE = '+++\ntitle = "Model"\n+++\n\n```scene\nmodel: {name}\nslider x: 0..3 st
 
 
 @pytest.fixture
-def register(monkeypatch):
-    """register(name, evaluate): put a model and a bare figure in the registries for one test."""
+def register_model(register):
+    """register_model(name, evaluate): a model and a bare figure in the registry of the test's builds."""
 
     def _register(name: str, evaluate) -> None:
-        monkeypatch.setitem(MODELS, name, _model(name, evaluate))
-        monkeypatch.setitem(FIGURES, name, _Figure())
+        register({name: _model(name, evaluate)}, {name: _Figure()})
 
     return _register
 
 
-def test_model_that_raises_a_numerical_error(tmp_path, register):
+def test_model_that_raises_a_numerical_error(tmp_path, register_model):
     """A model failing with ValueError/ArithmeticError (its documented way) is an author error at the scene."""
-    register("fragile", _raise(ValueError("the integral diverges")))
-    register("divider", _raise(ZeroDivisionError("division by zero")))
+    register_model("fragile", _raise(ValueError("the integral diverges")))
+    register_model("divider", _raise(ZeroDivisionError("division by zero")))
     config = make_book(tmp_path, {"a": SCENE.format(name="fragile"), "b": SCENE.format(name="divider")})
     assert build_errors(config) == [
         "content/a.md:5: scene 'fragile': model 'fragile' failed: the integral diverges",
@@ -97,28 +95,28 @@ def test_model_that_raises_a_numerical_error(tmp_path, register):
     ]
 
 
-def test_solve_out_of_time_reports_the_stop(tmp_path, register):
+def test_solve_out_of_time_reports_the_stop(tmp_path, register_model):
     """A solve whose time or evaluation budget ran out returns NaN (failure as data); the build
     fails naming the scene and the first slider value where it happened."""
-    register("capped", _capped)
+    register_model("capped", _capped)
     config = make_book(tmp_path, {"slow": SCENE.format(name="capped")})
     assert build_errors(config) == [
         "content/slow.md:5: scene 'capped': output 'y' is not finite (nan) at x=2; the model must return finite numbers"
     ]
 
 
-def test_solve_that_exceeds_its_time_limit_is_an_author_error(tmp_path, register):
+def test_solve_that_exceeds_its_time_limit_is_an_author_error(tmp_path, register_model):
     """A solver that raises TimeoutError at its wall-time cap fails the build at the scene, saying so."""
-    register("stalled", _raise(TimeoutError("the solve exceeded its 10 s wall-time limit")))
+    register_model("stalled", _raise(TimeoutError("the solve exceeded its 10 s wall-time limit")))
     config = make_book(tmp_path, {"stall": SCENE.format(name="stalled")})
     assert build_errors(config) == [
         "content/stall.md:5: scene 'stalled': model 'stalled' failed: the solve exceeded its 10 s wall-time limit"
     ]
 
 
-def test_model_returning_infinity_reports_the_stop(tmp_path, register):
+def test_model_returning_infinity_reports_the_stop(tmp_path, register_model):
     """A model returning ±inf where its output declares no words for it fails the build at that stop."""
-    register("blowup", lambda x: np.where(x == 3, np.inf, x))
+    register_model("blowup", lambda x: np.where(x == 3, np.inf, x))
     config = make_book(tmp_path, {"pole": SCENE.format(name="blowup")})
     assert build_errors(config) == [
         "content/pole.md:5: scene 'blowup': output 'y' is not finite (inf) at x=3; the model must return finite numbers"
@@ -140,7 +138,7 @@ def test_unknown_figure_lists_the_figures(tmp_path):
     """A figure name that is not registered is an error at its line, listing the figures."""
     page = '+++\ntitle = "Figure"\n+++\n\n```scene\nmodel: impulse\nfigure: impuls\n```\n'
     assert build_errors(make_book(tmp_path, {"fig": page})) == [
-        f"content/fig.md:7: scene 'impulse': unknown figure 'impuls'; figures: {', '.join(sorted(FIGURES))}"
+        f"content/fig.md:7: scene 'impulse': unknown figure 'impuls'; figures: {', '.join(sorted(builtin_registry().figures))}"
     ]
 
 
@@ -192,10 +190,10 @@ def test_output_that_cannot_be_written(tmp_path):
     assert done.stderr.startswith("sitegen: ") and "holds the last complete build" in done.stderr
 
 
-def test_internal_error_is_reported_without_traceback(tmp_path, register, capsys):
+def test_internal_error_is_reported_without_traceback(tmp_path, register_model, capsys):
     """A bug (an exception no author can cause) is one line naming it and where it struck (page, line,
     scene, phase), exit 3; --debug shows the traceback."""
-    register("buggy", _raise(KeyError("oops")))
+    register_model("buggy", _raise(KeyError("oops")))
     make_book(tmp_path, {"bug": SCENE.format(name="buggy")})
     assert cli.main(["build", "--root", str(tmp_path), "--no-cache"]) == 3
     err = capsys.readouterr().err

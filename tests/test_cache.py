@@ -42,7 +42,7 @@ def book(tmp_path) -> BuildConfig:
     content.mkdir()
     shutil.copy(ROOT / "content" / "index.md", content / "index.md")
     (content / CHAPTER).write_text(PAGE)
-    return BuildConfig(tmp_path, content, tmp_path / "build", ROOT / "node_modules", cache=tmp_path / ".cache")
+    return BuildConfig(tmp_path, content, tmp_path / "build", cache=tmp_path / ".cache")
 
 
 def _edit(config: BuildConfig, old: str, new: str) -> None:
@@ -138,8 +138,8 @@ def test_damaged_entry_is_reported_and_recomputed(book):
 def test_cached_and_uncached_builds_are_byte_identical(book, tmp_path):
     """Warm cache, cold cache and no cache give the same bytes."""
     build(book, progress=None)
-    warm = BuildConfig(book.root, book.content, tmp_path / "warm", book.node_modules, cache=book.cache)
-    none = BuildConfig(book.root, book.content, tmp_path / "none", book.node_modules, cache=None)
+    warm = BuildConfig(book.root, book.content, tmp_path / "warm", cache=book.cache)
+    none = BuildConfig(book.root, book.content, tmp_path / "none", cache=None)
     build(warm, progress=None)
     build(none, progress=None)
     for path in sorted(p for p in book.out.rglob("*") if p.is_file()):
@@ -159,7 +159,7 @@ def test_changed_default_redraws_the_figure(book, tmp_path):
     _edit(book, "slider F_pk: 0..50 step 2 default 12", "slider F_pk: 0..50 step 2 default 20")
     warm = build(book, progress=None)
     assert warm.computed == 0  # the tables do not depend on the default
-    fresh = BuildConfig(book.root, book.content, tmp_path / "fresh", book.node_modules, cache=None)
+    fresh = BuildConfig(book.root, book.content, tmp_path / "fresh", cache=None)
     build(fresh, progress=None)
     assert (book.out / CHAPTER.replace(".md", ".html")).read_bytes() == (fresh.out / CHAPTER.replace(".md", ".html")).read_bytes()
 

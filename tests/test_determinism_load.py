@@ -40,7 +40,7 @@ def _book(folder: Path) -> Path:
     """A one-page book of two small bubble scenes that shares the project's compiled code (not its tables)."""
     (folder / "content").mkdir(parents=True)
     (folder / "content" / "index.md").write_text(BOOK)
-    (folder / "node_modules").symlink_to(ROOT / "node_modules")
+    (folder / "book.toml").write_text("")
     (folder / ".cache").mkdir()
     (ROOT / ".cache" / "compiled").mkdir(parents=True, exist_ok=True)
     (folder / ".cache" / "compiled").symlink_to(ROOT / ".cache" / "compiled")

@@ -22,9 +22,12 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import plan_scene, tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
-from sitegen.physics import MODELS, bubble, bubble_point, bubble_solve, bubble_terms, chain, contact, impulse
+from sitegen.physics import bubble, bubble_point, bubble_solve, bubble_terms, chain, contact, impulse
+from sitegen.registry import builtin_registry
 from sitegen.physics import bubble_kernel_terms as kernel_terms
 from sitegen.physics.bubble_terms import make_rhs
+
+MODELS = builtin_registry().models
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -363,7 +366,7 @@ def book(tmp_path) -> BuildConfig:
     content.mkdir()
     shutil.copy(ROOT / "content" / "index.md", content / "index.md")
     (content / "page.md").write_text(PAGE.format(effects=""))
-    return BuildConfig(tmp_path, content, tmp_path / "build", ROOT / "node_modules", cache=tmp_path / ".cache")
+    return BuildConfig(tmp_path, content, tmp_path / "build", cache=tmp_path / ".cache")
 
 
 def test_enabling_an_effect_recomputes_only_that_scene(book):

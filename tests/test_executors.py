@@ -10,7 +10,8 @@ import pytest
 from sitegen.build import BuildConfig, build
 from sitegen.compute.tabulate import plan_scene
 from sitegen.errors import BuildFailed
-from sitegen.physics import MODELS, Model, Output, Param
+from sitegen.physics import Model, Output, Param
+from sitegen.registry import builtin_registry
 from sitegen.physics.collision import Collision
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -42,7 +43,7 @@ def _book(tmp_path: Path, name: str, page: str = PAGE, **options) -> BuildConfig
         content.mkdir()
         shutil.copy(ROOT / "content" / "index.md", content / "index.md")
         (content / "scenes.md").write_text(page)
-    return BuildConfig(tmp_path, content, tmp_path / name, ROOT / "node_modules", cache=None, **options)
+    return BuildConfig(tmp_path, content, tmp_path / name, cache=None, **options)
 
 
 def _tree(folder: Path) -> dict[str, bytes]:
@@ -115,14 +116,11 @@ class _Explodes(Model):
         return {"y": x["x"]}
 
 
-def test_worker_failure_comes_back_as_an_author_error(tmp_path, monkeypatch):
+def test_worker_failure_comes_back_as_an_author_error(tmp_path, register):
     """An error inside a worker process reaches the author as `file:line: scene '...': ...`."""
-    from sitegen.render.figures import FIGURES
-
-    monkeypatch.setitem(MODELS, "explodes", _Explodes)
-    monkeypatch.setitem(FIGURES, "explodes", FIGURES["impulse"].__class__())
+    register({"explodes": _Explodes}, {"explodes": type(builtin_registry().figures["impulse"])(), "bare": _Bare()})
     page = '+++\ntitle = "Boom"\n+++\n\n```scene\nmodel: explodes\nslider x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n'
-    monkeypatch.setitem(FIGURES, "bare", _Bare())
+
     with pytest.raises(BuildFailed) as failure:
         build(_book(tmp_path, "out", page=page, jobs=2), progress=None)
     assert [str(e) for e in failure.value.errors] == [

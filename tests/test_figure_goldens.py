@@ -1,4 +1,6 @@
-"""Figure goldens: every scene's figure at its defaults, byte for byte, against tests/goldens/.
+"""Figure goldens: every scene's figure at its defaults, byte for byte, against the book's goldens
+(this repository's book keeps them in goldens/, as its book.toml says; the tiny test book in
+tests/book/goldens/).
 
 A mismatch writes NAME-changed.svg and NAME-changed.png (golden, new and the pixel difference side
 by side) next to the golden for a person to look at. Goldens are never rewritten by a test (nor in
@@ -10,13 +12,15 @@ from pathlib import Path
 
 import pytest
 
+from sitegen.cli import main
+from sitegen.config import read_book
 from sitegen.content.pages import discover_pages, read_page
 from sitegen.review.goldens import accept_figures, changed_paths, check_figure, golden_names, golden_path
 from sitegen.review.tree import NARROW_SUFFIX, page_figures
 
 ROOT = Path(__file__).resolve().parents[1]
-GOLDENS = ROOT / "tests" / "goldens"
-ACCEPT = "run `make accept-figures`"
+GOLDENS = read_book(ROOT).goldens
+ACCEPT = "run `sitegen accept-figures`"
 
 
 def _source_scenes() -> list[str]:
@@ -56,6 +60,35 @@ def test_every_golden_belongs_to_a_scene(figures):
     """No golden is left over from a scene that was renamed or removed."""
     stale = sorted(set(golden_names(GOLDENS)) - set(figures))
     assert not stale, f"goldens without a scene: {', '.join(stale)}; {ACCEPT} to remove them"
+
+
+def test_the_repository_book_keeps_its_goldens_in_its_folder():
+    """The goldens are the book's (goldens/ beside content/), not the tool's tests'."""
+    assert GOLDENS == ROOT / "goldens" and len(golden_names(GOLDENS)) == len(SCENES)
+
+
+# --- any book: the tiny test book's goldens, by the commands ----------------------------------------
+
+
+def test_check_figures_passes_on_the_tiny_book_and_names_a_changed_figure(tiny_book, tiny_site, capsys, monkeypatch):
+    """`sitegen check-figures` in a book's folder compares its build with its goldens/: 0 when equal,
+    1 naming the figure when one differs, and `accept-figures` makes them equal again."""
+    monkeypatch.delenv("CI", raising=False)
+    monkeypatch.chdir(tiny_book.root)
+    assert main(["check-figures", "--build", str(tiny_site)]) == 0
+    name = golden_names(tiny_book.root / "goldens")[0]
+    golden = golden_path(tiny_book.root / "goldens", name)
+    golden.write_text(golden.read_text().replace("</svg>", "<!-- edited --></svg>"))
+    capsys.readouterr()
+    assert main(["check-figures", "--build", str(tiny_site)]) == 1
+    assert f"figure '{name}' differs from its golden" in capsys.readouterr().out
+    assert main(["accept-figures", "--build", str(tiny_site)]) == 0
+    assert main(["check-figures", "--build", str(tiny_site)]) == 0
+
+
+def test_the_tiny_book_has_a_golden_for_every_scene(tiny_site):
+    """The tool's own tests use their own book's goldens (tests/book/goldens), complete."""
+    assert sorted(page_figures(tiny_site)) == golden_names(ROOT / "tests" / "book" / "goldens")
 
 
 # --- the golden mechanics, on a scratch folder ------------------------------------------------------

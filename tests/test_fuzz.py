@@ -20,8 +20,10 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.content.pages import read_page
 from sitegen.content.scenes import KEYS, parse_scene_block
 from sitegen.errors import AuthorError, BuildFailed, SourceLoc
-from sitegen.physics import MODELS
-from sitegen.render.figures import FIGURES
+from sitegen.registry import builtin_registry
+
+MODELS = builtin_registry().models
+FIGURES = builtin_registry().figures
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGE = "content/page.md"
@@ -366,7 +368,7 @@ def test_build_of_fuzzed_books_succeeds_or_reports_author_errors(request, tmp_pa
         (content / "index.md").write_text('+++\ntitle = "Book"\n+++\n\nHome.\n', encoding="utf-8")
         page = "\n\n".join([front, text, *(_block(b) for b in bodies)]) + "\n"
         (content / "page.md").write_text(page, encoding="utf-8")
-        config = BuildConfig(root, content, root / "build", ROOT / "node_modules")
+        config = BuildConfig(root, content, root / "build")
         try:
             report = build(config, progress=None)
         except BuildFailed as failure:

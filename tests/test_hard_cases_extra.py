@@ -14,11 +14,13 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
-from sitegen.physics import MODELS
+from sitegen.registry import builtin_registry
 from sitegen.physics.bubble import Bubble
 from sitegen.physics.bubble_point import compose
 from sitegen.physics.bubble_solve import integrate
 from sitegen.physics.kinetic import QUANTILE, RANDOM, Kinetic, molecules
+
+MODELS = builtin_registry().models
 
 # --- K4 resonance foldover (physics.md §12, §14 "Branches and non-events") ----------------------------------
 #

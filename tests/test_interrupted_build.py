@@ -48,14 +48,13 @@ OLD, NEW = _book("Old title", "1..3"), _book("New title", "1..4")
 
 
 def write_book(root: Path, pages: dict[str, str]) -> None:
-    """Put the book's pages in ROOT/content (and node_modules within reach)."""
+    """Put the book's pages in ROOT/content (and its book.toml beside them)."""
     content = root / "content"
     shutil.rmtree(content, ignore_errors=True)
     content.mkdir(parents=True)
     for name, text in pages.items():
         (content / f"{name}.md").write_text(text, encoding="utf-8")
-    if not (root / "node_modules").exists():
-        (root / "node_modules").symlink_to(ROOT / "node_modules")
+    (root / "book.toml").write_text("")  # a book with every default
 
 
 def sitegen(root: Path, point: str = "none", output=subprocess.PIPE) -> subprocess.Popen:

@@ -16,13 +16,15 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
-from sitegen.physics import MODELS
+from sitegen.registry import builtin_registry
 from sitegen.physics.lever import (
     BALANCED, BLOCK_SIDE_PER_CUBE_ROOT_KG, DRAWN_SLOPE, LENGTH, TIPS_LEFT, TIPS_RIGHT, Lever, _tipping_integral,
 )
-from sitegen.render.figures import FIGURES
 from sitegen.render.layers import layer_points
 from sitegen.site.assemble import readout_text, scene_payload
+
+MODELS = builtin_registry().models
+FIGURES = builtin_registry().figures
 
 EPS = np.finfo(float).eps
 G = Fraction(981, 100)

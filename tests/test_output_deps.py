@@ -10,8 +10,10 @@ import functools
 import numpy as np
 import pytest
 
-from sitegen.physics import MODELS
+from sitegen.registry import builtin_registry
 from sitegen.physics.base import Param
+
+MODELS = builtin_registry().models
 
 POINTS = 16  # random valid points per check
 SPAN = 5.0  # sample each domain within [-SPAN, SPAN]

@@ -22,13 +22,15 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 from scipy.special import cosdg
 
-from sitegen.physics import MODELS
+from sitegen.registry import builtin_registry
 from sitegen.physics import bubble as bubble_module
 from sitegen.physics.acoustic_energy import C as C_AIR
 from sitegen.physics.bubble_terms import P0
 from sitegen.physics.impulse import Impulse, force
 from sitegen.physics.lever import TIPS_LEFT, TIPS_RIGHT
 from sitegen.physics.work import ARC, DIRECT, SPRING, line_integral_work
+
+MODELS = builtin_registry().models
 
 EPS = np.finfo(float).eps
 G = 9.81

@@ -163,7 +163,7 @@ def two_builds(tmp_path_factory, tiny_built) -> tuple[Path, Path]:
     root = tmp_path_factory.mktemp("book")
     shutil.copytree(tiny_built.content, root / "content")
     shutil.copytree(ROOT / "src" / "sitegen", root / "src" / "sitegen", ignore=shutil.ignore_patterns("__pycache__"))
-    (root / "node_modules").symlink_to(ROOT / "node_modules")
+    (root / "book.toml").write_text("")
     shutil.copytree(tiny_built.cache, root / ".cache")  # a warm start: only the changed scene is recomputed
     old = _build_copy(root, root / "old")
     model = root / MODEL_FILE
@@ -305,8 +305,8 @@ def test_review_against_a_revision_builds_it_in_a_temporary_worktree(tmp_path, c
     repo = tmp_path / "repo"
     (repo / "content").mkdir(parents=True)
     (repo / "content" / "index.md").write_text(TINY_PAGE)
-    (repo / ".gitignore").write_text("/build/\n/.cache/\n/node_modules\n")
-    (repo / "node_modules").symlink_to(ROOT / "node_modules")
+    (repo / ".gitignore").write_text("/build/\n/.cache/\n")
+    (repo / "book.toml").write_text("")
     _git(repo, "init", "-q", "-b", "main")
     _git(repo, "add", "-A")
     _git(repo, "commit", "-q", "-m", "tiny book")

@@ -138,7 +138,7 @@ def test_nothing_to_serve_is_an_error(tmp_path):
     """A folder without index.html (no build yet) is refused with a hint, not served."""
     done = subprocess.run([sys.executable, "-m", "sitegen.cli", "serve", "--dir", str(tmp_path), "--port", "0"],
                           capture_output=True, text=True, timeout=60)
-    assert done.returncode == 1 and "run 'make site' first" in done.stderr and "Traceback" not in done.stderr
+    assert done.returncode == 1 and "build the book first (sitegen build)" in done.stderr and "Traceback" not in done.stderr
 
 
 def test_port_in_use_is_an_error_without_traceback(site):

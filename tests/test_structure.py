@@ -12,9 +12,11 @@ from sitegen.compute.structure import Structured
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import AuthorError, SourceLoc
-from sitegen.physics import MODELS
+from sitegen.registry import builtin_registry
 from sitegen.physics.base import Model, Output, Param
 from sitegen.physics.structure import Coord, Poly, param
+
+MODELS = builtin_registry().models
 
 
 def _scene(lines: list[str], models=MODELS):

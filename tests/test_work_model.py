@@ -13,7 +13,7 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
-from sitegen.physics import MODELS
+from sitegen.registry import builtin_registry
 from sitegen.physics.work import (
     ARC,
     ARROW_MAX,
@@ -35,8 +35,10 @@ from sitegen.physics.work import (
     arc_velocity,
     line_integral_work,
 )
-from sitegen.render.figures import FIGURES
 from sitegen.site.assemble import readout_text
+
+MODELS = builtin_registry().models
+FIGURES = builtin_registry().figures
 
 EPS = np.finfo(float).eps
 ALL_EFFECTS = ("spring_rest_length", "drag_law", "gravity")

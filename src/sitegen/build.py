@@ -8,8 +8,6 @@ on any failure. Pages that show accuracy-report parts come last, as those list e
 """
 from __future__ import annotations
 
-from typing import Mapping
-
 from .compute.cache import forget_sources
 from .phases.pages import assemble_scenes, write_assets, write_page
 from .phases.read import convert_math, figure_name, read_pages, resolve_scenes
@@ -17,8 +15,7 @@ from .phases.read import needed_outputs as _needed_outputs
 from .phases.record import Book
 from .phases.run import BuildConfig, BuildReport, BuildRun
 from .phases.scenes import check_scenes, compile_kernels, render_figures, tabulate_scenes
-from .physics import MODELS
-from .render.figures import FIGURES
+from .registry import Registry, builtin_registry, load_registry
 from .site.writer import staged_tree
 
 __all__ = ["BuildConfig", "BuildReport", "build", "needed_outputs", "resolve_book", "tabulate_book"]
@@ -28,10 +25,12 @@ PAGE_PHASES = (("tabulate", tabulate_scenes), ("check", check_scenes), ("render"
                ("assemble", assemble_scenes), ("write", write_page))
 
 
-def build(config: BuildConfig, progress=print, models: Mapping = MODELS, figures: Mapping = FIGURES) -> BuildReport:
-    """Build the whole site into `config.out`, or raise BuildFailed with every author error."""
+def build(config: BuildConfig, progress=print, registry: Registry | None = None) -> BuildReport:
+    """Build the whole site into `config.out`, or raise BuildFailed with every author error.
+
+    `registry`: the models and figures to use (default: the book's, found by `load_registry`)."""
     forget_sources()  # a long-lived process (tests, a watcher) must see edited model code
-    run = BuildRun(config, progress, models, figures)
+    run = BuildRun(config, progress, registry or load_registry(config.book))
     book = Book()
     for name, phase in BOOK_PHASES:
         book = _timed(run, name, phase, book)
@@ -65,22 +64,23 @@ def _finish(run: BuildRun, book: Book) -> BuildReport:
     return report
 
 
-def needed_outputs(scene, figures: Mapping = FIGURES) -> list[str]:
-    """The outputs a scene shows: its readouts and whatever its figure's layers read."""
-    return _needed_outputs(scene, figures[figure_name(scene.spec)])
+def needed_outputs(scene, registry: Registry | None = None) -> list[str]:
+    """The outputs a scene shows: its readouts and whatever its figure's layers read (figures of
+    `registry`, default the built-in ones)."""
+    return _needed_outputs(scene, (registry or builtin_registry()).figures[figure_name(scene.spec)])
 
 
-def resolve_book(config: BuildConfig, models: Mapping = MODELS, figures: Mapping = FIGURES) -> Book:
+def resolve_book(config: BuildConfig, registry: Registry | None = None) -> Book:
     """The book read and its scenes resolved (the first phases of a build; BuildFailed on author errors)."""
-    run = BuildRun(config, None, models, figures)
+    run = BuildRun(config, None, registry or load_registry(config.book))
     book = resolve_scenes(read_pages(Book(), run), run)
     run.log.raise_if_any()
     return book
 
 
-def tabulate_book(book: Book, config: BuildConfig, models: Mapping = MODELS, figures: Mapping = FIGURES) -> Book:
+def tabulate_book(book: Book, config: BuildConfig, registry: Registry | None = None) -> Book:
     """The book's scenes tabulated, as a build would (its cache, if any; nothing checked, drawn or written)."""
-    run = BuildRun(config, None, models, figures)
+    run = BuildRun(config, None, registry or load_registry(config.book))
     run.report.scenes = len(book.scenes)
     book = tabulate_scenes(book.at(None), run)
     run.log.raise_if_any()

@@ -1,4 +1,4 @@
-"""The `sitegen` command: build, serve, review, bench (and accept-figures for the figure goldens)."""
+"""The `sitegen` command: build, serve, review, bench, models, and accept-figures/check-figures for the figure goldens."""
 from __future__ import annotations
 
 import argparse
@@ -8,65 +8,106 @@ import os
 import sys
 from pathlib import Path
 
+from .config import BookConfig, ConfigError, read_book
 from .errors import BuildFailed, SceneCrashed
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run one sitegen command; return the process exit status."""
-    parser = argparse.ArgumentParser(prog="sitegen", description="Build an offline interactive physics book.")
+    parser = argparse.ArgumentParser(prog="sitegen", description="Build an offline interactive physics book.",
+                                     epilog="Every command works on the book in the current folder (the folder of its "
+                                            "book.toml), or in the folder given with --root.")
     commands = parser.add_subparsers(dest="command", required=True)
-    build_cmd = commands.add_parser("build", help="build the site into build/")
-    build_cmd.add_argument("--root", type=Path, default=Path.cwd(), help="project folder (holds content/)")
-    build_cmd.add_argument("--out", type=Path, default=None, help="output folder (default ROOT/build)")
+    build_cmd = _command(commands, "build", "build the site into the book's output folder (book.toml 'output', default build/)")
+    build_cmd.add_argument("--out", type=Path, default=None, help="output folder (default: the book's)")
     build_cmd.add_argument("--debug", action="store_true", help="show Python tracebacks")
     build_cmd.add_argument("--explain", action="store_true", help="say for each scene why it was computed or that it was cached")
     build_cmd.add_argument("--jobs", type=int, default=1, help="tabulate in N local processes (default 1: serial)")
     build_cmd.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT", help="tabulate on a Dask cluster")
     build_cmd.add_argument("--no-cache", action="store_true", help="compute every scene; neither read nor write tables in .cache/ (compiled code is still kept in .cache/compiled/)")
-    serve_cmd = commands.add_parser("serve", help="serve build/ on 127.0.0.1")
-    serve_cmd.add_argument("--dir", type=Path, default=Path("build"))
+    serve_cmd = _command(commands, "serve", "serve the built site on 127.0.0.1")
+    serve_cmd.add_argument("--dir", type=Path, default=None, help="folder to serve (default: the book's output folder)")
     serve_cmd.add_argument("--port", type=int, default=8000)
     serve_cmd.add_argument("--bind", default="127.0.0.1")
-    review_cmd = commands.add_parser("review", help="compare two builds: the figures, tables and text that changed")
+    review_cmd = _command(commands, "review", "compare two builds: the figures, tables and text that changed")
     review_cmd.add_argument("trees", nargs="*", type=Path, metavar="BUILD", help="OLD NEW, or with --base only NEW")
-    review_cmd.add_argument("--base", metavar="REV", help="build git revision REV in a temporary worktree as OLD; NEW defaults to ROOT/build")
-    review_cmd.add_argument("--root", type=Path, default=Path.cwd(), help="project folder (for --base)")
+    review_cmd.add_argument("--base", metavar="REV", help="build git revision REV in a temporary worktree as OLD; NEW defaults to the book's output folder")
     review_cmd.add_argument("--out", type=Path, default=None, help="report folder (default ./build-review)")
     review_cmd.add_argument("--no-render", action="store_true", help="do not render figures to PNG (no Chromium needed)")
-    accept_cmd = commands.add_parser("accept-figures", help="rewrite the figure goldens from a build (refused in CI)")
-    accept_cmd.add_argument("--build", type=Path, default=Path("build"))
-    accept_cmd.add_argument("--goldens", type=Path, default=Path("tests/goldens"))
-    bench_cmd = commands.add_parser("bench", help="measure accuracy against cost; write content/accuracy/bench.json")
-    bench_cmd.add_argument("--root", type=Path, default=Path.cwd(), help="project folder (holds content/)")
-    bench_cmd.add_argument("--out", type=Path, default=None, help="results file (default ROOT/content/accuracy/bench.json)")
+    for name, text in (("accept-figures", "rewrite the book's figure goldens from a build (refused in CI)"),
+                       ("check-figures", "compare a build's figures with the book's goldens (exit 1 on a difference)")):
+        golden_cmd = _command(commands, name, text)
+        golden_cmd.add_argument("--build", type=Path, default=None, help="the built site (default: the book's output folder)")
+        golden_cmd.add_argument("--goldens", type=Path, default=None, help="the goldens folder (default: book.toml 'goldens', else goldens/)")
+    bench_cmd = _command(commands, "bench", "measure accuracy against cost; write content/accuracy/bench.json")
+    bench_cmd.add_argument("--out", type=Path, default=None, help="results file (default CONTENT/accuracy/bench.json)")
     bench_cmd.add_argument("--quick", action="store_true", help="a few points, one run each: a smoke test, not a measurement")
+    models_cmd = _command(commands, "models", "list the models a book can use: parameters, outputs, effects, numerics")
+    models_cmd.add_argument("name", nargs="?", help="one model (default: every model)")
+    models_cmd.add_argument("--builtin", action="store_true", help="only sitegen's built-in models (as in docs/models.md)")
     args = parser.parse_args(argv)
-    if args.command == "build":
-        return _build(args)
+    try:
+        book = read_book(args.root, required=_needs_book(args))
+    except ConfigError as problem:
+        print(f"sitegen: {problem}", file=sys.stderr)
+        return 2
+    return COMMANDS[args.command](args, book)
+
+
+def _needs_book(args) -> bool:
+    """Whether the command must find book.toml: not when every folder it uses is given."""
+    if args.command == "serve":
+        return args.dir is None
     if args.command == "review":
-        from .review.command import run_review
-
-        return run_review(args.trees, args.base, args.root, args.out, render=not args.no_render)
-    if args.command == "bench":
-        return _bench(args)
-    if args.command == "accept-figures":
-        from .review.command import run_accept
-
-        return run_accept(args.build, args.goldens)
-    return _serve(args)
+        return args.base is not None or len(args.trees) < 2
+    if args.command in ("accept-figures", "check-figures"):
+        return args.build is None or args.goldens is None
+    return not (args.command == "models" and args.builtin)
 
 
-def _build(args) -> int:
+def _command(commands, name: str, text: str):
+    command = commands.add_parser(name, help=text, description=text)
+    command.add_argument("--root", type=Path, default=Path.cwd(), help="the book's folder, which holds book.toml (default: the current folder)")
+    return command
+
+
+def _review(args, book: BookConfig) -> int:
+    from .review.command import run_review
+
+    return run_review(args.trees, args.base, book.root, args.out, render=not args.no_render, new=book.output)
+
+
+def _goldens(args, book: BookConfig) -> int:
+    from .review.command import run_accept, run_check
+
+    run = run_accept if args.command == "accept-figures" else run_check
+    return run(args.build or book.output, args.goldens or book.goldens)
+
+
+def _models(args, book: BookConfig) -> int:
+    from .reference import models_reference
+    from .registry import builtin_registry, load_registry
+
+    registry = builtin_registry() if args.builtin else load_registry(book)
+    for problem in registry.problems:
+        print(problem, file=sys.stderr)
+    if args.name and args.name not in registry.models:
+        print(f"sitegen: no model '{args.name}'; models: {', '.join(sorted(registry.models))}", file=sys.stderr)
+        return 2
+    print(models_reference(registry, [args.name] if args.name else None), end="")
+    return 1 if registry.problems else 0
+
+
+def _build(args, book: BookConfig) -> int:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # small linear algebra is 10x faster single-threaded
     from .build import BuildConfig, build
     from .content.math import MathToolMissing
 
-    options = {"jobs": args.jobs, "scheduler": args.scheduler}
-    if args.no_cache:
-        options["cache"] = None
-    config = BuildConfig.at(args.root, args.out, **options)
+    options = {"jobs": args.jobs, "scheduler": args.scheduler, "cache": None if args.no_cache else book.root / ".cache"}
+    config = BuildConfig(book.root, book.content, (args.out or book.output).resolve(), book=book, **options)
     if not config.content.is_dir():
-        print(f"sitegen: no content/ folder in {config.root}; a book is content/index.md and its other pages", file=sys.stderr)
+        print(f"sitegen: no folder {book.relative(book.content)} in {book.root}: a book's pages are "
+              f"{book.relative(book.content)}/index.md and its other pages", file=sys.stderr)
         return 2
     try:
         report = build(config, progress=_Progress(sys.stdout, args.explain))
@@ -105,18 +146,17 @@ def _build(args) -> int:
     return 0
 
 
-def _bench(args) -> int:
+def _bench(args, book: BookConfig) -> int:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     from .accuracy.bench import run_bench, summary_lines
     from .accuracy.experiments import FULL, QUICK
-    from .content.bench_results import BENCH_FILE, write_results
+    from .content.bench_results import BENCH_NAME, write_results
 
-    root = args.root.resolve()
-    if not (root / "content").is_dir():
-        print(f"sitegen: no content/ folder in {root}", file=sys.stderr)
+    if not book.content.is_dir():
+        print(f"sitegen: no folder {book.relative(book.content)} in {book.root}", file=sys.stderr)
         return 2
-    out = args.out or root / BENCH_FILE
-    results = run_bench(root, QUICK if args.quick else FULL, progress=lambda line: print(line, flush=True))
+    out = args.out or book.content / BENCH_NAME
+    results = run_bench(book.root, QUICK if args.quick else FULL, progress=lambda line: print(line, flush=True))
     write_results(results, out)
     print("\n".join(summary_lines(results)))
     print(f"wrote {out}")
@@ -176,10 +216,10 @@ class _SiteHandler(http.server.SimpleHTTPRequestHandler):
         return None
 
 
-def _serve(args) -> int:
-    directory = args.dir.resolve()
+def _serve(args, book: BookConfig) -> int:
+    directory = (args.dir or book.output).resolve()
     if not (directory / "index.html").is_file():
-        print(f"sitegen: nothing to serve in {directory}; run 'make site' first", file=sys.stderr)
+        print(f"sitegen: nothing to serve in {directory}; build the book first (sitegen build)", file=sys.stderr)
         return 1
     handler = functools.partial(_SiteHandler, directory=str(directory))
     try:
@@ -196,6 +236,9 @@ def _serve(args) -> int:
             pass
     return 0
 
+
+COMMANDS = {"build": _build, "serve": _serve, "review": _review, "accept-figures": _goldens, "check-figures": _goldens,
+            "bench": _bench, "models": _models}
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..physics import MODELS
+from ..registry import builtin_registry
 
 FLOAT32 = 4  # bytes per stored value as float32
 
@@ -35,7 +35,7 @@ class Line:
     def exact(self, x) -> np.ndarray:
         """The model's value at x (the other parameters at their defaults and `fixed`)."""
         inputs = {**dict(self.fixed), self.param: np.asarray(x, float)}
-        return np.asarray(MODELS[self.model]().evaluate(inputs, wanted=[self.output])[self.output], float)
+        return np.asarray(builtin_registry().models[self.model]().evaluate(inputs, wanted=[self.output])[self.output], float)
 
 
 def _stops(lo: float, hi: float, step: float) -> np.ndarray:

@@ -1,15 +1,17 @@
 """A content-addressed cache of tabulated scenes, under .cache/ (one checksummed file per entry).
 
 The key covers everything that can change a scene's tables — the scene's request (sliders, fixed
-values, effects, outputs), the source of its model and of every sitegen module the model and the
-tabulator import, and the numpy/scipy/matplotlib versions — and nothing that cannot (prose,
-other scenes, file times). Freshness is never judged by modification time.
+values, effects, outputs), the source of every file its model loads (found by following the
+imports of the model's module: its plugin's own modules and what they use of sitegen) and of the
+tabulator, and the numpy/scipy/matplotlib versions — and nothing that cannot (prose, other scenes,
+other models, file times). Freshness is never judged by modification time.
 """
 from __future__ import annotations
 
 import ast
 import functools
 import hashlib
+import importlib.util
 import io
 import json
 import os
@@ -27,12 +29,8 @@ from .structure import Structured
 from .table import Table
 
 PACKAGE_ROOT = Path(__file__).resolve().parents[1]  # src/sitegen
-TABULATOR_MODULES = ("sitegen.compute.tabulate", "sitegen.compute.structure", "sitegen.compute.table", "sitegen.compute.quantize", "sitegen.compute.grid", "sitegen.compute.scenes")
+TABULATOR = "sitegen.compute.tabulate"  # the code that turns a model's numbers into tables (with its imports)
 LIBRARIES = ("numpy", "scipy", "matplotlib", "numba", "llvmlite")
-# Packages whose __init__ only gathers the models into a registry: the tabulator reaches them for
-# `Model` and `Output`, but what their imports bring in is every other model. Their own text counts
-# (adding a model changes it); their imports do not, so editing one model recomputes only its scenes.
-REGISTRIES = frozenset({"sitegen.physics"})
 
 
 @dataclass(frozen=True)
@@ -60,27 +58,35 @@ def scene_key(scene: ResolvedScene, outputs: list[str]) -> CacheKey:
     }
     if scene.model.settings is not None:  # the numerical settings change the numbers; the tolerance does not
         request["numerics"] = scene.model.settings.knobs()
-    modules = frozenset({type(scene.model).__module__, *TABULATOR_MODULES})
+    modules = frozenset({type(scene.model).__module__, TABULATOR})
     return CacheKey(_sha(json.dumps(request, sort_keys=True)), source_digest(modules), library_digest())
 
 
 def source_digest(modules: frozenset[str]) -> str:
-    """Hash of the source of `modules` and every sitegen module they import, transitively."""
+    """Hash of the source of `modules` and of every module of theirs and of sitegen they import, transitively."""
     seen = source_hashes(modules)
     return _sha("".join(f"{n}:{seen[n]}\n" for n in sorted(seen)))
 
 
 def source_hashes(modules: frozenset[str]) -> dict[str, str]:
-    """{module: hash of its source} for `modules` and the sitegen modules they import, transitively."""
+    """{module: hash of its source} for `modules` and what they import, transitively, within sitegen
+    and within each module's own top-level package (a plugin's other modules; not numpy, not other plugins)."""
+    roots = {"sitegen"} | {_top(m) for m in modules}
     seen: dict[str, str] = {}
     pending = sorted(modules)
     while pending:
         name = pending.pop()
-        if name in seen or not name.startswith("sitegen"):
+        if name in seen or _top(name) not in roots:
             continue
         seen[name], imports = _module_record(name)
-        pending.extend(() if name in REGISTRIES else imports)
+        pending.extend(imports)
     return seen
+
+
+def _top(module: str) -> str:
+    """The top-level package of a module name; a book's models count one by one (BOOK.<name>)."""
+    parts = module.split(".")
+    return ".".join(parts[:2]) if parts[0] == "sitegen_book_models" else parts[0]
 
 
 def forget_sources() -> None:
@@ -90,10 +96,10 @@ def forget_sources() -> None:
 
 @functools.lru_cache(maxsize=None)
 def _module_record(name: str) -> tuple[str, tuple[str, ...]]:
-    """A module's source hash and the sitegen modules it imports (read once per process)."""
+    """A module's source hash and the modules it imports that have source files (read once per process)."""
     path = _module_path(name)
     source = path.read_bytes()
-    return hashlib.sha256(source).hexdigest(), tuple(_sitegen_imports(name, source, path.name == "__init__.py"))
+    return hashlib.sha256(source).hexdigest(), tuple(_imports(name, source, path.name == "__init__.py"))
 
 
 def digest(*parts: str) -> str:
@@ -230,20 +236,31 @@ def _decode(payload: bytes) -> dict:
         return tables
 
 
-def _module_path(name: str) -> Path:
+def _module_path(name: str) -> Path | None:
+    """The source file of a module (None when it has none, or is no module: `from x import a_function`)."""
     module = sys.modules.get(name)
-    if module is not None and getattr(module, "__file__", None):
-        return Path(module.__file__)
-    relative = Path(*name.split(".")[1:])
-    package = PACKAGE_ROOT / relative / "__init__.py"
-    return package if package.exists() else PACKAGE_ROOT / relative.with_suffix(".py")
+    if module is not None:
+        file = getattr(module, "__file__", None)
+        return Path(file) if file and file.endswith(".py") else None
+    if _top(name) == "sitegen":
+        relative = Path(*name.split(".")[1:])
+        for path in (PACKAGE_ROOT / relative / "__init__.py", PACKAGE_ROOT / relative.with_suffix(".py")):
+            if path.exists():
+                return path
+        return None
+    try:
+        spec = importlib.util.find_spec(name)
+    except (ImportError, ValueError):  # a parent that is a module, not a package: `name` is an attribute
+        return None
+    return Path(spec.origin) if spec and spec.origin and spec.origin.endswith(".py") else None
 
 
-def _sitegen_imports(name: str, source: bytes, is_package: bool) -> list[str]:
-    """Absolute names of the sitegen modules a module imports (relative imports resolved)."""
+def _imports(name: str, source: bytes, is_package: bool) -> list[str]:
+    """Absolute names of the modules with source files that a module imports, anywhere in its body
+    (imports inside functions count: the chain imports its reference integrator only to check)."""
     package = name if is_package else name.rpartition(".")[0]
     found = []
-    for node in ast.parse(source).body:  # our modules import at the top level only
+    for node in ast.walk(ast.parse(source)):
         if isinstance(node, ast.ImportFrom):
             base = package
             for _ in range(max(node.level - 1, 0)):
@@ -253,7 +270,7 @@ def _sitegen_imports(name: str, source: bytes, is_package: bool) -> list[str]:
             found.extend(f"{target}.{alias.name}" for alias in node.names)  # `from . import x` imports a module
         elif isinstance(node, ast.Import):
             found.extend(alias.name for alias in node.names)
-    return [f for f in found if f.startswith("sitegen") and _module_path(f).exists()]
+    return [f for f in dict.fromkeys(found) if f and _module_path(f) is not None]
 
 
 def _sha(text: str) -> str:

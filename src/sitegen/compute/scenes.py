@@ -5,9 +5,10 @@ import difflib
 from dataclasses import dataclass
 from decimal import Decimal
 from fractions import Fraction
+from typing import Mapping
 
 from ..content.scenes import CHOICE_FORM, ChoiceSpec, SceneSpec, SliderSpec
-from ..errors import AuthorError
+from ..errors import AuthorError, SourceLoc
 from ..physics import Model, Output
 from ..physics.numerics import configure
 from .grid import CHOICE, LIST, Axis, as_decimal
@@ -44,8 +45,14 @@ class ResolvedScene:
         return values
 
 
-def resolve_scene(spec: SceneSpec, models: dict[str, type[Model]]) -> tuple[ResolvedScene | None, list[AuthorError]]:
-    """Check a scene block against its model; return the resolved scene or every error found."""
+def resolve_scene(spec: SceneSpec, models: Mapping[str, type[Model]],
+                  broken: Mapping[str, SourceLoc] | None = None) -> tuple[ResolvedScene | None, list[AuthorError]]:
+    """Check a scene block against its model; return the resolved scene or every error found.
+
+    `broken`: plugins that failed to load, by name (a scene naming one is told where it failed)."""
+    if spec.model not in models and spec.model in (broken or {}):
+        message = f"model '{spec.model}' could not be loaded: see the error at {broken[spec.model]}"
+        return None, [AuthorError(spec.loc_of("model"), message, spec.id)]
     if spec.model not in models:
         message = f"unknown model '{spec.model}'{_suggest(spec.model, models)} Known models: {', '.join(sorted(models))}"
         return None, [AuthorError(spec.loc_of("model"), message, spec.id)]

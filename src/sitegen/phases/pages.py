@@ -17,7 +17,7 @@ from .record import Book, SceneRecord
 from .run import BuildRun
 from .scenes import scene_digest
 
-PAYLOAD_CODE = frozenset({"sitegen.site.assemble"})
+PAYLOAD_CODE = frozenset({scene_payload.__module__})
 
 
 def assemble_scenes(book: Book, run: BuildRun) -> Book:
@@ -39,7 +39,7 @@ def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> 
     caption = fill_slots(record.caption, page.found, book.mathml[page.slug], [])
     if record.accuracy is not None:
         caption = f"{caption} {caption_sentence(record.accuracy, linked)}".strip()
-    html = scene_html(scene, tables, figure, caption, payload.decode())
+    html = scene_html(scene, tables, figure, caption, payload.decode(), run.config.book)
     return replace(record, html=html, data_bytes=_data_bytes(payload, run) if book.has_reports else (len(payload), 0))
 
 
@@ -58,7 +58,7 @@ def write_page(book: Book, run: BuildRun) -> Book:
     context = _report_context(book, run) if page.found.reports else None
     reports = [report_part(block.part, context) for block in page.found.reports]
     body = fill_slots(page.html, page.found, book.mathml[page.slug], [r.html for r in records], reports)
-    html = page_html(page, body, list(book.pages), book.title)
+    html = page_html(page, body, list(book.pages), run.config.book.title or book.title, run.config.book)
     run.tree.write(page.output_name, html.encode())
     run.math_characters |= assets.math_characters(html)
     run.searchable[page.output_name] = search.page_sections(html)
@@ -69,15 +69,15 @@ def _report_context(book: Book, run: BuildRun) -> ReportContext:
     records = tuple(r.accuracy for r in book.scenes if r.accuracy is not None)
     sizes = {r.name: r.data_bytes for r in book.scenes}
     bench = load_results(run.config.content / BENCH_NAME)
-    return ReportContext(bench, records, book.pages, book.scenes, sizes, run.remember, run.models)
+    return ReportContext(bench, records, book.pages, book.scenes, sizes, run.remember, run.models, run.registry.reports)
 
 
 def write_assets(book: Book, run: BuildRun) -> Book:
-    """The script, the stylesheet, the math font (cut down to the characters the pages use) and the
-    search index of every page with its code."""
+    """The script, the stylesheet (with the theme's CSS), the math font (cut down to the characters the
+    pages use) and the search index of every page with its code."""
     if not run.failed:
         run.tree.write("assets/sitegen.js", assets.script())
         run.tree.write(search.SEARCH_SCRIPT, search.search_script(run.searchable, list(book.pages)))
-        run.tree.write("assets/sitegen.css", assets.stylesheet(run.config.node_modules))
+        run.tree.write("assets/sitegen.css", assets.stylesheet(assets.theme_css(run.config.book.theme)))
         run.tree.write(f"assets/{assets.FONT_FILE}", assets.math_font(run.math_characters, run.remember))
     return book

@@ -16,8 +16,11 @@ from .run import BuildRun
 
 
 def read_pages(book: Book, run: BuildRun) -> Book:
-    """Parse every page under content/ (front matter, Markdown, scene blocks, formulas)."""
+    """Parse every page under content/ (front matter, Markdown, scene blocks, formulas); report every
+    plugin that failed to load or declares a name twice."""
     config, pages = run.config, []
+    for problem in run.registry.problems:
+        run.error(problem)
     for path in discover_pages(config.content):
         page, errors = read_page(path, config.root)
         for error in errors:
@@ -54,7 +57,7 @@ def resolve_scenes(book: Book, run: BuildRun) -> Book:
 def resolve_record(record: SceneRecord, run: BuildRun) -> SceneRecord | None:
     """The record with its resolved scene, figure, caption, outputs and key; None after logging its errors."""
     spec, page = record.spec, record.page
-    scene, errors = resolve_scene(spec, run.models)
+    scene, errors = resolve_scene(spec, run.models, run.registry.broken)
     figure = figure_name(spec)
     if scene is not None and figure not in run.figures:
         errors.append(AuthorError(spec.loc_of("figure"), f"unknown figure '{figure}'; figures: {', '.join(sorted(run.figures))}", spec.id))
@@ -91,7 +94,7 @@ def _check_report_blocks(page, run: BuildRun) -> None:
 def convert_math(book: Book, run: BuildRun) -> Book:
     """MathML for every formula of every page (one Temml run for the whole book, or none if cached)."""
     items = [m for page in book.pages for m in page.found.maths]
-    mathml, errors = tex_to_mathml(items, run.config.node_modules, run.remember)
+    mathml, errors = tex_to_mathml(items, run.remember)
     for error in errors:
         run.error(error)
     by_page, start = {}, 0

@@ -5,11 +5,12 @@ import time
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Mapping
 
 from ..compute.accuracy import SceneAccuracy
+from ..config import BookConfig, read_book
 from ..compute.cache import TableCache, compute_now
 from ..errors import AuthorError, ErrorLog, SceneCrashed
+from ..registry import Registry
 
 
 @dataclass(frozen=True)
@@ -19,17 +20,21 @@ class BuildConfig:
     root: Path
     content: Path
     out: Path
-    node_modules: Path
     cache: Path | None = None  # None: compute everything, remember nothing
     jobs: int = 1
     scheduler: str | None = None  # address of a Dask scheduler, e.g. tcp://127.0.0.1:8786
+    book: BookConfig | None = None  # the rest of book.toml (None: its defaults, for a book at `root`)
+
+    def __post_init__(self):
+        if self.book is None:
+            object.__setattr__(self, "book", BookConfig(self.root, content=self.content, output=self.out))
 
     @classmethod
     def at(cls, root: Path, out: Path | None = None, **options) -> "BuildConfig":
-        """The conventional layout of a project rooted at `root` (cache in ROOT/.cache)."""
-        root = root.resolve()
-        options.setdefault("cache", root / ".cache")
-        return cls(root, root / "content", (out or root / "build").resolve(), root / "node_modules", **options)
+        """The book in folder `root` as its book.toml lays it out (cache in ROOT/.cache)."""
+        book = read_book(root)
+        options.setdefault("cache", book.root / ".cache")
+        return cls(book.root, book.content, (out or book.output).resolve(), book=book, **options)
 
 
 @dataclass
@@ -50,11 +55,12 @@ class BuildReport:
 
 
 class BuildRun:
-    """What every phase is handed besides the book: the config, the models and figures it may use,
-    the error log, the cache (`remember`), the progress callback and the report being filled."""
+    """What every phase is handed besides the book: the config, the registry of models and figures it
+    may use, the error log, the cache (`remember`), the progress callback and the report being filled."""
 
-    def __init__(self, config: BuildConfig, progress, models: Mapping, figures: Mapping):
-        self.config, self.progress, self.models, self.figures = config, progress, models, figures
+    def __init__(self, config: BuildConfig, progress, registry: Registry):
+        self.config, self.progress, self.registry = config, progress, registry
+        self.models, self.figures = registry.models, registry.figures
         self.log, self.report = ErrorLog(), BuildReport()
         self.cache = TableCache(config.cache) if config.cache else None
         self.remember = self.cache.remember if self.cache else compute_now

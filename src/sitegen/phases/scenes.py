@@ -17,7 +17,8 @@ from .record import Book, SceneRecord
 from .run import BuildRun
 
 PROGRESS_EVERY = 2.0  # seconds: a scene still computing says how far it got at least this often
-FIGURE_MODULES = frozenset({"sitegen.render.svg", "sitegen.render.style", "sitegen.render.layers", "sitegen.render.figures.base"})
+# The code that turns a view's drawing into the page's SVG (followed through its imports, with the view's module).
+DRAWING = frozenset(f.__module__ for f in (figure_svg, laid_out, layer_points, figure_label))
 
 
 def compile_kernels(book: Book, run: BuildRun) -> Book:
@@ -131,7 +132,7 @@ def _figure(record: SceneRecord, run: BuildRun) -> RenderedScene:
         return "".join(scene_figures(view, scene, tables, layers, points, dom_id(scene))).encode()
 
     # The layers are drawn at the defaults, so the defaults (through the points) belong in the key.
-    key = digest(scene_digest(record), source_digest(FIGURE_MODULES | {type(view).__module__}), repr(points), "figure")
+    key = digest(scene_digest(record), source_digest(DRAWING | {type(view).__module__}), repr(points), "figure")
     return RenderedScene(run.remember("figures", key, draw).decode(), tuple(layers))
 
 

@@ -1,29 +1,7 @@
-"""Physics models (numpy/scipy only) and their registry."""
+"""The framework every model is written in (numpy/scipy only): the Model base class, parameters
+and outputs, numerical settings and exact structures. The built-in models are in sitegen.models."""
 from __future__ import annotations
 
-from .acoustic_energy import AcousticEnergy
 from .base import Model, Output, Param
-from .bubble import Bubble
-from .chain import Chain
-from .collision import Collision
-from .euler_slab import EulerSlab
-from .impulse import Impulse
-from .kinetic import Kinetic
-from .lever import Lever
-from .ossicles import Ossicles
-from .work import Work
 
-MODELS: dict[str, type[Model]] = {
-    "acoustic_energy": AcousticEnergy,
-    "ossicles": Ossicles,
-    "lever": Lever,
-    "work": Work,
-    "impulse": Impulse,
-    "kinetic": Kinetic,
-    "collision": Collision,
-    "euler_slab": EulerSlab,
-    "chain": Chain,
-    "bubble": Bubble,
-}
-
-__all__ = ["MODELS", "Model", "Output", "Param"]
+__all__ = ["Model", "Output", "Param"]

@@ -1,4 +1,4 @@
-"""`sitegen review` and `sitegen accept-figures`: argument checks, progress lines and exit codes."""
+"""`sitegen review`, `sitegen accept-figures` and `sitegen check-figures`: argument checks, progress lines and exit codes."""
 from __future__ import annotations
 
 import sys
@@ -7,14 +7,17 @@ from pathlib import Path
 
 from . import review_builds
 from .git import ReviewError, revision_build, working_tree_label
-from .goldens import accept_figures
+from .goldens import accept_figures, check_figure, golden_names
+from .tree import page_figures
 from .report import headline
 
 CHANGED, SAME, TROUBLE = 1, 0, 2
 
 
-def run_review(trees: list[Path], base: str | None, root: Path, out: Path | None, render: bool = True) -> int:
-    """Compare OLD NEW (or revision BASE with NEW, default ROOT/build); exit 0 if identical, 1 if not."""
+def run_review(trees: list[Path], base: str | None, root: Path, out: Path | None, render: bool = True,
+               new: Path | None = None) -> int:
+    """Compare OLD NEW (or revision BASE with NEW, default `new`: the book's output, else ROOT/build);
+    exit 0 if identical, 1 if not."""
     if base is None and len(trees) != 2:
         return _fail("give two build folders, OLD NEW, or --base REV [NEW]")
     if base is not None and len(trees) > 1:
@@ -23,7 +26,7 @@ def run_review(trees: list[Path], base: str | None, root: Path, out: Path | None
     if base is None:
         new, new_label, source = trees[1], None, nullcontext((trees[0], None))
     else:
-        new = trees[0] if trees else root / "build"
+        new = trees[0] if trees else new or root / "build"
         new_label = None if trees else working_tree_label(root)
         source = revision_build(root, base, _say)
     try:
@@ -55,6 +58,21 @@ def run_accept(build: Path, goldens: Path) -> int:
             _say(f"{word:<8} {goldens / name}.svg")
     _say(f"goldens: {len(done.new)} new, {len(done.changed)} changed, {len(done.removed)} removed, {done.unchanged} unchanged")
     return 0
+
+
+def run_check(build: Path, goldens: Path) -> int:
+    """Compare every scene figure of `build` with its golden; exit 0 when all match, 1 when any differs,
+    is new, or a golden has no scene (each said on a line of its own)."""
+    figures = page_figures(build) if (build / "index.html").is_file() else {}
+    if not figures:
+        return _fail(f"no scene figures in {build}; build the book first (sitegen build)")
+    problems = [p for name, svg in figures.items() if (p := check_figure(goldens, name, svg))]
+    problems += [f"golden '{name}' has no scene in {build}; run `sitegen accept-figures` to remove it"
+                 for name in golden_names(goldens) if name not in figures]
+    for problem in problems:
+        _say(problem)
+    _say(f"figures: {len(figures)} checked against {goldens}, {len(problems)} problem(s)")
+    return CHANGED if problems else SAME
 
 
 def _say(text: str) -> None:

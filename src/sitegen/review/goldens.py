@@ -2,7 +2,7 @@
 
 A mismatch leaves NAME-changed.svg (and NAME-changed.png: golden, new and difference side by
 side) next to the golden for a person to look at. Goldens are rewritten only on purpose
-(`make accept-figures`), never by a test and never in CI.
+(`sitegen accept-figures`), never by a test and never in CI.
 """
 from __future__ import annotations
 
@@ -48,7 +48,7 @@ def golden_names(goldens: Path) -> list[str]:
 def accept_figures(build: Path, goldens: Path) -> Accepted:
     """Make the goldens exactly the figures of `build`: write new and changed ones, remove stale ones."""
     if in_ci():
-        raise PermissionError("goldens are never rewritten in CI (CI is set); run `make accept-figures` locally")
+        raise PermissionError("goldens are never rewritten in CI (CI is set); run `sitegen accept-figures` locally")
     figures, done = page_figures(build), Accepted()
     if not figures:
         raise FileNotFoundError(f"no scene figures in {build}; build the site first (make site)")
@@ -77,7 +77,7 @@ def check_figure(goldens: Path, name: str, svg: str) -> str | None:
     """Compare a figure with its golden; on a mismatch write the -changed files and say what differs."""
     path = golden_path(goldens, name)
     if not path.exists():
-        return f"figure '{name}' has no golden ({path}); run `make accept-figures` to add it"
+        return f"figure '{name}' has no golden ({path}); run `sitegen accept-figures` to add it"
     golden = path.read_text(encoding="utf-8")
     if golden == svg:
         _remove_changed(goldens, name)
@@ -92,7 +92,7 @@ def check_figure(goldens: Path, name: str, svg: str) -> str | None:
     except RasterUnavailable as problem:
         size = f"see {changed_svg} (no PNG: {problem})"
     return (f"figure '{name}' differs from its golden {path}: {size}. "
-            "If the change is intended, run `make accept-figures`.")
+            "If the change is intended, run `sitegen accept-figures`.")
 
 
 def _remove_changed(goldens: Path, name: str) -> None:

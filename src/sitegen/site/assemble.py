@@ -1,6 +1,7 @@
 """HTML through jinja2: scenes (controls, readouts, figure, inline tables) and whole pages."""
 from __future__ import annotations
 
+import functools
 import json
 import zlib
 from dataclasses import dataclass
@@ -13,16 +14,20 @@ from ..compute.quantize import MINUS, SPECIAL, format_quantum
 from ..compute.scenes import ResolvedScene
 from ..compute.structure import Structured
 from ..compute.table import Table
+from ..config import BookConfig
 from ..content.pages import Page
 from ..render.layers import Layer
 from . import navigation
 
-_ENV = jinja2.Environment(
-    loader=jinja2.FileSystemLoader(Path(__file__).with_name("templates")),
-    autoescape=True,
-    keep_trailing_newline=True,
-    trim_blocks=False,
-)
+TEMPLATES = Path(__file__).with_name("templates")
+
+
+@functools.lru_cache(maxsize=8)
+def templates(theme: Path | None = None) -> jinja2.Environment:
+    """The page and scene templates: a book theme's `templates/` folder first, then the built-in ones."""
+    folders = [theme / "templates"] if theme is not None and (theme / "templates").is_dir() else []
+    return jinja2.Environment(loader=jinja2.FileSystemLoader([*folders, TEMPLATES]), autoescape=True,
+                              keep_trailing_newline=True, trim_blocks=False)
 
 
 SEARCH_SCRIPT = "assets/search.js"  # the search index and its code, loaded when the search box is first used
@@ -37,7 +42,8 @@ class RenderedScene:
     layers: tuple[Layer, ...]
 
 
-def scene_html(scene: ResolvedScene, tables: dict[str, Table], figure: RenderedScene, caption: str, payload: str) -> str:
+def scene_html(scene: ResolvedScene, tables: dict[str, Table], figure: RenderedScene, caption: str, payload: str,
+               book: BookConfig | None = None) -> str:
     """The scene element: figure, labelled controls, readouts at the defaults, and its data (`payload`)."""
     stops = scene.default_stops
     sliders = [_slider_view(scene, i, stops[i]) for i in range(len(scene.axes))]
@@ -45,7 +51,7 @@ def scene_html(scene: ResolvedScene, tables: dict[str, Table], figure: RenderedS
         {"name": o.name, "label": o.label, "is_text": o.is_text, "text": readout_text(tables[o.name], o.unit, stops)}
         for o in scene.readouts
     ]
-    html = _ENV.get_template("scene.html").render(
+    html = templates(book and book.theme).get_template("scene.html").render(
         id=dom_id(scene),
         model=scene.model.name,
         svg=_BIG_SVG,
@@ -225,10 +231,10 @@ class TocEntry:
     children: tuple[Page, ...]
 
 
-def page_html(page: Page, body: str, pages: list[Page], book_title: str) -> str:
+def page_html(page: Page, body: str, pages: list[Page], book_title: str, book: BookConfig | None = None) -> str:
     """A whole page: header with the trail of parents and the search box, the book's contents, the
     article with anchored headings and links to the previous and next page, and (on the home page) the
-    contents with summaries."""
+    contents with summaries; its language, author, footer and canonical address from the book's config."""
     by_slug = {p.slug: p for p in pages}
     crumbs, parent = [], page.parent
     while parent and parent in by_slug and len(crumbs) < len(pages):
@@ -236,10 +242,10 @@ def page_html(page: Page, body: str, pages: list[Page], book_title: str) -> str:
         parent = by_slug[parent].parent
     contents = _contents(pages) if page.slug == "index" else []
     previous, following = navigation.neighbours(page, pages)
-    html = _ENV.get_template("base.html").render(
+    html = templates(book and book.theme).get_template("base.html").render(
         page=page, body=_BIG_BODY, crumbs=crumbs, contents=contents, book_title=book_title,
         outline=navigation.outline(pages), previous=previous, next=following, has_scenes=bool(page.found.scenes),
-        search_index=SEARCH_SCRIPT,
+        search_index=SEARCH_SCRIPT, book=book or BookConfig(Path(".")),
     )
     return html.replace(_BIG_BODY, navigation.with_anchors(body), 1)
 

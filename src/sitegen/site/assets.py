@@ -13,6 +13,8 @@ import fontTools
 from fontTools import subset
 from fontTools.ttLib import TTFont
 
+from ..content.math import TEMML_CSS
+
 logging.getLogger("fontTools.subset").setLevel(logging.ERROR)  # it notes dropping tables we do not need
 
 STATIC = Path(__file__).with_name("static")
@@ -33,12 +35,21 @@ def search_code() -> bytes:
     return (STATIC / "search.js").read_bytes()
 
 
-def stylesheet(node_modules: Path) -> bytes:
-    """Our stylesheet followed by the rules Temml's MathML needs (its font faces removed)."""
-    temml_css = (node_modules / "temml" / "dist" / "Temml-Latin-Modern.css").read_text(encoding="utf-8")
+def stylesheet(extra: tuple[Path, ...] = ()) -> bytes:
+    """Our stylesheet, the rules Temml's MathML needs (its font faces removed), then the book theme's
+    CSS files (`extra`), in that order so that a theme's rules win."""
+    temml_css = TEMML_CSS.read_text(encoding="utf-8")
     temml_css = _TEMML_FONT_RULES.sub("", _FONT_FACE.sub("", temml_css))
     ours = (STATIC / "sitegen.css").read_text(encoding="utf-8")
-    return (ours + "\n/* Rules for Temml's MathML (MIT licence), from temml/dist/Temml-Latin-Modern.css */\n" + temml_css).encode()
+    text = ours + "\n/* Rules for Temml's MathML (MIT licence), from temml/dist/Temml-Latin-Modern.css */\n" + temml_css
+    for path in extra:
+        text += f"\n/* {path.name}, from the book's theme */\n" + path.read_text(encoding="utf-8")
+    return text.encode()
+
+
+def theme_css(theme: Path) -> tuple[Path, ...]:
+    """The CSS files a book's theme adds (every *.css directly in its theme folder, by name)."""
+    return tuple(sorted(theme.glob("*.css"))) if theme.is_dir() else ()
 
 
 def math_characters(html: str) -> set[str]:

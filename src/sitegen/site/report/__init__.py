@@ -6,7 +6,7 @@ the build hands over: nothing is read back from built HTML). No clock is read he
 sources and the same bench.json give the same bytes.
 
 The parts every book has are below; a model whose bench results fill parts declares them
-(`Model.reports`), and its view in `views.py` draws them: this module names no model.
+(`Model.reports`), and its plugin's report view (the registry's `reports`) draws them: this module names no model.
 """
 from __future__ import annotations
 
@@ -19,7 +19,6 @@ from ...compute.accuracy import SceneAccuracy
 from ...compute.cache import compute_now
 from ...render.work_precision import Panel, Point, Series, resolution_figure
 from .html import MISSING, duration, factor, figure, figure_html, kib, sci, table
-from .views import REPORT_VIEWS
 
 PER_DIGIT_METHODS = ("velocity Verlet", "RK45", "DOP853", "Radau", "BDF", "LSODA", "compiled-DOP853", "compiled-Radau")
 
@@ -35,11 +34,13 @@ class ReportContext:
     table_bytes: Mapping  # "page#scene" -> (raw, gzip) bytes of the scene's inline tables in this build
     remember: object = compute_now
     models: Mapping = None  # the models of the build, by name (their declared report parts)
+    reports: Mapping = None  # the report views of the models that declare parts, by model name
 
     @property
     def views(self) -> list:
         """The report views of the models that declare parts, in the registry's order."""
-        return [REPORT_VIEWS[name] for name, model in (self.models or {}).items() if model.reports and name in REPORT_VIEWS]
+        views = self.reports or {}
+        return [views[name] for name, model in (self.models or {}).items() if model.reports and name in views]
 
 
 def report_parts(models: Mapping) -> list[str]:
@@ -53,7 +54,7 @@ def report_part(part: str, context: ReportContext) -> str:
     if part in BOOK_PARTS:
         return BOOK_PARTS[part](context)
     name = next(name for name, model in context.models.items() if part in model.reports)
-    return REPORT_VIEWS[name].part(part, context)
+    return context.reports[name].part(part, context)
 
 
 def resolution_part(context: ReportContext) -> str:

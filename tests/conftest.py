@@ -35,6 +35,10 @@ SLOW_TESTS = (
     "tests/test_build.py::test_computing_from_nothing_is_deterministic_across_hash_seeds",
     "tests/test_review.py::test_review_against_a_revision_builds_it_in_a_temporary_worktree",
     "tests/test_executors.py::test_dask_cluster_gives_the_serial_bytes",
+    # pip building and installing the wheel (and a fresh venv that builds a book with it)
+    "tests/test_install.py::test_installing_writes_nothing_into_build",
+    "tests/test_install.py::test_the_wheel_carries",
+    "tests/test_install.py::test_the_installed_wheel_builds_a_book_elsewhere",
 )
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 

@@ -122,7 +122,7 @@ def _build(args, book: BookConfig) -> int:
     except KeyboardInterrupt:
         print(f"build interrupted; {config.out} holds the last complete build", file=sys.stderr)
         return 130
-    except SceneCrashed as crash:  # a bug in a model or in sitegen, met while working on one scene
+    except SceneCrashed as crash:  # an exception in a model's, a figure's or sitegen's code, met on one scene
         if args.debug:
             raise crash.error
         print(f"sitegen: {crash}\n{config.out} holds the last complete build; run again with --debug for the traceback",

@@ -56,11 +56,14 @@ class ErrorLog:
 
 
 class SceneCrashed(Exception):
-    """A bug met while working on one scene (an exception no author can cause): where, and in which phase.
+    """An exception raised by code while working on one scene (a model's, a figure's or sitegen's):
+    the scene's place, the line of code that raised it (`code`, the model's own when the traceback
+    passes through it), and the phase.
 
     The original exception is the cause (`raise SceneCrashed(...) from error`), for --debug.
     """
 
-    def __init__(self, loc: SourceLoc, scene: str, phase: str, error: BaseException):
-        self.loc, self.scene, self.phase, self.error = loc, scene, phase, error
-        super().__init__(f"{loc}: scene '{scene}': internal error while {phase}: {type(error).__name__}: {error}")
+    def __init__(self, loc: SourceLoc, scene: str, phase: str, error: BaseException, code: SourceLoc | None = None):
+        self.loc, self.scene, self.phase, self.error, self.code = loc, scene, phase, error, code
+        where = f"{code}: " if code else ""
+        super().__init__(f"{loc}: scene '{scene}': {where}{type(error).__name__}: {error} (while {phase})")

@@ -19,6 +19,7 @@ import importlib.abc
 import importlib.machinery
 import importlib.util
 import inspect
+import re
 import sys
 import traceback
 import types
@@ -204,6 +205,37 @@ def author_line(error: BaseException, folder: Path | None, book: BookConfig | No
     frames = traceback.extract_tb(error.__traceback__)
     inside = [f for f in frames if folder is not None and Path(f.filename).resolve().is_relative_to(folder.resolve())]
     return SourceLoc(_shown(inside[-1].filename, book), inside[-1].lineno) if inside else None
+
+
+def raising_line(error: BaseException, plugins: list[type], book: BookConfig | None) -> SourceLoc | None:
+    """The line that raised `error`: the deepest one in the code of the plugins of `plugins` (classes:
+    a scene's model and figure view), else the deepest of all. Read from the traceback, or from its
+    text when the error came back from a worker process."""
+    frames = [(f.filename, f.lineno) for f in traceback.extract_tb(error.__traceback__)]
+    remote = error.__cause__
+    if remote is not None and type(remote).__name__ == "_RemoteTraceback":  # concurrent.futures' worker traceback
+        frames += [(file, int(line)) for file, line in re.findall(r'File "([^"]+)", line (\d+)', str(remote))]
+    if not frames:
+        return None
+    homes = [plugin_home(cls) for cls in plugins]
+    own = [f for f in frames if any(Path(f[0]).resolve().is_relative_to(home) for home in homes if home)]
+    file, line = (own or frames)[-1]
+    return SourceLoc(_shown(file, book), line)
+
+
+def plugin_home(cls: type) -> Path | None:
+    """The folder (or file) of the plugin that defines `cls`: a book model's folder, an installed
+    package, or a built-in model's folder in sitegen.models."""
+    parts = cls.__module__.split(".")
+    depth = 2 if parts[0] == BOOK_PACKAGE else 3 if parts[:2] == ["sitegen", "models"] else 1
+    if parts[:2] == ["sitegen", "physics"] or parts[:3] == ["sitegen", "render", "figures"]:
+        depth = len(parts)  # a built-in model or figure still in the framework's folders: its own file
+    module = sys.modules.get(".".join(parts[:depth]))
+    file = getattr(module, "__file__", None)
+    if not file or parts[0] == "sitegen" and depth == 1:
+        return None
+    path = Path(file).resolve()
+    return path.parent if path.name == "__init__.py" else path
 
 
 def _shown(filename: str, book: BookConfig | None) -> str:

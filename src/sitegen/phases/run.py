@@ -10,7 +10,7 @@ from ..compute.accuracy import SceneAccuracy
 from ..config import BookConfig, read_book
 from ..compute.cache import TableCache, compute_now
 from ..errors import AuthorError, ErrorLog, SceneCrashed
-from ..registry import Registry
+from ..registry import Registry, raising_line
 
 
 @dataclass(frozen=True)
@@ -92,8 +92,9 @@ class BuildRun:
 
     @contextmanager
     def scene(self, record, doing: str):
-        """Work on one scene: an author error is logged; any other exception is a bug, raised with
-        the scene's page, line and name (never an "internal error" without a place)."""
+        """Work on one scene: an author error is logged; any other exception is raised with the scene's
+        page, line and name and the line of code that raised it (the model's or figure's own if the
+        traceback passes through their plugin)."""
         try:
             yield
         except AuthorError as error:
@@ -101,4 +102,5 @@ class BuildRun:
         except (KeyboardInterrupt, SystemExit, MemoryError):
             raise
         except Exception as error:
-            raise SceneCrashed(record.spec.loc, record.spec.id, doing, error) from error
+            code = raising_line(error, [type(record.scene.model), type(record.view)] if record.scene else [], self.config.book)
+            raise SceneCrashed(record.spec.loc, record.spec.id, doing, error, code) from error

@@ -102,6 +102,7 @@ def _build(args, book: BookConfig) -> int:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # small linear algebra is 10x faster single-threaded
     from .build import BuildConfig, build
     from .content.math import MathToolMissing
+    from .registry import raising_line
 
     options = {"jobs": args.jobs, "scheduler": args.scheduler, "cache": None if args.no_cache else book.root / ".cache"}
     config = BuildConfig(book.root, book.content, (args.out or book.output).resolve(), book=book, **options)
@@ -136,7 +137,8 @@ def _build(args, book: BookConfig) -> int:
     except Exception as problem:  # a bug in sitegen or in a model, not in the book
         if args.debug:
             raise
-        print(f"sitegen: internal error: {type(problem).__name__}: {problem}\n"
+        where = raising_line(problem, [], book)
+        print(f"sitegen: {where}: {type(problem).__name__}: {problem}\n"
               f"{config.out} holds the last complete build; run again with --debug for the traceback", file=sys.stderr)
         return 3
     total = sum(report.phases.values())

@@ -10,6 +10,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Iterator
 
+from ..config import read_book
+
 
 class ReviewError(RuntimeError):
     """The old build could not be made (unknown revision, no git, or the build failed)."""
@@ -44,7 +46,7 @@ def revision_build(root: Path, rev: str, progress=print) -> Iterator[tuple[Path,
             label = f"{rev} ({sha[:7]})"
             progress(f"building {label} in a temporary worktree")
             _build(root, project)
-            yield project / "build", label
+            yield read_book(project).output, label
         finally:
             subprocess.run(["git", "worktree", "remove", "--force", str(worktree)], cwd=root, capture_output=True, check=False)
             subprocess.run(["git", "worktree", "prune"], cwd=root, capture_output=True, check=False)

@@ -176,9 +176,10 @@ def test_every_error_of_every_page_in_one_run(tmp_path):
 
 
 def test_missing_content_folder(tmp_path):
-    """A project without content/ is one line and exit 2, not an empty site."""
+    """A book without content/ is one line and exit 2, not an empty site."""
+    (tmp_path / "book.toml").write_text("")
     done = run_cli(tmp_path)
-    assert done.returncode == 2 and "no content/ folder" in done.stderr and "Traceback" not in done.stderr
+    assert done.returncode == 2 and "no folder content in" in done.stderr and "Traceback" not in done.stderr
 
 
 def test_output_that_cannot_be_written(tmp_path):

@@ -32,17 +32,17 @@ from .config import BookConfig
 from .errors import AuthorError, SourceLoc
 from .physics.base import Model
 
-BUILTINS = (
+BUILTINS = (  # in this order: the accuracy page lists the models' report parts in it
     "sitegen.models.acoustic_energy",
-    "sitegen.models.bubble",
-    "sitegen.models.chain",
-    "sitegen.models.collision",
-    "sitegen.models.euler_slab",
+    "sitegen.models.ossicles",
+    "sitegen.models.lever",
+    "sitegen.models.work",
     "sitegen.models.impulse",
     "sitegen.models.kinetic",
-    "sitegen.models.lever",
-    "sitegen.models.ossicles",
-    "sitegen.models.work",
+    "sitegen.models.collision",
+    "sitegen.models.euler_slab",
+    "sitegen.models.chain",
+    "sitegen.models.bubble",
 )
 GROUP = "sitegen.models"  # the entry-point group of installed plugins
 BOOK_PACKAGE = "sitegen_book_models"  # the book's models are imported as BOOK_PACKAGE.<name>

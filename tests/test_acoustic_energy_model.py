@@ -14,7 +14,7 @@ from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
 from sitegen.registry import builtin_registry
-from sitegen.physics.acoustic_energy import (
+from sitegen.models.acoustic_energy.model import (
     C,
     INVALID,
     RHO,

@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 
 from sitegen.build import BuildConfig, resolve_book
-from sitegen.physics import bubble_kernel_terms as kernel
-from sitegen.physics.bubble import ALL, preset_problem
-from sitegen.physics.bubble_point import compose, read_run
-from sitegen.physics.bubble_solve import COMPILED, EXPLICIT, IMPLICIT, STIFF, integrate, method_for
-from sitegen.physics.bubble_terms import RADIATION, make_rhs
+from sitegen.models.bubble import kernel_terms as kernel
+from sitegen.models.bubble.model import ALL, preset_problem
+from sitegen.models.bubble.point import compose, read_run
+from sitegen.models.bubble.solve import COMPILED, EXPLICIT, IMPLICIT, STIFF, integrate, method_for
+from sitegen.models.bubble.terms import RADIATION, make_rhs
 
 ROOT = Path(__file__).resolve().parents[1]
 PRESETS = ["A", "B", "C", "stiff"]

@@ -12,10 +12,10 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.special import betainc, betaincinv
 
 from sitegen.compute.quantize import fmt
-from sitegen.physics.bubble import PRESETS, Bubble, preset_problem, run_preset
-from sitegen.physics.bubble_point import BLAKE_LABELS, SOLVER_LABELS, compose, read_run
-from sitegen.physics.bubble_solve import ANALYTIC, EXPLICIT, IMPLICIT, MACH, OK, UNBOUNDED_GROWTH, choose_method, integrate, solve
-from sitegen.physics.bubble_terms import (
+from sitegen.models.bubble.model import PRESETS, Bubble, preset_problem, run_preset
+from sitegen.models.bubble.point import BLAKE_LABELS, SOLVER_LABELS, compose, read_run
+from sitegen.models.bubble.solve import ANALYTIC, EXPLICIT, IMPLICIT, MACH, OK, UNBOUNDED_GROWTH, choose_method, integrate, solve
+from sitegen.models.bubble.terms import (
     P0, WATER, Problem, blake, energy, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau,
 )
 

@@ -102,16 +102,16 @@ def test_model_code_change_is_named(book, monkeypatch):
 
 def test_source_digest_follows_the_bytes_of_the_model_file(tmp_path, monkeypatch):
     """The code part of a key is a hash of the model module's bytes (and what it imports)."""
-    import sitegen.physics.impulse as impulse
+    import sitegen.models.impulse.model as impulse
 
     copy = tmp_path / "impulse.py"
     copy.write_bytes(Path(impulse.__file__).read_bytes())
     monkeypatch.setattr(impulse, "__file__", str(copy))
     cache_module.forget_sources()
-    before = cache_module.source_digest(frozenset({"sitegen.physics.impulse"}))
+    before = cache_module.source_digest(frozenset({"sitegen.models.impulse.model"}))
     copy.write_text(copy.read_text() + "\n# a comment changes the bytes\n")
     cache_module.forget_sources()
-    assert cache_module.source_digest(frozenset({"sitegen.physics.impulse"})) != before
+    assert cache_module.source_digest(frozenset({"sitegen.models.impulse.model"})) != before
     cache_module.forget_sources()
 
 

@@ -7,11 +7,11 @@ import pytest
 import scipy.linalg
 
 from sitegen.compute.quantize import fmt
-from sitegen.physics.chain import (
+from sitegen.models.chain.model import (
     RESOLVED, RIGHT_MOVING, SPLIT, UNDER_RESOLVED, Chain, Terms, chain_motion, continuum, deviation, energy,
     evolve, initial_state, mass_and_stiffness, mode_frequencies, positions, spacing,
 )
-from sitegen.physics.chain_integrators import integrate_ivp, stability_limit, velocity_verlet
+from sitegen.models.chain.integrators import integrate_ivp, stability_limit, velocity_verlet
 
 EPS = np.finfo(float).eps
 LAUNCHES = [pytest.param(RIGHT_MOVING, id="right-moving"), pytest.param(SPLIT, id="split")]

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from sitegen.compute.quantize import fmt
-from sitegen.physics.collision import COLLISION, SEPARATING, Collision
+from sitegen.models.collision.model import COLLISION, SEPARATING, Collision
 
 EPS = np.finfo(float).eps
 NAMES = ("m1", "m2", "v1i", "v2i", "e")

@@ -22,10 +22,16 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import plan_scene, tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
-from sitegen.physics import bubble, bubble_point, bubble_solve, bubble_terms, chain, contact, impulse
+from sitegen.physics import contact
+from sitegen.models.bubble import model as bubble
+from sitegen.models.bubble import point as bubble_point
+from sitegen.models.bubble import solve as bubble_solve
+from sitegen.models.bubble import terms as bubble_terms
+from sitegen.models.chain import model as chain
+from sitegen.models.impulse import model as impulse
 from sitegen.registry import builtin_registry
-from sitegen.physics import bubble_kernel_terms as kernel_terms
-from sitegen.physics.bubble_terms import make_rhs
+from sitegen.models.bubble import kernel_terms as kernel_terms
+from sitegen.models.bubble.terms import make_rhs
 
 MODELS = builtin_registry().models
 
@@ -174,7 +180,7 @@ def test_chain_scene_evaluates_an_effect_only_when_it_names_it(chain_spy, effect
 # --- the bubble's terms ------------------------------------------------------------------------------------------------
 
 # The statements that evaluate each term (the start of each, as written there), in scipy's right-hand
-# side (make_rhs) and in the compiled one (bubble_kernel_terms.rhs).
+# side (make_rhs) and in the compiled one (kernel_terms.rhs).
 BUBBLE_TERMS = {
     "gas": "p_gas = gas0 * (gas_volume0 / volume) ** kappa",
     "surface_tension": "p_wall -= two_sigma / r",

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from sitegen.compute.quantize import fmt
-from sitegen.physics.euler_slab import (
+from sitegen.models.euler_slab.model import (
     C_AIR,
     CONDUCTIVITY_AIR,
     CP_AIR,

@@ -12,7 +12,7 @@ from sitegen.compute.tabulate import plan_scene
 from sitegen.errors import BuildFailed
 from sitegen.physics import Model, Output, Param
 from sitegen.registry import builtin_registry
-from sitegen.physics.collision import Collision
+from sitegen.models.collision.model import Collision
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGE = """+++

@@ -15,10 +15,10 @@ from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
 from sitegen.registry import builtin_registry
-from sitegen.physics.bubble import Bubble
-from sitegen.physics.bubble_point import compose
-from sitegen.physics.bubble_solve import integrate
-from sitegen.physics.kinetic import QUANTILE, RANDOM, Kinetic, molecules
+from sitegen.models.bubble.model import Bubble
+from sitegen.models.bubble.point import compose
+from sitegen.models.bubble.solve import integrate
+from sitegen.models.kinetic.model import QUANTILE, RANDOM, Kinetic, molecules
 
 MODELS = builtin_registry().models
 

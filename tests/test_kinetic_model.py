@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from sitegen.compute.quantize import fmt
-from sitegen.physics.kinetic import (
+from sitegen.models.kinetic.model import (
     ATOMIC_MASS, BOX_SIDE, K_B, MASS_U, QUANTILE, RANDOM, SPECIES, TRAIN_BINS, Kinetic, maxwell_wall_records,
     molecules, pulsed_impulse, sample_ratio, soft_record, wall_hits, wall_record,
 )

@@ -81,17 +81,6 @@ def test_only_the_registry_imports_the_built_in_models(name):
     assert not models or name.startswith(MODEL_USERS), f"{name} imports {', '.join(models)}"
 
 
-@pytest.mark.parametrize("name", sorted(GRAPH))
-def test_the_framework_and_the_build_import_no_model_module(name):
-    """Until every built-in model lives in sitegen.models, the old model files count as models too:
-    nothing but their plugins, the registry and the bench imports physics/<model>.py."""
-    framework = {"sitegen.physics", "sitegen.physics.base", "sitegen.physics.numerics", "sitegen.physics.structure",
-                 "sitegen.physics.compiled", "sitegen.physics.contact"}
-    models = sorted(t for t in GRAPH[name] if t.startswith("sitegen.physics.") and t not in framework)
-    allowed = MODEL_USERS + ("sitegen.physics.", "sitegen.render.figures.")
-    assert not models or name.startswith(allowed), f"{name} imports {', '.join(models)}"
-
-
 def test_no_circles():
     """No module reaches itself through its imports."""
     state, circles = {}, []

@@ -17,7 +17,7 @@ from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
 from sitegen.registry import builtin_registry
-from sitegen.physics.lever import (
+from sitegen.models.lever.model import (
     BALANCED, BLOCK_SIDE_PER_CUBE_ROOT_KG, DRAWN_SLOPE, LENGTH, TIPS_LEFT, TIPS_RIGHT, Lever, _tipping_integral,
 )
 from sitegen.render.layers import layer_points

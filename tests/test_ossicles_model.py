@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from sitegen.compute.quantize import fmt
-from sitegen.physics.ossicles import COCHLEA, WATER, Z_AIR, Z_WATER, Ossicles, transmission
+from sitegen.models.ossicles.model import COCHLEA, WATER, Z_AIR, Z_WATER, Ossicles, transmission
 
 EPS = np.finfo(float).eps
 ALL = ("lever", "area_ratio", "load_model")

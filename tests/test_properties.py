@@ -23,12 +23,12 @@ from scipy.integrate import quad
 from scipy.special import cosdg
 
 from sitegen.registry import builtin_registry
-from sitegen.physics import bubble as bubble_module
-from sitegen.physics.acoustic_energy import C as C_AIR
-from sitegen.physics.bubble_terms import P0
-from sitegen.physics.impulse import Impulse, force
-from sitegen.physics.lever import TIPS_LEFT, TIPS_RIGHT
-from sitegen.physics.work import ARC, DIRECT, SPRING, line_integral_work
+from sitegen.models.bubble import model as bubble_module
+from sitegen.models.acoustic_energy.model import C as C_AIR
+from sitegen.models.bubble.terms import P0
+from sitegen.models.impulse.model import Impulse, force
+from sitegen.models.lever.model import TIPS_LEFT, TIPS_RIGHT
+from sitegen.models.work.model import ARC, DIRECT, SPRING, line_integral_work
 
 MODELS = builtin_registry().models
 

@@ -23,7 +23,7 @@ from sitegen.review.tree import parse_page, text_lines
 
 ROOT = Path(__file__).resolve().parents[1]
 # The constant the end-to-end test changes, and every output of its scene that depends on it.
-MODEL_FILE = "src/sitegen/physics/ossicles.py"
+MODEL_FILE = "src/sitegen/models/ossicles/model.py"
 CONSTANT = ("Z_AIR = 1.204 * 343.2", "Z_AIR = 1.293 * 331.3")  # air at 20 °C -> air at 0 °C
 # The outputs the cochlea's impedance enters, and the two coordinate tables ("~…") the page's
 # expressions for T1, T1_dB and ell_match read it through.

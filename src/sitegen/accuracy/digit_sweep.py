@@ -17,9 +17,9 @@ import numpy as np
 
 from ..build import BuildConfig, needed_outputs, resolve_book
 from ..compute.grid import CHOICE
-from ..physics.bubble import ALL, CLOSED_FORMS, PREFIX, Bubble, run_difference, shown_difference
-from ..physics.bubble_point import compose, read_run
-from ..physics.bubble_solve import (
+from ..models.bubble.model import ALL, CLOSED_FORMS, PREFIX, Bubble, run_difference, shown_difference
+from ..models.bubble.point import compose, read_run
+from ..models.bubble.solve import (
     AUTO, EXPLICIT_RTOL, REFERENCE_CAPS, ensure_compiled, method_for, reference_for, solve,
 )
 from ..physics.numerics import Numerics

@@ -11,11 +11,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..physics.bubble import preset_problem
-from ..physics.bubble_solve import ANALYTIC, MACH, OK, Caps, Run, choose_method, integrate, rayleigh_run
-from ..physics.bubble_terms import EPSILON, Problem, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau
-from ..physics.chain import LENGTH, RIGHT_MOVING, SPEED, evolve, initial_state, mass_and_stiffness, positions, spacing
-from ..physics.chain_integrators import integrate_ivp, velocity_verlet
+from ..models.bubble.model import preset_problem
+from ..models.bubble.solve import ANALYTIC, MACH, OK, Caps, Run, choose_method, integrate, rayleigh_run
+from ..models.bubble.terms import EPSILON, Problem, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau
+from ..models.chain.model import LENGTH, RIGHT_MOVING, SPEED, evolve, initial_state, mass_and_stiffness, positions, spacing
+from ..models.chain.integrators import integrate_ivp, velocity_verlet
 from .timing import time_medians
 
 RTOLS = tuple(10.0**-k for k in range(3, 13))  # 1e-3 … 1e-12

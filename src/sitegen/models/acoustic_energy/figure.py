@@ -4,9 +4,9 @@ from __future__ import annotations
 from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
 
-from ...physics.acoustic_energy import X_OVER_LAMBDA
-from .. import style as s
-from ..layers import Layer
+from .model import X_OVER_LAMBDA
+from ...render import style as s
+from ...render.layers import Layer
 
 XS = tuple(float(v) for v in X_OVER_LAMBDA)
 ENERGY_LIMITS = (-2.25, 4.35)  # e_k, e_p ≤ (1 + R)² ≤ 4; I/c between −2R² and 2 (units ⟨e⟩ᵢ)

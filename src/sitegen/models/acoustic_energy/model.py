@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import cosdg, sindg
 
-from .base import Model, Output, Param
+from ...physics.base import Model, Output, Param
 
 RHO, C = 1.204, 343.2  # air at 20 °C: kg/m³, m/s
 P_REF, I_REF = 20e-6, 1e-12  # Pa (rms), W/m²

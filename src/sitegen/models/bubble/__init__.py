@@ -1,9 +1,9 @@
 """The built-in model 'bubble': Bubble, and its figures."""
 from __future__ import annotations
 
-from ...physics.bubble import Bubble
-from ...render.figures.bubble import BubbleEventsFigure, BubbleFigure
-from ...site.report.bubble import BubbleReport
+from .model import Bubble
+from .figure import BubbleEventsFigure, BubbleFigure
+from .report import BubbleReport
 
 MODELS = {"bubble": Bubble}
 FIGURES = {"bubble": BubbleFigure(), "bubble_events": BubbleEventsFigure()}

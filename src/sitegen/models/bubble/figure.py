@@ -7,12 +7,12 @@ from dataclasses import replace
 import numpy as np
 from matplotlib.lines import Line2D
 
-from ...physics.bubble import DRIVE_PERIODS
-from ...physics.bubble_solve import CURVE_POINTS
-from ...physics.bubble_terms import rayleigh_radius
-from .. import style as s
-from ..layers import Layer
-from .base import param_range, table_range
+from .model import DRIVE_PERIODS
+from .solve import CURVE_POINTS
+from .terms import rayleigh_radius
+from ...render import style as s
+from ...render.layers import Layer
+from ...render.figures.base import param_range, table_range
 
 # Inline style: matplotlib's SVG sheet sets * {stroke-linecap: butt}, which would hide zero-length dots.
 _DOT = {"fill": "none", "style": "stroke-linecap: round"}

@@ -1,10 +1,10 @@
 """K4 compiled: a whole run — steps, events located on each step's interpolant, samples on the grid, caps.
 
-The loop of bubble_solve's `_Stepper`, compiled: after each accepted step every event function is
+The loop of solve.py's `_Stepper`, compiled: after each accepted step every event function is
 compared at the step's two ends; a sign change in the event's direction is located by Brent's method
 on the step's interpolant (DOP853's of order 7, Radau's collocation polynomial), events up to the
 first terminal one are recorded, and the grid samples the step covers are read from the interpolant.
-Events are rows of a table (kind, level, direction, stop code, record code) built by bubble_solve.
+Events are rows of a table (kind, level, direction, stop code, record code) built by solve.py.
 """
 from __future__ import annotations
 
@@ -12,12 +12,12 @@ import math
 
 import numpy as np
 
-from .bubble_kernel_radau import CURRENT_JAC, FACTORISED, H_ABS, HAS_SOL, STATE_SIZE, radau_step
-from .bubble_kernel_steppers import (
+from .kernel_radau import CURRENT_JAC, FACTORISED, H_ABS, HAS_SOL, STATE_SIZE, radau_step
+from .kernel_steppers import (
     DOP853_ORDER, RADAU_ORDER, STAGES, dop853_at, dop853_dense, dop853_step, initial_step, radau_at, set_jacobian,
 )
-from .bubble_kernel_terms import rhs
-from .compiled import kernel
+from .kernel_terms import rhs
+from ...physics.compiled import kernel
 
 DOP853_METHOD, RADAU_METHOD = 0, 1
 G_SPEED, G_ACCELERATION, G_SPEED_LEVEL, G_RADIUS_LEVEL = 0, 1, 2, 3  # g = ṙ, r̈, ṙ − level, r − level

@@ -11,12 +11,12 @@ import math
 
 import numpy as np
 
-from .bubble_kernel_steppers import (
+from .kernel_steppers import (
     MAX_FACTOR, MIN_FACTOR, MU_COMPLEX, MU_REAL, NEWTON_MAXITER, RADAU_C, RADAU_E, RADAU_P, RADAU_T, RADAU_TI,
     min_step, radau_at, radau_inverses, set_jacobian, times,
 )
-from .bubble_kernel_terms import rhs
-from .compiled import kernel
+from .kernel_terms import rhs
+from ...physics.compiled import kernel
 
 H_ABS, H_ABS_OLD, ERROR_OLD, CURRENT_JAC, FACTORISED, HAS_SOL = range(6)
 STATE_SIZE = 6

@@ -13,8 +13,8 @@ import math
 import numpy as np
 from scipy.integrate import DOP853
 
-from .bubble_kernel_terms import jacobian, rhs
-from .compiled import kernel
+from .kernel_terms import jacobian, rhs
+from ...physics.compiled import kernel
 
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
 STAGES = DOP853.n_stages  # 12; K[12] holds f at the step's end, K[13:16] the dense output's extra stages

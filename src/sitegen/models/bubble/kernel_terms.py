@@ -1,6 +1,6 @@
 """K4 compiled: the composed right-hand side and its analytic Jacobian, on a packed parameter vector.
 
-The same terms as `bubble_terms.make_rhs`, in the same order of operations (so the two agree to the
+The same terms as `terms.make_rhs`, in the same order of operations (so the two agree to the
 last bit on the same state), with each term skipped when its coefficient is zero. A Problem is packed
 once into a float vector; `rhs` and `jacobian` read it by the indices below.
 """
@@ -10,8 +10,8 @@ import math
 
 import numpy as np
 
-from .bubble_terms import CORE_MARGIN, KELLER_MIKSIS, KM_FLOOR, R_FLOOR, RADIATION, Problem
-from .compiled import kernel
+from .terms import CORE_MARGIN, KELLER_MIKSIS, KM_FLOOR, R_FLOOR, RADIATION, Problem
+from ...physics.compiled import kernel
 
 # Indices into the packed parameter vector.
 P_INF, GAS, KAPPA, E3, VAPOUR, SIGMA2, VISC4, SOUND, COMPRESSIBLE, DRIVE, OMEGA, RAMP_TO, RAMP_TIME, VOLUME_FLOOR = range(14)

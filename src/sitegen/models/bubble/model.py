@@ -5,7 +5,7 @@ A `step`, the Rayleigh collapse (analytic when only inertia and vapour act); B `
 bubble with Keller–Miksis compressibility; C `ramp`, a nucleus under a ramped tension (Blake
 threshold). The dynamic outputs of each history carry its prefix (collapse_, driven_, ramp_) and
 depend only on its own parameters. Each grid point is solved in nondimensional variables with
-terminal events and caps (bubble_solve.py); points that are one nondimensional problem are solved once.
+terminal events and caps (solve.py); points that are one nondimensional problem are solved once.
 """
 from __future__ import annotations
 
@@ -17,15 +17,15 @@ from pathlib import Path
 
 import numpy as np
 
-from . import bubble_terms as terms
-from . import compiled
-from .base import Model, Output, Param
-from .bubble_point import (
+from . import terms
+from ...physics import compiled
+from ...physics.base import Model, Output, Param
+from .point import (
     BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, SOLVER_LABELS, Scales, check_effects, compose, read_run,
 )
-from .bubble_solve import AUTO, COMPILED, CURVE_POINTS, REFERENCE_CAPS, SOLVERS, STIFF, Run, ensure_compiled, method_for, reference_for, solve
-from .bubble_terms import P0, WATER, Problem
-from .numerics import Measurement, Numerics
+from .solve import AUTO, COMPILED, CURVE_POINTS, REFERENCE_CAPS, SOLVERS, STIFF, Run, ensure_compiled, method_for, reference_for, solve
+from .terms import P0, WATER, Problem
+from ...physics.numerics import Measurement, Numerics
 
 EFFECTS = ("inertia", "gas", "vdw_hard_core", "vapour", "surface_tension", "viscosity", "thermal_damping",
            "step", "drive", "ramp", "radiation", "keller_miksis")
@@ -121,7 +121,7 @@ class Bubble(Model):
     effects = EFFECTS
     # `auto`: the analytic collapse when only inertia (+ vapour) acts, the compiled DOP853 otherwise, the
     # compiled Radau where the viscous terms are stiff, each at the rtol at which every readout of the
-    # book's bubble scenes shows the tight reference's digits (bubble_solve.EXPLICIT_RTOL, IMPLICIT_RTOL).
+    # book's bubble scenes shows the tight reference's digits (solve.EXPLICIT_RTOL, IMPLICIT_RTOL).
     # A scene's `rtol` replaces both. The tolerance bounds max |ΔR|/R0 (4.2e-6 measured, a violent collapse).
     numerics = Numerics(AUTO, tolerance=1e-5)
     methods = {AUTO: {"rtol": None, "atol": None}, **{name: {"rtol": 1e-6, "atol": None} for name in (*SOLVERS, *COMPILED)}}

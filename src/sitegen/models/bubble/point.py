@@ -10,12 +10,12 @@ import math
 
 import numpy as np
 
-from . import bubble_terms as terms
-from .bubble_solve import (
+from . import terms
+from .solve import (
     ANALYTIC, CAP_NFEV, CORE, CURVE_POINTS, EXPLICIT, EXPLICIT_RTOL, FAILED, IMPLICIT, IMPLICIT_RTOL, KM_STOP, MACH,
     POINT, STIFF, UNBOUNDED_GROWTH, Run,
 )
-from .bubble_terms import P0, T0, Problem
+from .terms import P0, T0, Problem
 
 DRIVE_PERIODS = 2  # the driven bubble runs two acoustic periods from rest at R0
 CURVE_EXTREMA = 200  # event-detected extrema merged into the drawn curve (the deepest, if more)

@@ -4,9 +4,9 @@ from __future__ import annotations
 from html import escape
 
 from ...render.work_precision import Panel, Point, Series, work_precision_figure
-from . import summary
-from .html import MISSING, duration, factor, figure, figure_html, label_html, run_point, sci, table
-from .sweep import near_listing, sweep_panel, sweep_rows
+from ...site.report import summary
+from ...site.report.html import MISSING, duration, factor, figure, figure_html, label_html, run_point, sci, table
+from ...site.report.sweep import near_listing, sweep_panel, sweep_rows
 
 
 class BubbleReport:

@@ -21,7 +21,7 @@ import numpy as np
 from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
 from scipy.optimize import brentq
 
-from .bubble_terms import (
+from .terms import (
     CORE_MARGIN,
     EPSILON,
     KELLER_MIKSIS,
@@ -32,13 +32,13 @@ from .bubble_terms import (
     rayleigh_radius,
     rayleigh_tau,
 )
-from . import compiled
-from .bubble_kernel_march import (
+from ...physics import compiled
+from .kernel_march import (
     CAP_CODE, DOP853_METHOD, ENDED, FAILED_CODE, G_ACCELERATION, G_RADIUS_LEVEL, G_SPEED, G_SPEED_LEVEL, RADAU_METHOD,
     march,
 )
-from .bubble_kernel_terms import pack
-from .numerics import Numerics
+from .kernel_terms import pack
+from ...physics.numerics import Numerics
 
 SOLVERS = {"RK45": RK45, "DOP853": DOP853, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
 COMPILED = {"compiled-DOP853": DOP853_METHOD, "compiled-Radau": RADAU_METHOD}  # the same steppers, compiled

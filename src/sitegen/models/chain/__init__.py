@@ -1,9 +1,9 @@
 """The built-in model 'chain': Chain, and its figure."""
 from __future__ import annotations
 
-from ...physics.chain import Chain
-from ...render.figures.chain import ChainFigure
-from ...site.report.chain import ChainReport
+from .model import Chain
+from .figure import ChainFigure
+from .report import ChainReport
 
 MODELS = {"chain": Chain}
 FIGURES = {"chain": ChainFigure()}

@@ -5,10 +5,10 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
 
-from ...physics.chain import DRAWN_WALL, LENGTH, SPEED, continuum_grid
-from .. import style as s
-from ..layers import Layer
-from .base import table_range
+from .model import DRAWN_WALL, LENGTH, SPEED, continuum_grid
+from ...render import style as s
+from ...render.layers import Layer
+from ...render.figures.base import table_range
 
 LOG_LO, LOG_HI = 0.3, 3.0  # the dispersion panel spans 2 … 1000 in k and ω: the modes of N = 1 … 256 all fit
 TALL = 1e3  # the walls drawn as layers reach beyond the panel, which clips them

@@ -12,7 +12,7 @@ import numpy as np
 import scipy.linalg
 from scipy.integrate import solve_ivp
 
-from .chain_modes import BARE, Terms, mass_and_stiffness, mode_frequencies
+from .modes import BARE, Terms, mass_and_stiffness, mode_frequencies
 
 
 @dataclass(frozen=True)

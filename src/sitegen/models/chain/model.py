@@ -10,14 +10,14 @@ from __future__ import annotations
 import numpy as np
 import scipy.fft
 
-from .base import Model, Output, Param
-from .chain_integrators import dense_motion
-from .chain_modes import (  # noqa: F401 (the figure, the bench and the tests import these names from here)
+from ...physics.base import Model, Output, Param
+from .integrators import dense_motion
+from .modes import (  # noqa: F401 (the figure, the bench and the tests import these names from here)
     AMPLITUDE, BARE, CENTRE, CONTINUUM_POINTS, DENSITY, DRAWN_WALL, ENDS, LAUNCHES, LENGTH, MAX_N, PULSE_WAVENUMBERS,
     RESOLVED, RIGHT_MOVING, SPEED, SPLIT, UNDER_RESOLVED, Terms, cutoff_frequency, mass_and_stiffness, mode_frequencies,
     positions, spacing, wavenumbers,
 )
-from .numerics import Measurement, Numerics
+from ...physics.numerics import Measurement, Numerics
 
 
 # --- initial state, the transforms and the exact evolution -----------------------------------------------------
@@ -236,7 +236,7 @@ class Chain(Model):
     )
     effects = ("boundary", "onsite_damping", "onsite_spring")
     # physics.md §11.1: the exact modal solution beats every integrator by 25–4000×; time steppers are
-    # kept for comparison only (chain_integrators.py). Its error is the rounding of the transforms.
+    # kept for comparison only (integrators.py). Its error is the rounding of the transforms.
     numerics = Numerics("DST", tolerance=1e-9)
     methods = {"DST": {}}
     error_metric = "max |Δuⱼ|/A at the frame"

@@ -4,8 +4,8 @@ from __future__ import annotations
 from html import escape
 
 from ...render.work_precision import Panel, Point, Series, work_precision_figure
-from . import summary
-from .html import MISSING, duration, figure, figure_html, label_html, run_point, sci, table
+from ...site.report import summary
+from ...site.report.html import MISSING, duration, figure, figure_html, label_html, run_point, sci, table
 
 
 class ChainReport:

@@ -1,8 +1,8 @@
 """The built-in model 'collision': Collision, and its figure."""
 from __future__ import annotations
 
-from ...physics.collision import Collision
-from ...render.figures.collision import CollisionFigure
+from .model import Collision
+from .figure import CollisionFigure
 
 MODELS = {"collision": Collision}
 FIGURES = {"collision": CollisionFigure()}

@@ -5,10 +5,10 @@ from __future__ import annotations
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from ...physics.collision import CONTACT
-from .. import style as s
-from ..layers import Layer
-from .base import param_range, table_range
+from .model import CONTACT
+from ...render import style as s
+from ...render.layers import Layer
+from ...render.figures.base import param_range, table_range
 
 
 class CollisionFigure:

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import contact
-from .base import Model, Output, Param
-from .structure import Choose, Coord, Poly, Ratio, Threshold, param
+from ...physics import contact
+from ...physics.base import Model, Output, Param
+from ...physics.structure import Choose, Coord, Poly, Ratio, Threshold, param
 
 COLLISION, SEPARATING = 0, 1
 CONTACT = "contact_spring_dashpot"

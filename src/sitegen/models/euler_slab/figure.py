@@ -4,9 +4,9 @@ from __future__ import annotations
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from ...physics.euler_slab import MIN_DRAWN_WIDTH, WAVE_X
-from .. import style as s
-from ..layers import Layer
+from .model import MIN_DRAWN_WIDTH, WAVE_X
+from ...render import style as s
+from ...render.layers import Layer
 
 SLAB_TOP = 1.08  # the shaded slab spans the wave's height (p′/P in ±1); notes sit above and below it
 Y_LIMIT = 1.38

@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Model, Output, Param
-from .structure import Coord, Poly
+from ...physics.base import Model, Output, Param
+from ...physics.structure import Coord, Poly
 
 RHO_AIR = 1.204  # kg/m³, air at 20 °C (physics.md §0.1)
 C_AIR = 343.2  # m/s

@@ -4,10 +4,10 @@ from __future__ import annotations
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from ...physics.impulse import CONTACT
-from .. import style as s
-from ..layers import Layer
-from .base import param_range, table_range
+from .model import CONTACT
+from ...render import style as s
+from ...render.layers import Layer
+from ...render.figures.base import param_range, table_range
 
 FAR = 1e3  # s: the velocity after the pulse is drawn flat to here (clipped at the panel's edge)
 SHAPE_WORDS = {"triangle": "a triangular", "hann": "a Hann (sine-squared)", "half_sine": "a half-sine", "rectangle": "a rectangular"}

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import contact
-from .base import Model, Output, Param
-from .structure import ChoiceOf, Choose, Coord, Poly, param
+from ...physics import contact
+from ...physics.base import Model, Output, Param
+from ...physics.structure import ChoiceOf, Choose, Coord, Poly, param
 
 SHAPES = ("triangle", "hann", "half_sine", "rectangle")
 TRIANGLE = 0

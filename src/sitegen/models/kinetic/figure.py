@@ -6,9 +6,9 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from ...physics.kinetic import HIST_SPAN, TRAIN_BINS
-from .. import style as s
-from ..layers import Layer
+from .model import HIST_SPAN, TRAIN_BINS
+from ...render import style as s
+from ...render.layers import Layer
 
 TRAIN_TOP = 3.0  # force axis: 0 .. 3 × the mean force; taller kicks (few molecules) are clipped
 PULSE_TOP = 6.0  # with contact_duration: room for the pulses of a few molecules

@@ -15,8 +15,8 @@ from functools import lru_cache
 import numpy as np
 from scipy.special import ndtri
 
-from .base import Model, Output, Param
-from .numerics import Measurement, Numerics
+from ...physics.base import Model, Output, Param
+from ...physics.numerics import Measurement, Numerics
 
 K_B = 1.380649e-23  # J/K, exact SI
 ATOMIC_MASS = 1.66053906660e-27  # kg

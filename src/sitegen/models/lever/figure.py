@@ -5,10 +5,10 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from ...physics.lever import DRAWN_SLOPE, LENGTH
-from .. import style as s
-from ..layers import Layer
-from .base import table_range
+from .model import DRAWN_SLOPE, LENGTH
+from ...render import style as s
+from ...render.layers import Layer
+from ...render.figures.base import table_range
 
 GROUND = -0.30  # the fulcrum stands on the ground; the pivot is at height 0
 ARM_LINE = -0.42  # height of the dimension lines of the arms L_L and L_R

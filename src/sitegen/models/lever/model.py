@@ -11,9 +11,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.special import ellipk, ellipkinc
 
-from .base import Model, Output, Param
-from .numerics import Measurement, Numerics
-from .structure import Choose, Coord, Poly, Threshold, param
+from ...physics.base import Model, Output, Param
+from ...physics.numerics import Measurement, Numerics
+from ...physics.structure import Choose, Coord, Poly, Threshold, param
 
 G = 9.81  # physics.md §0.1 requires 9.81: the seed's 2 kg · 9.81 m/s² · 1 m = 19.62 N·m (9.80665 shows 19.61)
 LENGTH = 2.0  # ℓ, the bar's length (m)

@@ -1,8 +1,8 @@
 """The built-in model 'ossicles': Ossicles, and its figure."""
 from __future__ import annotations
 
-from ...physics.ossicles import Ossicles
-from ...render.figures.ossicles import OssiclesFigure
+from .model import Ossicles
+from .figure import OssiclesFigure
 
 MODELS = {"ossicles": Ossicles}
 FIGURES = {"ossicles": OssiclesFigure()}

@@ -6,9 +6,9 @@ import math
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
-from .. import style as s
-from ..layers import Layer
-from .base import param_range, table_range
+from ...render import style as s
+from ...render.layers import Layer
+from ...render.figures.base import param_range, table_range
 
 FILL_ORANGE = "#f2c2a6"  # the lever figure's light orange (render/style.py's orange, lightened like FILL_BLUE)
 GROUND = -3.2  # mm: the fulcrum's feet; the bar (and the pivot) is at height 0

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Model, Output, Param
-from .structure import Coord, Log10, Poly, Ratio, param
+from ...physics.base import Model, Output, Param
+from ...physics.structure import Coord, Log10, Poly, Ratio, param
 
 P_REF = 20e-6  # Pa rms, the reference of SPL
 Z_AIR = 1.204 * 343.2  # ρ_a c_a at 20 °C: 413.2 Pa·s/m

@@ -4,10 +4,10 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.lines import Line2D
 
-from ...physics.work import ARROW_MAX, CHORD, DRAG, GRID_X, GRID_Y, HALF_CHORD, SPRING, arc_half_angle
-from .. import style as s
-from ..layers import Layer
-from .base import param_range
+from .model import ARROW_MAX, CHORD, DRAG, GRID_X, GRID_Y, HALF_CHORD, SPRING, arc_half_angle
+from ...render import style as s
+from ...render.layers import Layer
+from ...render.figures.base import param_range
 
 CHOSEN = {"fill": "none", "stroke": s.INK, "stroke-width": "2.6"}
 FAINT = {"fill": "none", "stroke": s.MUTED, "stroke-width": "1.3", "stroke-dasharray": "5 4"}

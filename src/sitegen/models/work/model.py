@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Model, Output, Param
-from .numerics import Measurement, Numerics
-from .structure import ChoiceOf, Choose, Coord, Poly, param
+from ...physics.base import Model, Output, Param
+from ...physics.numerics import Measurement, Numerics
+from ...physics.structure import ChoiceOf, Choose, Coord, Poly, param
 
 G = 9.81  # m/s², the book's value (physics.md §0.1)
 HALF_CHORD = 1.0  # A = (-1, 0), B = (1, 0): both on the line y = 0

@@ -73,10 +73,10 @@ def test_a_theme_overrides_a_template_and_adds_css(tiny_book):
     theme = tiny_book.root / "theme"
     (theme / "templates").mkdir(parents=True)
     base = (ROOT / "src" / "sitegen" / "site" / "templates" / "base.html").read_text()
-    (theme / "templates" / "base.html").write_text(base.replace("<main>", '<main class="themed">'))
+    (theme / "templates" / "base.html").write_text(base.replace("<main ", '<main class="themed" ', 1))
     (theme / "extra.css").write_text(".themed { max-width: 50rem; }\n")
     build(tiny_book, progress=None)
-    assert '<main class="themed">' in (tiny_book.out / "index.html").read_text()
+    assert '<main class="themed" ' in (tiny_book.out / "index.html").read_text()
     css = (tiny_book.out / "assets" / "sitegen.css").read_text()
     assert css.rstrip().endswith(".themed { max-width: 50rem; }") and "extra.css, from the book's theme" in css
 

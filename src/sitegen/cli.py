@@ -8,6 +8,7 @@ import os
 import sys
 from pathlib import Path
 
+from . import stamp
 from .config import BookConfig, ConfigError, read_book
 from .errors import BuildFailed, SceneCrashed
 
@@ -100,16 +101,24 @@ def _models(args, book: BookConfig) -> int:
 
 def _build(args, book: BookConfig) -> int:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # small linear algebra is 10x faster single-threaded
+    out = (args.out or book.output).resolve()
+    if not book.content.is_dir():
+        print(f"sitegen: no folder {book.relative(book.content)} in {book.root}: a book's pages are "
+              f"{book.relative(book.content)}/index.md and its other pages", file=sys.stderr)
+        return 2
+    stamped = not (args.no_cache or args.explain)  # both ask for the work itself, so neither stops early
+    inputs = stamp.inputs_digest(book) if stamped else None
+    last = stamp.up_to_date(book, out, inputs) if stamped else None
+    if last is not None:
+        print(f"up to date: no page, model, setting or library changed since the last build of {last['pages']} "
+              f"pages, {last['scenes']} scenes -> {out}")
+        return 0
     from .build import BuildConfig, build
     from .content.math import MathToolMissing
     from .registry import raising_line
 
     options = {"jobs": args.jobs, "scheduler": args.scheduler, "cache": None if args.no_cache else book.root / ".cache"}
-    config = BuildConfig(book.root, book.content, (args.out or book.output).resolve(), book=book, **options)
-    if not config.content.is_dir():
-        print(f"sitegen: no folder {book.relative(book.content)} in {book.root}: a book's pages are "
-              f"{book.relative(book.content)}/index.md and its other pages", file=sys.stderr)
-        return 2
+    config = BuildConfig(book.root, book.content, out, book=book, **options)
     try:
         report = build(config, progress=_Progress(sys.stdout, args.explain))
     except BuildFailed as failure:
@@ -141,6 +150,8 @@ def _build(args, book: BookConfig) -> int:
         print(f"sitegen: {where}: {type(problem).__name__}: {problem}\n"
               f"{config.out} holds the last complete build; run again with --debug for the traceback", file=sys.stderr)
         return 3
+    if stamped:
+        stamp.write_stamp(book, out, inputs, {"pages": report.pages, "scenes": report.scenes})
     total = sum(report.phases.values())
     size = sum(report.files.values())
     print(f"built {report.pages} pages, {report.scenes} scenes ({report.computed} computed, {report.cached} cached), "

@@ -30,7 +30,7 @@ import numpy as np
 
 from sitegen.build import BuildConfig, resolve_book
 from sitegen.compute.grid import CHOICE, LIST, RANGE
-from sitegen.compute.quantize import MINUS, fmt
+from sitegen.compute.quantize import MINUS, fmt, significant_text
 from sitegen.compute.scenes import ResolvedScene
 from sitegen.content.pages import Page
 from sitegen.errors import ErrorLog
@@ -382,6 +382,8 @@ def _evaluate_texts(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, t
             raise ValueError(f"output {output.name!r} of scene {scene.id} is {value} at {stops}")
         if output.labels:
             texts[output.name] = (output.labels[int(value)],)
+        elif output.digits:  # significant digits: one correct text (ties are not singled out)
+            texts[output.name] = (significant_text(value, output.digits, output.unit),)
         else:
             texts[output.name] = tuple(with_unit(t, output.unit) for t in _roundings(value, output.decimals))
     return texts
@@ -519,6 +521,8 @@ def layer_deps(scene: BookScene) -> dict[str, set[str]]:
     model = scene.scene.model
     deps = {}
     for layer in FIGURES[scene.scene.spec.figure or model.name].layers(scene.scene):
+        if layer.kind == "text":  # a note under the figure, not drawn in it
+            continue
         params = set()
         for ref in layer.refs():
             if isinstance(ref, str) and ref.startswith("in:"):

@@ -208,8 +208,10 @@ def _encode(tables: dict) -> bytes:
             continue
         meta.append({"name": name, "axes": list(t.axes), "shape": list(t.shape), "decimals": t.decimals,
                      "labels": list(t.labels), "width": t.width, "special": t.special, "ragged": t.lengths is not None,
-                     "summed": t.summed_axes, "raw": t.raw})
+                     "summed": t.summed_axes, "raw": t.raw, "digits": t.digits})
         arrays[f"q{i}"] = t.quanta
+        if t.exponents is not None:
+            arrays[f"e{i}"] = t.exponents
         if t.lengths is not None:
             arrays[f"n{i}"] = t.lengths
     buffer = io.BytesIO()
@@ -223,7 +225,8 @@ def _decode(payload: bytes) -> dict:
         tables = {
             m["name"]: Table(m["name"], tuple(m["axes"]), tuple(m["shape"]), archive[f"q{i}"], m["decimals"],
                              tuple(m["labels"]), m["width"], archive[f"n{i}"] if m["ragged"] else None, m["special"],
-                             m.get("summed", False), m.get("raw", False))
+                             m.get("summed", False), m.get("raw", False),
+                             archive[f"e{i}"] if m.get("digits") else None, m.get("digits", 0))
             for i, m in enumerate(meta) if "expr" not in m
         }
         for i, m in enumerate(meta):

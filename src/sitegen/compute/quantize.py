@@ -1,6 +1,10 @@
 """Numbers as the page shows them: integers counting units of the last displayed digit."""
 from __future__ import annotations
 
+import math
+import re
+from dataclasses import dataclass
+
 import numpy as np
 
 MINUS = "\u2212"
@@ -30,3 +34,91 @@ def format_quantum(quantum: int, decimals: int) -> str:
 def fmt(value: float, decimals: int) -> str:
     """Format one number exactly as the page does."""
     return format_quantum(int(quantize(value, decimals)), decimals)
+
+
+# --- significant digits: a readout whose values span decades ---------------------------------------------
+
+PREFIXES = {-12: "p", -9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G"}
+_POWER_OF = {text: power for power, text in PREFIXES.items()}
+# A unit an SI prefix may go on: an optional prefix, a base unit, then nothing or "/…", "·…" or " …" (not "m²").
+_UNIT = re.compile(r"([pnµmkMG]?)(Pa|Hz|m|s|g|J|W|N|K)(?=$|[/· ])(.*)")
+# Prefixes that read naturally on a base unit (beyond them, a power of ten): no "Gm", "ks" or "MK".
+_PREFIX_RANGE = {"m": (-9, 3), "s": (-12, 0), "g": (-6, 3), "K": (0, 0)}
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+_FROM_SUPERSCRIPT = str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")
+_POWER_UNIT = re.compile(r"× 10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)")
+
+
+@dataclass(frozen=True)
+class Written:
+    """How one value shown to significant digits is written: `shown` counts 10**-decimals and `suffix`
+    follows it (the prefixed unit, or "× 10ⁿ" and the unit); the value in the output's declared unit is
+    shown × 10**power."""
+
+    shown: int
+    decimals: int
+    suffix: str
+    power: int
+
+
+def significant(values, digits: int, special: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Each value rounded to `digits` significant digits as (mantissa, exponent): value ≈ mantissa ×
+    10**exponent with `digits` digits in the mantissa (zero as 0 × 10**0). Correctly rounded from the
+    double (Python's own decimal formatting). With `special`, non-finite values get the SPECIAL mantissa."""
+    values = np.asarray(values, dtype=float)
+    mantissas, exponents = np.zeros(values.shape, np.int64), np.zeros(values.shape, np.int64)
+    for index, value in np.ndenumerate(values):
+        if not math.isfinite(value):
+            mantissas[index] = SPECIAL if special else 0
+        elif value != 0.0:
+            digits_text, exponent = f"{value:.{digits - 1}e}".split("e")
+            mantissas[index] = int(digits_text.replace(".", ""))
+            exponents[index] = int(exponent) - (digits - 1)
+    return mantissas, exponents
+
+
+def written(mantissa: int, exponent: int, digits: int, unit: str) -> Written:
+    """How mantissa × 10**exponent (in `unit`) is written: with the SI prefix that puts one to three digits
+    before the point, or, where no prefix reads well (or the unit takes none), as a power of ten. A unit
+    that is itself a power of ten ("× 10⁻⁶") is folded into the number."""
+    if mantissa == 0:
+        return Written(0, 0, with_unit("", unit), 0)
+    shift, base, prefixable = _unit_parts(unit)
+    lead = exponent + digits - 1 + shift  # the power of the leading digit in the base unit
+    prefix = 3 * (lead // 3)
+    low, high = _PREFIX_RANGE.get(prefixable, (-12, 9))
+    if prefixable and low <= prefix <= high:
+        suffix = f" {PREFIXES[prefix]}{base}"
+    elif -3 <= lead <= 3 and not (prefixable and lead > high):  # plain decimals read best near 1
+        prefix, suffix = 0, with_unit("", base)
+    else:
+        prefix = lead
+        suffix = f"\u00a0×\u00a010{str(lead).translate(_SUPERSCRIPT)}" + (f" {base}" if base else "")
+    places = exponent + shift - prefix  # the power of the mantissa's last digit, in units of 10**prefix
+    extra = max(0, places)
+    return Written(mantissa * 10**extra, max(0, -places), suffix, exponent - extra)
+
+
+def _unit_parts(unit: str) -> tuple[int, str, str]:
+    """(power of ten of the declared unit over its base, the base unit, the base a prefix may go on or "")."""
+    power = _POWER_UNIT.fullmatch(unit)
+    if power:
+        return int(power[1].translate(_FROM_SUPERSCRIPT)), "", ""
+    match = _UNIT.fullmatch(unit)
+    if not match:
+        return 0, unit, ""
+    return _POWER_OF[match[1]], f"{match[2]}{match[3]}", match[2]
+
+
+def significant_text(value: float, digits: int, unit: str) -> str:
+    """One value as the page shows it to `digits` significant digits, e.g. (0.000564, 4, "J/m³") -> '564.0 µJ/m³'."""
+    mantissa, exponent = significant([value], digits)
+    form = written(int(mantissa[0]), int(exponent[0]), digits, unit)
+    return format_quantum(form.shown, form.decimals) + form.suffix
+
+
+def with_unit(text: str, unit: str) -> str:
+    """A value and its unit; "×" and "°" hug the number ("1.00×", "90°"), other units are spaced."""
+    if not unit:
+        return text
+    return f"{text}{unit}" if unit in ("×", "°") else f"{text} {unit}"

@@ -36,6 +36,7 @@ class Structured:
     parts: dict[str, Table] = field(default_factory=dict)  # the tables the expression reads
     sliders: tuple[np.ndarray, ...] = ()  # each slider's value at each stop, as the script computes it
     bounds: tuple[float, float] = (0.0, 0.0)  # smallest and largest shown value over the proof's stops
+    digits = 0  # an expression is shown to its decimals, never to significant digits
 
     def at(self, stops: tuple[int, ...]):
         """The quantum (or quanta of a vector) shown at a full slider position."""
@@ -189,8 +190,9 @@ def structured_pieces(scene: ResolvedScene, names) -> dict[str, object]:
     """The outputs among `names` with a declared structure under the scene's effects."""
     pieces = {}
     for name in names:
-        piece = scene.model.output(name).structure_for(scene.effects)
-        if piece is not None:
+        output = scene.model.output(name)
+        piece = output.structure_for(scene.effects)
+        if piece is not None and not output.digits:  # significant digits are looked up, never computed
             pieces[name] = piece
     return pieces
 

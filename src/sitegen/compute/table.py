@@ -21,6 +21,9 @@ class Table:
     special: str = ""  # how to show a SPECIAL quantum
     summed_axes: bool = False  # one index, the sum of the axes' stops (a function of, e.g., m1 + m2)
     raw: bool = False  # `quanta` holds the values themselves as doubles (a coordinate of an expression)
+    # Shown to significant digits: the power of ten of each entry's last digit (value = quanta × 10**exponent)
+    exponents: np.ndarray | None = None
+    digits: int = 0
 
     def flat_index(self, stops: tuple[int, ...]) -> int:
         """Row of the table at a full slider position (one stop per scene slider)."""
@@ -40,8 +43,16 @@ class Table:
 
     def value_range(self) -> tuple[float, float]:
         """Smallest and largest value the table holds (for a figure's axis limits)."""
-        scale = 1.0 if self.raw else 10.0**-self.decimals
-        return float(self.quanta.min()) * scale, float(self.quanta.max()) * scale
+        values = self.values()
+        return float(values.min()), float(values.max())
+
+    def values(self) -> np.ndarray:
+        """Every entry as the number it shows (a double as stored for a raw table)."""
+        if self.raw:
+            return self.quanta.astype(float)
+        if self.exponents is not None:
+            return self.quanta * 10.0 ** self.exponents.astype(float)
+        return self.quanta * 10.0**-self.decimals
 
     def at(self, stops: tuple[int, ...]):
         """The quantum (or, for a vector, the quanta) at a full slider position."""

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..errors import AuthorError
 from ..physics.structure import outputs_read
-from .quantize import SPECIAL, quantize
+from .quantize import quantize, significant
 from .scenes import ResolvedScene
 from .proof import require_showable, stop_text
 from .structure import compile_structured, structured_pieces
@@ -124,6 +124,11 @@ def _finish_table(scene: ResolvedScene, axes: tuple[int, ...], name: str, array:
         array = np.nan_to_num(array, nan=0.0)  # the padding; the lengths say where rows end
     _require_finite(scene, axes, output, array)
     require_showable(scene, output, array, lambda index: stop_text(scene, axes, index))
+    if output.digits and not output.size:  # mantissa and exponent, kept together while axes are dropped
+        quanta = np.stack(significant(array, output.digits, special=bool(output.special)), axis=-1)
+        kept, quanta = drop_constant_axes(axes, quanta)
+        return Table(name, kept, quanta.shape[: len(kept)], quanta[..., 0].reshape(-1), 0, special=output.special,
+                     exponents=quanta[..., 1].reshape(-1), digits=output.digits)
     quanta = array.astype(np.int64) if output.is_text else quantize(array, output.decimals, special=bool(output.special))
     if lengths is not None:  # drop axes only where the lengths are constant too
         quanta = np.concatenate([quanta, lengths[..., None]], axis=-1)

@@ -79,6 +79,7 @@ def figure_name(spec) -> str:
 def needed_outputs(scene, view) -> list[str]:
     """The outputs a scene shows: its readouts and whatever its figure's layers read."""
     names = [o.name for o in scene.readouts]
+    names += [o.why_from for o in scene.readouts if o.why_from and o.why_from not in names]
     for layer in view.layers(scene):
         names += sorted(layer.outputs() - set(names))
     return names

@@ -84,11 +84,15 @@ class Output:
     `bar_mass` is on; a parameter `replaced_by` an enabled effect drops out. `Model.deps_of` gives
     the result for a scene's effects.
 
-    A number output is shown with `decimals` digits; a text output is an index into `labels`.
+    A number output is shown with `decimals` digits, or, where its values span decades, with `digits`
+    significant digits (chosen from its accuracy) and a unit prefix or power of ten per value; a text
+    output is an index into `labels`.
     A vector output (`size` > 0) gives `size` numbers per parameter point, e.g. the geometry of a
     curve; a ragged one pads with NaN after its last element. Where the physics is singular (±inf)
     or the quantity does not exist (NaN) an output may be non-finite if it says how to show that in
-    words (`special`, e.g. "∞" or "—"); any other non-finite value fails the build.
+    words (`special`, e.g. "∞" or "—"); any other non-finite value fails the build. Where it shows "—"
+    the model says why: `why`, one phrase, or `why_from`, a text output whose phrase at the same point
+    is the reason.
     """
 
     name: str
@@ -100,6 +104,9 @@ class Output:
     size: int = 0
     ragged: bool = False
     special: str = ""
+    digits: int = 0  # significant digits (0: `decimals` decimals)
+    why: str = ""  # why the value does not exist where the output shows `special`
+    why_from: str = ""  # a text output giving that reason per point (instead of `why`)
     effect: str = ""  # the effect this output belongs to; shown only when the scene enables it
     deps_with: tuple[tuple[str, tuple[str, ...]], ...] = ()  # (effect, extra deps while it is on)
     # Its exact form (physics/structure.py), or a function of the scene's effects giving it; None:

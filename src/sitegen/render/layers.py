@@ -7,7 +7,7 @@ from ..compute.scenes import ResolvedScene
 from ..compute.table import Table
 
 Ref = float | str  # a number, "out:NAME" (a tabulated output) or "in:NAME" (a parameter's value)
-KINDS = ("polyline", "polygon", "dots")
+KINDS = ("polyline", "polygon", "dots", "text")
 
 
 @dataclass(frozen=True)
@@ -16,7 +16,8 @@ class Layer:
 
     Its vertices are either `points`, pairs of scalar references, or the vectors `xs` and `ys`,
     each a vector output ("out:NAME") or a tuple of fixed numbers. "dots" draws a round dot at
-    every vertex.
+    every vertex. A "text" layer is a note under the figure (e.g. the scale of normalised axes): its `text`
+    joins phrases and references, an output written as its readout is, a parameter as its control.
     """
 
     name: str
@@ -26,10 +27,17 @@ class Layer:
     xs: str | tuple[float, ...] | None = None
     ys: str | tuple[float, ...] | None = None
     style: dict[str, str] = field(default_factory=dict)
+    text: tuple[str, ...] = ()  # a text layer: phrases, and references "out:NAME" or "in:NAME"
+
+    @classmethod
+    def note(cls, name: str, *text: str) -> "Layer":
+        """A text layer: a note under the figure that changes with the sliders."""
+        return cls(name, "text", -1, text=text)
 
     def refs(self) -> list:
         """Every reference the layer reads."""
-        return [r for xy in self.points for r in xy] + [r for r in (self.xs, self.ys) if isinstance(r, str)]
+        refs = [r for xy in self.points for r in xy] + [r for r in (self.xs, self.ys) if isinstance(r, str)]
+        return refs + [part for part in self.text if part.startswith(("out:", "in:"))]
 
     def outputs(self) -> set[str]:
         """The tabulated outputs this layer reads."""
@@ -45,6 +53,8 @@ def resolve_ref(ref, scene: ResolvedScene, tables: dict[str, Table], stops: tupl
     kind, name = ref.split(":", 1)
     if kind == "out":
         table = tables[name]
+        if table.digits:
+            raise ValueError(f"a layer reads output '{name}', which is shown to significant digits: give the layer its own output")
         scale = 10.0**-table.decimals
         value = table.at(stops)
         return [float(q) * scale for q in value] if table.width else value * scale
@@ -55,6 +65,8 @@ def resolve_ref(ref, scene: ResolvedScene, tables: dict[str, Table], stops: tupl
 def layer_points(layers: list[Layer], scene, tables, stops) -> list[list[tuple[float, float]]]:
     """Every layer's vertices at a slider position."""
     def vertices(layer: Layer):
+        if layer.kind == "text":  # written by the page (site/assemble.py), not drawn
+            return []
         if layer.xs is not None:
             return list(zip(resolve_ref(layer.xs, scene, tables, stops), resolve_ref(layer.ys, scene, tables, stops)))
         return [(resolve_ref(x, scene, tables, stops), resolve_ref(y, scene, tables, stops)) for x, y in layer.points]

@@ -10,7 +10,7 @@ from pathlib import Path
 import jinja2
 
 from ..compute.grid import CHOICE, RANGE
-from ..compute.quantize import MINUS, SPECIAL, format_quantum
+from ..compute.quantize import MINUS, SPECIAL, format_quantum, with_unit, written
 from ..compute.scenes import ResolvedScene
 from ..compute.structure import Structured
 from ..compute.table import Table
@@ -47,14 +47,13 @@ def scene_html(scene: ResolvedScene, tables: dict[str, Table], figure: RenderedS
     """The scene element: figure, labelled controls, readouts at the defaults, and its data (`payload`)."""
     stops = scene.default_stops
     sliders = [_slider_view(scene, i, stops[i]) for i in range(len(scene.axes))]
-    readouts = [
-        {"name": o.name, "label": o.label, "is_text": o.is_text, "text": readout_text(tables[o.name], o.unit, stops)}
-        for o in scene.readouts
-    ]
+    readouts = [_readout_view(scene, tables, o, stops) for o in scene.readouts]
+    notes = [{"name": layer.name, "text": layer_text(layer, scene, tables, stops)} for layer in figure.layers if layer.kind == "text"]
     html = templates(book and book.theme).get_template("scene.html").render(
         id=dom_id(scene),
         model=scene.model.name,
         svg=_BIG_SVG,
+        notes=notes,
         sliders=sliders,
         readouts=readouts,
         caption=caption,
@@ -71,20 +70,55 @@ def dom_id(scene: ResolvedScene) -> str:
 
 
 def readout_text(table: Table, unit: str, stops: tuple[int, ...]) -> str:
-    """A readout as the page shows it: a phrase, or the rounded number and its unit."""
+    """A readout as the page shows it: a phrase, or the rounded number and its unit (to significant
+    digits, with a prefix or a power of ten, for a table that has them)."""
     q = table.at(stops)
     if table.labels:
         return table.labels[q]
     if q == SPECIAL:
         return table.special
+    if table.digits:
+        form = written(q, int(table.exponents[table.flat_index(stops)]), table.digits, unit)
+        return format_quantum(form.shown, form.decimals) + form.suffix
     return with_unit(format_quantum(q, table.decimals), unit)
 
 
-def with_unit(text: str, unit: str) -> str:
-    """A value and its unit; "×" and "°" hug the number ("1.00×", "90°"), other units are spaced."""
-    if not unit:
-        return text
-    return f"{text}{unit}" if unit in ("×", "°") else f"{text} {unit}"
+def _readout_view(scene: ResolvedScene, tables: dict[str, Table], output, stops: tuple[int, ...]) -> dict:
+    """A readout at the defaults: label, text, and (where it shows its special words) why."""
+    text = readout_text(tables[output.name], output.unit, stops)
+    why = why_text(output, tables, stops) if tables[output.name].at(stops) == SPECIAL and not output.is_text else ""
+    digits = tables[output.name].digits
+    note = f"{digits} significant digits; the unit's prefix follows the value" if digits else ""
+    return {"name": output.name, "label": output.label, "is_text": output.is_text, "text": text, "why": why,
+            "has_why": bool(output.why or output.why_from), "note": note}
+
+
+def why_text(output, tables: dict[str, Table], stops: tuple[int, ...]) -> str:
+    """Why an output shows its special words here, as its model says."""
+    if output.why_from:
+        table = tables[output.why_from]
+        return table.labels[table.at(stops)]
+    return output.why
+
+
+def layer_text(layer: Layer, scene: ResolvedScene, tables: dict[str, Table], stops: tuple[int, ...]) -> str:
+    """A text layer's words at a slider position: outputs written as readouts, parameters as controls."""
+    parts = []
+    for part in layer.text:
+        kind, _, name = part.partition(":")
+        if kind == "out":
+            parts.append(readout_text(tables[name], scene.model.output(name).unit, stops))
+        elif kind == "in":
+            index = scene.axis_index(name)
+            parts.append(slider_text(scene, index, stops[index]) if index is not None else
+                         with_unit(_plain_float(scene.base_values()[name]), scene.model.param(name).unit))
+        else:
+            parts.append(part)
+    return "".join(parts)
+
+
+def _plain_float(value: float) -> str:
+    return f"{value:g}".replace("-", MINUS)
 
 
 def slider_text(scene: ResolvedScene, index: int, stop: int) -> str:
@@ -125,12 +159,21 @@ def scene_payload(scene: ResolvedScene, tables: dict[str, Table], layers: tuple[
     sliders = [_axis_json(scene, i) for i in range(len(scene.axes))]
     payload = {
         "sliders": sliders,
-        "tables": _tables_json(tables),
-        "readouts": [{"out": o.name, "unit": o.unit} for o in scene.readouts],
+        "tables": _tables_json(tables, {o.name: o.unit for o in scene.model.outputs}),
+        "readouts": [_readout_json(o) for o in scene.readouts],
         "layers": [_layer_json(layer, scene) for layer in layers],
     }
     text = json.dumps(payload, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
     return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+
+
+def _readout_json(output) -> dict:
+    out = {"out": output.name, "unit": output.unit}
+    if output.why_from:
+        out["whyOf"] = output.why_from
+    elif output.why:
+        out["why"] = output.why
+    return out
 
 
 def _axis_json(scene: ResolvedScene, index: int) -> dict:
@@ -144,24 +187,28 @@ def _axis_json(scene: ResolvedScene, index: int) -> dict:
     return out
 
 
-def _tables_json(tables: dict[str, Table]) -> dict:
+def _tables_json(tables: dict[str, Table], units: dict[str, str]) -> dict:
     """Every table once: an output whose table equals an earlier one's refers to it by name."""
     out, first_of = {}, {}
     for name, table in sorted(tables.items()):
         if isinstance(table, Structured):
             out[name] = _structured_json(table)
             continue
-        key = (table.axes, table.decimals, table.labels, table.quanta.tobytes(), table.summed_axes, table.raw)
-        out[name] = {"same": first_of[key]} if key in first_of else _table_json(table)
+        exponents = b"" if table.exponents is None else table.exponents.tobytes() + units.get(name, "").encode()
+        key = (table.axes, table.decimals, table.labels, table.quanta.tobytes(), table.summed_axes, table.raw, exponents)
+        out[name] = {"same": first_of[key]} if key in first_of else _table_json(table, units.get(name, ""))
         first_of.setdefault(key, name)
     return out
 
 
-def _table_json(table: Table) -> dict:
+def _table_json(table: Table, unit: str = "") -> dict:
     rows = table.rows()
     if table.special:  # the marker becomes null, shown as the output's phrase
         rows = [None if q == SPECIAL else q for q in rows]
     out = {"axes": list(table.axes), "shape": list(table.shape), "d": table.decimals, "q": rows}
+    if table.digits:  # each entry written to significant digits: its shown digits and how it is written
+        out.update(_written_json(table, rows, unit))
+        rows = out["q"]
     if table.summed_axes:  # indexed by the sum of the axes' stops
         out["sum"] = 1
     if table.raw:  # the values themselves (a coordinate of an expression), not counts of a digit
@@ -174,6 +221,17 @@ def _table_json(table: Table) -> dict:
     if table.special:
         out["special"] = table.special
     return out
+
+
+def _written_json(table: Table, rows: list, unit: str) -> dict:
+    """A table shown to significant digits: the integer shown at each entry ("q"), and ("f") the index of
+    how it is written in a short list ("forms": [decimals, suffix, power]; the value is q × 10**power)."""
+    forms, indices, shown = {}, [], []
+    for q, exponent in zip(rows, table.exponents.tolist()):
+        form = written(0 if q is None else q, exponent, table.digits, unit)
+        indices.append(forms.setdefault((form.decimals, form.suffix, form.power), len(forms)))
+        shown.append(None if q is None else form.shown)
+    return {"q": shown, "f": indices, "forms": [list(key) for key in forms]}
 
 
 def _structured_json(table: Structured) -> dict:
@@ -199,11 +257,23 @@ def _packed_size(rows: list) -> int:
 
 def _layer_json(layer: Layer, scene: ResolvedScene) -> dict:
     out = {"name": layer.name, "kind": layer.kind}
+    if layer.kind == "text":  # phrases, outputs ({"o": name, "u": unit}) and controls ({"i": index})
+        out["text"] = [_text_part_json(part, scene) for part in layer.text]
+        return out
     if layer.xs is not None:
         out.update(xs=_ref_json(layer.xs, scene), ys=_ref_json(layer.ys, scene))
     else:
         out["pts"] = [[_ref_json(r, scene) for r in xy] for xy in layer.points]
     return out
+
+
+def _text_part_json(part: str, scene: ResolvedScene):
+    kind, _, name = part.partition(":")
+    if kind == "out":
+        return {"o": name, "u": scene.model.output(name).unit}
+    if kind == "in" and scene.axis_index(name) is not None:
+        return {"i": scene.axis_index(name)}
+    return with_unit(_plain_float(scene.base_values()[name]), scene.model.param(name).unit) if kind == "in" else part
 
 
 def _ref_json(ref, scene: ResolvedScene):

@@ -40,6 +40,8 @@ class AcousticEnergyFigure:
             Layer("rate", "polyline", 1, xs=XS, ys="out:dedt_x", style={**line, "stroke": s.BLUE, "stroke-width": "1.8"}),
             Layer("convergence", "dots", 1, xs=XS, ys="out:neg_dIdx_x", style=DOTS),
         ]
+        # The axes are in units of ⟨e⟩ᵢ and λ: the note gives them, so SPL and f visibly change the figure.
+        layers.append(Layer.note("scale", "⟨e⟩ᵢ = ", "out:e_inc", " · λ = ", "out:wavelength"))
         if scene.axis_index("x_probe") is not None:
             layers.insert(0, Layer("probe", "polyline", 0, (("in:x_probe", ENERGY_LIMITS[0]), ("in:x_probe", ENERGY_LIMITS[1])), style=probe))
         return layers

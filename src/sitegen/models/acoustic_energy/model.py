@@ -46,13 +46,17 @@ class AcousticEnergy(Model):
     _frame = ("R_r", "wt")
     _curve = {"size": X_POINTS, "decimals": 2}  # 0.01 ⟨e⟩ᵢ on a 6 ⟨e⟩ᵢ axis: about a pixel
     outputs = (
-        Output("P", "pressure amplitude P", "Pa", ("SPL",), decimals=5),
-        Output("wavelength", "wavelength λ", "m", ("f",), decimals=4),
-        Output("e_avg", "⟨e⟩ (any x)", "µJ/m³", ("SPL", "R_r"), decimals=4),
-        Output("I_avg", "⟨I⟩", "mW/m²", ("SPL", "R_r"), decimals=4),
-        Output("L_I", "intensity level L<sub>I</sub>", "dB", ("SPL", "R_r"), decimals=2, special="—"),
+        # Closed forms: four significant digits where the values span decades (SPL 0–140 dB: 14 in ⟨e⟩).
+        Output("P", "pressure amplitude P", "Pa", ("SPL",), decimals=5, digits=4),
+        Output("wavelength", "wavelength λ", "m", ("f",), decimals=4, digits=4),
+        Output("e_avg", "⟨e⟩ (any x)", "µJ/m³", ("SPL", "R_r"), decimals=4, digits=4),
+        Output("I_avg", "⟨I⟩", "mW/m²", ("SPL", "R_r"), decimals=4, digits=4),
+        Output("e_inc", "incident ⟨e⟩ᵢ = P²/2ρc²", "µJ/m³", ("SPL",), decimals=4, digits=4),
+        Output("L_I", "intensity level L<sub>I</sub>", "dB", ("SPL", "R_r"), decimals=2, special="—",
+               why="no net intensity: a standing wave's level is −∞ dB"),
         Output("transport", "⟨I⟩/(c⟨e⟩)", "", ("R_r",), decimals=3),
-        Output("ek_share", "e<sub>k</sub>/(e<sub>k</sub> + e<sub>p</sub>) at the probe", "%", ("R_r", "wt", "x_probe"), decimals=1, special="—"),
+        Output("ek_share", "e<sub>k</sub>/(e<sub>k</sub> + e<sub>p</sub>) at the probe", "%", ("R_r", "wt", "x_probe"), decimals=1, special="—",
+               why="no energy at the probe at this instant"),
         Output("validity", "linear acoustics", "", ("SPL",), labels=("valid", "invalid (P > 0.1 p₀ or U/c > 0.01)")),
         # The figure's curves along x, in units of ⟨e⟩ᵢ (I as I/c, derivatives per ω).
         Output("ek_x", "e<sub>k</sub>/⟨e⟩ᵢ", "", _frame, **_curve),
@@ -88,6 +92,7 @@ class AcousticEnergy(Model):
             "P": lambda: pressure_amplitude(x["SPL"]),
             "wavelength": lambda: C / x["f"],
             "e_avg": lambda: 1e6 * e_inc * (1.0 + R**2),
+            "e_inc": lambda: 1e6 * e_inc,
             "I_avg": lambda: 1e3 * (C * e_inc * standing_factor(R)),
             "L_I": lambda: _level(C * e_inc * standing_factor(R)),
             "transport": lambda: standing_factor(R) / (1.0 + R**2),

@@ -21,7 +21,7 @@ from . import terms
 from ...physics import compiled
 from ...physics.base import Model, Output, Param
 from .point import (
-    BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, SOLVER_LABELS, Scales, check_effects, compose, read_run,
+    BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, MISSING, SOLVER_LABELS, Scales, check_effects, compose, read_run,
 )
 from .solve import AUTO, COMPILED, CURVE_POINTS, REFERENCE_CAPS, SOLVERS, STIFF, Run, ensure_compiled, method_for, reference_for, solve
 from .terms import P0, WATER, Problem
@@ -51,6 +51,9 @@ DYNAMIC = {
     ),
     "ramp": (("growth", "the nucleus", "", BLAKE_LABELS), ("R_max", "R<sub>max</sub>/R<sub>0</sub>", "", 4)),
 }
+# Spanning decades over a drive's amplitudes: significant digits, as many as the solve's tolerance (1e-5
+# in R/R0, amplified about fivefold in p_g ∝ R^-3κ) keeps exact.
+SIGNIFICANT = {"mach": {"digits": 3}, "pg_peak": {"digits": 3}}
 COMMON = (("flag", "model check", "", FLAGS), ("solver", "solver", "", SOLVER_LABELS))
 # Figure geometry: x in the history's time unit (t/t_c, t/T, µs); y = R/R0, log10(R/R0), log10(R/R_B).
 GEOMETRY = (("curve_x", 3, CURVE_SIZE), ("curve_y", 3, CURVE_SIZE), ("stop_x", 5, 1), ("stop_y", 3, 1),
@@ -72,9 +75,12 @@ def _history_outputs() -> tuple[Output, ...]:
     for history, prefix in PREFIX.items():
         deps = LIQUID_AND_GAS + HISTORY_PARAMS[history]
         for key, label, unit, shown in DYNAMIC[history] + COMMON:
-            extra = {"labels": shown} if isinstance(shown, tuple) else {"decimals": shown, "special": "—"}
+            extra = {"labels": shown} if isinstance(shown, tuple) else {"decimals": shown, "special": "—", "why_from": f"{prefix}_{key}_why"}
+            extra.update(SIGNIFICANT.get(key, {}))
             output_deps = SOLVER_DEPS[history] if key == "solver" else deps
             outputs.append(Output(f"{prefix}_{key}", label, unit, output_deps, effect=history, **extra))
+            if "why_from" in extra:  # why it has no value where it shows "—"
+                outputs.append(Output(f"{prefix}_{key}_why", f"why {label} has no value", "", deps, labels=MISSING, effect=history))
         for key, decimals, size in GEOMETRY:
             if key.startswith("mark") and history == "ramp":  # the ramp's growth has no extremum to mark
                 continue
@@ -112,10 +118,12 @@ class Bubble(Model):
         Output("t_mach", "t/t<sub>c</sub> where |Ṙ| = c", "", ("rho", "c", "p_inf", "p_v"), decimals=5, effect="step"),
         Output("f0", "linear f<sub>0</sub>", "kHz", ("R0", "rho", "kappa", "h_frac", "p_v", "sigma", "D_g", "f"), decimals=1, effect="gas"),
         Output("beta", "viscous damping β = 2µ/ρR<sub>0</sub><sup>2</sup>", "1/ms", ("R0", "rho", "mu"), decimals=1, effect="viscosity"),
-        Output("two_sigma_R0", "2σ/R<sub>0</sub>", "kPa", ("R0", "sigma"), decimals=1, effect="surface_tension"),
-        Output("R_B", "Blake radius R<sub>B</sub>", "µm", ("R0", "sigma", "p_v"), decimals=4, special="—", effect="surface_tension"),
-        Output("p_blake", "Blake threshold p<sub>Blake</sub>", "kPa", ("R0", "sigma", "p_v"), decimals=1, effect="surface_tension"),
-        Output("p_end", "p<sub>∞</sub> after the ramp", "kPa", ("R0", "sigma", "p_v", "depth"), decimals=1, effect="ramp"),
+        # Closed forms over nuclei of 0.1–100 µm: four significant digits.
+        Output("two_sigma_R0", "2σ/R<sub>0</sub>", "kPa", ("R0", "sigma"), decimals=1, digits=4, effect="surface_tension"),
+        Output("R_B", "Blake radius R<sub>B</sub>", "µm", ("R0", "sigma", "p_v"), decimals=4, digits=4, special="—",
+               why="no surface tension, so no Blake radius", effect="surface_tension"),
+        Output("p_blake", "Blake threshold p<sub>Blake</sub>", "kPa", ("R0", "sigma", "p_v"), decimals=1, digits=4, effect="surface_tension"),
+        Output("p_end", "p<sub>∞</sub> after the ramp", "kPa", ("R0", "sigma", "p_v", "depth"), decimals=1, digits=4, effect="ramp"),
         Output("driven_p_far", "figure: p∞(t)/p0 over two periods", "", ("p_a",), decimals=3, size=CURVE_POINTS, effect="drive"),
     ) + _history_outputs()
     effects = EFFECTS
@@ -273,7 +281,7 @@ def shown_difference(mine: dict, theirs: dict, prefix: str, error: float) -> tup
             if not np.array_equal(a, b):
                 wrong.append(name)
             continue
-        unit = 10.0 ** -output.decimals
+        unit = _last_digit(b, output)
         differs = _shown(a, unit) != _shown(b, unit)
         if len(a) != len(b) or np.any(differs & ~(np.isfinite(a) & np.isfinite(b))):
             wrong.append(name)
@@ -287,6 +295,15 @@ def shown_difference(mine: dict, theirs: dict, prefix: str, error: float) -> tup
         elif np.any(differs):
             near.append(name)
     return tuple(wrong), tuple(near)
+
+
+def _last_digit(values: np.ndarray, output: Output):
+    """The unit of the last displayed digit: 10**-decimals, or, shown to significant digits, per value."""
+    if not output.digits:
+        return 10.0 ** -output.decimals
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lead = np.floor(np.log10(np.abs(values)))
+    return 10.0 ** np.where(np.isfinite(lead), lead - (output.digits - 1), 0.0)
 
 
 def _shown(values: np.ndarray, unit: float) -> np.ndarray:

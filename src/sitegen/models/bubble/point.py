@@ -36,6 +36,11 @@ FLAGS = (
     "evaluation cap hit: solve abandoned",
     "solver failed: step size underflow",
 )
+# Why a dynamic output has no value at a point (0: it has one): how the run ended (FLAGS from 2 on), or
+# what the bubble lacks for that quantity.
+MISSING = FLAGS + ("no gas in the bubble: nothing is compressed", "no van der Waals hard core (h = 0)",
+                   "not reached before the run ended")
+_NO_GAS, _NO_CORE, _NOT_REACHED = range(len(FLAGS), len(FLAGS) + 3)
 _FLAG_OF_STATUS = {MACH: 2, KM_STOP: 3, POINT: 4, CORE: 5, UNBOUNDED_GROWTH: 6, CAP_NFEV: 7, FAILED: 8}
 def _power(rtol: float) -> str:
     """An rtol as a label writes it: 1e−6."""
@@ -168,7 +173,20 @@ def read_run(run: Run, pb: Problem, scales: Scales, effects) -> dict:
     }
     out.update(_gas_peaks(pb, first["r_min"][1]))
     out.update(_figure_marks(run, scales, to_y, first))
+    out.update(_why_missing(out, pb))
     return out
+
+
+def _why_missing(out: dict, pb: Problem) -> dict:
+    """For each number ("<key>_why"): 0 where it has a value, else why not, as an index into MISSING."""
+    ended = out["flag"] if out["flag"] >= 2 else _NOT_REACHED
+    whys = {}
+    for key in ("R_max", "t_Rmax", "R_min", "t_Rmin", "mach", "pg_peak", "Tg_peak", "Rmin_h", "R_max2", "R_min2"):
+        reason = 0 if math.isfinite(out[key]) else ended
+        if reason and math.isfinite(out["R_min"]):  # the minimum exists: the quantity needs what is missing
+            reason = _NO_CORE if key == "Rmin_h" else _NO_GAS if key in ("pg_peak", "Tg_peak") else reason
+        whys[f"{key}_why"] = reason
+    return whys
 
 
 def _extremes(run: Run, pb: Problem, a: float, b: float) -> dict:

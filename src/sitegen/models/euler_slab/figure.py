@@ -38,6 +38,8 @@ class EulerSlabFigure:
             Layer("faces", "dots", 0, faces, style=FACE_DOTS),
             Layer("a-slab", "polygon", 1, bar(0.0, "out:bar_slab"), style={"fill": s.ORANGE, "fill-opacity": "0.55", "stroke": s.ORANGE, "stroke-width": "1.2"}),
             Layer("a-point", "polygon", 1, bar(1.0, "out:bar_point"), style={"fill": s.FILL_BLUE, "stroke": s.BLUE, "stroke-width": "1.2"}),
+            # The axes are in units of P, λ and Pk/ρₐ: the note gives P and λ, which L_p and f set.
+            Layer.note("scale", "P = ", "out:P", " · λ = ", "out:wavelength"),
         ]
 
     def draw(self, scene, tables, narrow=False):

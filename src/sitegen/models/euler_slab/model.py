@@ -77,20 +77,21 @@ class EulerSlab(Model):
     )
     _all = ("spl", "f", "dx_l", "phi")
     outputs = (
-        Output("P", "pressure amplitude P", "Pa", ("spl",), decimals=5),
-        Output("wavelength", "wavelength λ", "m", ("f",), decimals=5),
+        # Four significant digits where the values span decades (L_p 0–140 dB, f 20 Hz–20 kHz).
+        Output("P", "pressure amplitude P", "Pa", ("spl",), decimals=5, digits=4),
+        Output("wavelength", "wavelength λ", "m", ("f",), decimals=5, digits=4),
         Output("net_force", "net force per area f", "Pa", ("spl", "dx_l", "phi"), decimals=5, structure=_product(_AMPLITUDE, _FACES)),
-        Output("slab_mass", "slab mass per area ρ<sub>a</sub>Δx", "g/m²", ("f", "dx_l"), decimals=3),
+        Output("slab_mass", "slab mass per area ρ<sub>a</sub>Δx", "g/m²", ("f", "dx_l"), decimals=3, digits=4),
         Output("a_slab", "slab acceleration ā = f/(ρ<sub>a</sub>Δx)", "m/s²", _all, decimals=3,
                structure=_product(_AMPLITUDE, _K_PER_RHO, _MEAN)),
         Output("a_point", "Euler's point value a<sub>m</sub>", "m/s²", ("spl", "f", "phi"), decimals=3,
                structure=_product(_AMPLITUDE, _K_PER_RHO, _SIN_PHI)),
         Output("sinc", "ratio ā/a<sub>m</sub> = sinc(kΔx/2)", "", ("dx_l",), decimals=6),
-        Output("U", "particle velocity U", "mm/s", ("spl",), decimals=4),
-        Output("xi", "displacement ξ", "nm", ("spl", "f"), decimals=2,
+        Output("U", "particle velocity U", "mm/s", ("spl",), decimals=4, digits=4),
+        Output("xi", "displacement ξ", "nm", ("spl", "f"), decimals=2, digits=4,
                structure=_product(_AMPLITUDE, _INV_F, scale=1e9 / (RHO_AIR * C_AIR * 2.0 * np.pi))),
-        Output("mach", "acoustic Mach U/c<sub>a</sub>", "× 10⁻⁶", ("spl",), decimals=3),
-        Output("shock_distance", "shock-formation distance", "m", ("spl", "f"), decimals=1,
+        Output("mach", "acoustic Mach U/c<sub>a</sub>", "× 10⁻⁶", ("spl",), decimals=3, digits=4),
+        Output("shock_distance", "shock-formation distance", "m", ("spl", "f"), decimals=1, digits=4,
                structure=_product(_INV_AMPLITUDE, _INV_F, scale=RHO_AIR * C_AIR**3 / (BETA_AIR * 2.0 * np.pi))),
         Output("regime", "validity", "", ("spl",), labels=(
             "linear acoustics valid",

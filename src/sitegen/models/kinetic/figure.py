@@ -38,6 +38,8 @@ class KineticFigure:
             Layer("impulse-train", "polygon", 0, xs=_fixed(np.repeat(edges, 2)), ys=f"out:{train}",
                   style={"fill": s.FILL_BLUE, "stroke": s.BLUE, "stroke-width": "1"}),
             *sample,
+            # Forces, pressures and speeds are drawn in units of p_ideal and v_th, which T and the gas set.
+            Layer.note("scale", "p_ideal = ", "out:p_ideal", " · v_th = ", "out:v_th"),
             Layer("running-mean", "polyline", 1, xs=_fixed(edges[1:]), ys=f"out:{running}",
                   style={"fill": "none", "stroke": s.BLUE, "stroke-width": "2"}),
             Layer("velocity-histogram", "polygon", 2, xs="out:hist_x", ys="out:hist_y",

@@ -59,7 +59,7 @@ class Kinetic(Model):
     outputs = (
         Output("v_th", "v<sub>th</sub> = √(k<sub>B</sub>T/m)", "m/s", ("T", "species"), decimals=2),
         Output("v_rms", "v<sub>rms</sub> = √3 v<sub>th</sub>", "m/s", ("T", "species"), decimals=2),
-        Output("p_ideal", "p<sub>ideal</sub> = Nk<sub>B</sub>T/V", "Pa", ("N", "T"), decimals=2),
+        Output("p_ideal", "p<sub>ideal</sub> = Nk<sub>B</sub>T/V", "Pa", ("N", "T"), decimals=2, digits=4),
         Output("ratio_sample", "p<sub>sample</sub>/p<sub>ideal</sub>", "", ("N", "sampling"), decimals=6),
         Output("ratio", "p<sub>sim</sub>/p<sub>ideal</sub>", "", _WINDOW, decimals=6),
         Output("p_sim", "p<sub>sim</sub>", "Pa", ("N", "T", "t_w", "sampling"), decimals=2),

@@ -125,7 +125,7 @@ class Lever(Model):
                structure=Poly(lambda c: c["m_R"] * G * (LENGTH - c["x_p"]), ((_M_R, 1), (_X_P, 1)))),
         Output("tau_net", "net τ", "N·m", _POSITION, decimals=2,
                structure=Poly(lambda c: G * (c["m_L"] * c["x_p"] - c["m_R"] * (LENGTH - c["x_p"])), ((_M_L, 1), (_M_R, 1), (_X_P, 1)))),
-        Output("MA", "MA = L<sub>L</sub>/L<sub>R</sub>", "×", ("x_p",), decimals=2, special="∞ (pivot at the end)"),
+        Output("MA", "MA = L<sub>L</sub>/L<sub>R</sub>", "×", ("x_p",), decimals=2, digits=3, special="∞ (pivot at the end)"),
         Output("state", "the bar", "", _TILT, labels=STATES, structure=_STATE),
         Output("x_star", "balance point x*", "m", ("m_L", "m_R"), decimals=3, structure=_shifted_balance_point(0.0)),
         # Figure geometry: the fulcrum, the blocks' sides and the balance-point marker.

@@ -103,7 +103,7 @@ class Work(Model):
         Output("W", "W along path", "J", ("force", "path", "h", *_spring, *_drag), structure=_by_force(_SPRING_WORK, _DRAG_WORK)),
         # U of the conservative forces acting (spring, gravity). Drag has no potential at all, so with
         # drag alone there is no U to speak of: NaN, shown as "—".
-        Output("dU", "U(A) − U(B)", "J", ("force", *_spring), special="—"),
+        Output("dU", "U(A) − U(B)", "J", ("force", *_spring), special="—", why="this force has no potential energy: its work depends on the path"),
         Output("W_drag", "W by drag", "J", ("force", "path", "h", *_drag), structure=_by_force(Poly(lambda c: 0.0, ()), _DRAG_WORK)),
         Output("verdict", "path-independent?", "", ("force",), labels=("yes — conservative", "no — depends on the path")),
         Output("L", "path length", "m", ("path", "h")),

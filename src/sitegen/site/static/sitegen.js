@@ -1,10 +1,9 @@
-/* sitegen page script: moves scenes by selecting precomputed results. It knows controls, tables
- * and layers, and nothing of physics: every number it shows was computed when the book was built. */
+/* sitegen page script: moves scenes by selecting what the build computed. It knows no physics. */
 (function () {
   "use strict";
 
   var MINUS = "\u2212";
-  var FRAME_MS = 1000 / 24; // animation: one slider stop per frame
+  var FRAME_MS = 1000 / 24; // one stop per frame
 
   /* An integer count of 10^-d units, written as the build writes it: (-2333, 3) -> "−2.333". */
   function formatQuantum(q, d) {
@@ -15,26 +14,21 @@
   }
 
   /* A value and its unit; "×" and "°" hug the number ("1.00×", "90°"), other units are spaced. */
-  function withUnit(text, unit) {
-    return unit ? text + (unit === "\u00d7" || unit === "\u00b0" ? "" : " ") + unit : text;
-  }
+  function withUnit(text, unit) { return unit ? text + (unit === "\u00d7" || unit === "\u00b0" ? "" : " ") + unit : text; }
 
-  /* The entry of a table at the current stops: row-major over the table's own axes, or (for a
-   * table marked "sum") at the sum of their stops. */
-  function lookup(table, stops) {
+  /* A table's row: row-major over its axes' stops, or (marked "sum") their sum. */
+  function row(table, stops) {
     var flat = 0;
     for (var k = 0; k < table.axes.length; k++) {
       flat = table.sum ? flat + stops[table.axes[k]] : flat * table.shape[k] + stops[table.axes[k]];
     }
-    return table.q[flat];
+    return flat;
   }
 
-  /* Rounded to d digits as an integer count of 10^-d units, half up (the build rounds the same way). */
-  function toQuantum(v, d) {
-    return Math.floor(v * Math.pow(10, d) + 0.5);
-  }
+  /* Rounded half up to a count of 10^-d units, as the build rounds. */
+  function toQuantum(v, d) { return Math.floor(v * Math.pow(10, d) + 0.5); }
 
-  /* Tables may be stored as differences between neighbours (within each vector): add them up. */
+  /* Tables stored as differences between neighbours (within each vector), added up. */
   function undelta(rows) {
     if (rows.length && Array.isArray(rows[0])) return rows.map(undelta);
     var out = new Array(rows.length), sum = 0;
@@ -42,9 +36,7 @@
     return out;
   }
 
-  function short(x) {
-    return String(Math.round(x * 1e6) / 1e6);
-  }
+  function short(x) { return String(Math.round(x * 1e6) / 1e6); }
 
   function Scene(root) {
     var data = JSON.parse(root.querySelector("script.scene-data").textContent);
@@ -54,18 +46,13 @@
       else if (table.enc === "delta") table.q = undelta(table.q);
     });
     this.data = data;
-    this.controls = data.sliders.map(function (s) {
-      return root.querySelector('[data-param="' + s.param + '"]');
-    });
-    this.valueTexts = data.sliders.map(function (s) {
-      return root.querySelector('output[data-value-of="' + s.param + '"]');
-    });
-    this.readouts = data.readouts.map(function (r) {
-      return root.querySelector('[data-out="' + r.out + '"]');
-    });
-    this.layers = data.layers.map(function (l) { // in the wide figure and the phone's
-      return root.querySelectorAll('[data-layer="' + l.name + '"]');
-    });
+    var all = function (attr, name) { return root.querySelectorAll("[data-" + attr + '="' + name + '"]'); };
+    var each = function (list, attr, key) { return list.map(function (x) { return all(attr, x[key])[0]; }); };
+    this.controls = each(data.sliders, "param", "param");
+    this.valueTexts = each(data.sliders, "value-of", "param");
+    this.readouts = each(data.readouts, "out", "out");
+    this.whys = each(data.readouts, "why", "out");
+    this.layers = data.layers.map(function (l) { return all("layer", l.name); }); // both figures
     this.root = root;
     this.name = root.id.slice(6); // "scene-collision" -> "collision"
     this.defaults = data.sliders.map(function (s, i) { return this.stop(i, true); }, this);
@@ -76,13 +63,11 @@
     });
     var button = root.querySelector("button[data-animate]");
     if (button) this.animation = new Animation(this, root, button);
-    root.querySelector("button[data-reset]").addEventListener("click", function () {
-      self.setStops(self.defaults);
-    });
+    root.querySelector("button[data-reset]").addEventListener("click", function () { self.setStops(self.defaults); });
     this.update();
   }
 
-  /* A control's stop (`initial`: as built); evenly spaced sliders hold values, the others indices. */
+  /* A control's stop (`initial`: as built); even sliders hold values, the others indices. */
   Scene.prototype.stop = function (i, initial) {
     var s = this.data.sliders[i], control = this.controls[i], k = 0;
     if (s.kind === "choice") {
@@ -101,16 +86,16 @@
     else control.value = String(s.kind === "list" ? k : this.sliderValue(i, k));
   };
 
-  /* Every control to `stops`, the animation paused, the scene redrawn and its link written. */
+  /* Every control to `stops`, the animation paused, the scene redrawn, its link written. */
   Scene.prototype.setStops = function (stops) {
     if (this.animation) this.animation.pause();
-    for (var i = 0; i < stops.length; i++) this.setStop(i, stops[i]);
+    stops.forEach(function (k, i) { this.setStop(i, k); }, this);
     this.update();
     this.remember();
   };
 
-  /* The state as a link, "#collision:m1=2,e=0.5" (controls off their defaults; at the defaults the
-   * scene's id), replacing the address once the controls rest: Back still leaves the page. */
+  /* The state as a link, "#collision:m1=2,e=0.5" (controls off their defaults, else the scene's id),
+   * replacing the address once the controls rest: Back still leaves the page. */
   Scene.prototype.remember = function () {
     var self = this;
     clearTimeout(this.pending);
@@ -129,18 +114,16 @@
   Scene.prototype.findStop = function (i, text) {
     var s = this.data.sliders[i], x = /^-?(\d+\.?\d*|\.\d+)$/.test(text) ? Number(text) : NaN;
     for (var k = 0; k < s.count; k++) {
-      if (s.kind === "choice" ? s.texts[k] === text : short(this.sliderValue(i, k)) === short(x)) return k; // as written
+      if (s.kind === "choice" ? s.texts[k] === text : short(this.sliderValue(i, k)) === short(x)) return k;
     }
     return this.defaults[i];
   };
 
   Scene.prototype.stops = function () {
-    var stops = [];
-    for (var i = 0; i < this.controls.length; i++) stops.push(this.stop(i));
-    return stops;
+    return this.controls.map(function (c, i) { return this.stop(i); }, this);
   };
 
-  /* A control's value as text, as the build wrote it next to the control. */
+  /* A control's value as text, as the build wrote it. */
   Scene.prototype.stopText = function (i, k) {
     var s = this.data.sliders[i];
     return s.texts ? s.texts[k] : withUnit(formatQuantum(s.lo + k * s.step, s.d), s.unit);
@@ -152,23 +135,23 @@
     return s.values ? s.values[k] : (s.lo + k * s.step) / Math.pow(10, s.d);
   };
 
-  /* What an output shows at the stops: a phrase's index, null (shown in words), or a count of its
-   * last digit (a list for a vector): looked up, or an expression the build proved exact, rounded. */
+  /* What an output shows: a phrase's index, null (in words), or counts of its last digit (a list for
+   * a vector): looked up, or an expression the build proved exact, rounded. */
   Scene.prototype.quantum = function (name, stops) {
     var table = this.data.tables[name];
-    if (!table.expr) return lookup(table, stops);
+    if (!table.expr) return table.q[row(table, stops)];
     var v = this.compute(table.expr, stops);
     if (table.labels) return v;
     return Array.isArray(v) ? v.map(function (x) { return toQuantum(x, table.d); }) : toQuantum(v, table.d);
   };
 
-  /* An expression of the build, evaluated as compute/structure.py does: a constant, a control's or
-   * a table's value, a polynomial through nodes, a branch, a threshold, a ratio or a logarithm. */
+  /* An expression of the build, evaluated as compute/expression.py does: a constant, a control or a
+   * table, a polynomial through nodes, a branch, a threshold, a ratio or a logarithm. */
   Scene.prototype.compute = function (e, stops) {
     if ("c" in e) return e.c;
     if ("x" in e) return this.sliderValue(e.x, stops[e.x]);
     if ("t" in e) {
-      var table = this.data.tables[e.t], q = lookup(table, stops);
+      var table = this.data.tables[e.t], q = table.q[row(table, stops)];
       return table.labels || table.raw ? q : q / Math.pow(10, table.d);
     }
     if ("poly" in e) return this.poly(e, stops);
@@ -183,7 +166,7 @@
     return bottom === 0 ? e.zero : e.k * top / bottom;
   };
 
-  /* Lagrange interpolation through the nodes of each coordinate (tensor product, row-major values). */
+  /* Lagrange interpolation through each coordinate's nodes (tensor product, row-major values). */
   Scene.prototype.poly = function (e, stops) {
     var weights = [], index = [], total = null, k, j, m;
     for (k = 0; k < e.poly.length; k++) {
@@ -213,10 +196,20 @@
     return total;
   };
 
-  /* A layer reference: a number, [number, ...], ["i", control] or ["o", output] (a number or a list). */
+  /* An output as its readout shows it: a phrase, its words where it has no value, or the number to
+   * its decimals, or (a table with "forms") written as the entry's form says. */
+  Scene.prototype.text = function (name, unit, stops) {
+    var table = this.data.tables[name], q = this.quantum(name, stops);
+    if (table.labels) return table.labels[q];
+    if (q === null) return table.special;
+    if (!table.forms) return withUnit(formatQuantum(q, table.d), unit);
+    var form = table.forms[table.f[row(table, stops)]];
+    return formatQuantum(q, form[0]) + form[1];
+  };
+
+  /* A layer reference: a number, [number, ...], ["i", control] or ["o", output]. */
   Scene.prototype.value = function (ref, stops) {
-    if (typeof ref === "number") return ref;
-    if (typeof ref[0] === "number") return ref;
+    if (typeof ref === "number" || typeof ref[0] === "number") return ref;
     if (ref[0] === "i") return this.sliderValue(ref[1], stops[ref[1]]);
     var q = this.quantum(ref[1], stops), scale = Math.pow(10, -this.data.tables[ref[1]].d);
     return Array.isArray(q) ? q.map(function (v) { return v * scale; }) : q * scale;
@@ -224,11 +217,7 @@
 
   Scene.prototype.vertices = function (layer, stops) {
     var self = this;
-    if (layer.pts) {
-      return layer.pts.map(function (xy) {
-        return [self.value(xy[0], stops), self.value(xy[1], stops)];
-      });
-    }
+    if (layer.pts) return layer.pts.map(function (xy) { return [self.value(xy[0], stops), self.value(xy[1], stops)]; });
     var xs = this.value(layer.xs, stops), ys = this.value(layer.ys, stops), out = [];
     for (var j = 0; j < Math.min(xs.length, ys.length); j++) out.push([xs[j], ys[j]]);
     return out;
@@ -242,35 +231,37 @@
       if (self.valueTexts[i]) self.valueTexts[i].textContent = text;
     });
     data.readouts.forEach(function (r, i) {
-      var table = data.tables[r.out], q = self.quantum(r.out, stops), text;
-      if (table.labels) text = table.labels[q];
-      else if (q === null) text = table.special;
-      else text = withUnit(formatQuantum(q, table.d), r.unit);
-      if (self.readouts[i].textContent !== text) self.readouts[i].textContent = text;
+      var text = self.text(r.out, r.unit, stops), el = self.readouts[i];
+      if (el.textContent !== text) el.textContent = text;
+      if (!self.whys[i]) return; // why a value is shown in words: a tooltip, and read out
+      el.title = self.whys[i].textContent = self.quantum(r.out, stops) !== null ? "" : r.whyOf ? self.text(r.whyOf, "", stops) : r.why;
     });
     data.layers.forEach(function (layer, i) {
       var elements = self.layers[i];
       if (!elements.length) return;
+      if (layer.text) {
+        elements[0].textContent = layer.text.map(function (p) {
+          return p.o ? self.text(p.o, p.u, stops) : p.i >= 0 ? self.stopText(p.i, stops[p.i]) : p;
+        }).join("");
+        return;
+      }
       var vertices = self.vertices(layer, stops), dots = layer.kind === "dots";
       var text = vertices.map(function (p) {
-        return dots ? "M" + short(p[0]) + "," + short(p[1]) + "h0" : short(p[0]) + "," + short(p[1]);
+        var xy = short(p[0]) + "," + short(p[1]);
+        return dots ? "M" + xy + "h0" : xy;
       }).join(" ");
       for (var j = 0; j < elements.length; j++) elements[j].setAttribute(dots ? "d" : "points", text);
     });
   };
 
-  /* Play/pause for a scene that animates one slider; it pauses when the scene leaves the screen. */
+  /* Play/pause of one slider's stops; it pauses when the scene leaves the screen. */
   function Animation(scene, root, button) {
     this.scene = scene;
-    this.root = root;
     this.button = button;
     this.index = scene.data.sliders.map(function (s) { return s.param; }).indexOf(button.getAttribute("data-animate"));
     this.timer = null;
     var self = this;
-    button.addEventListener("click", function () {
-      if (self.timer) self.pause();
-      else self.play();
-    });
+    button.addEventListener("click", function () { if (self.timer) self.pause(); else self.play(); });
     if ("IntersectionObserver" in window) {
       new IntersectionObserver(function (entries) {
         if (!entries[entries.length - 1].isIntersecting) self.pause();
@@ -280,9 +271,7 @@
 
   Animation.prototype.play = function () {
     var self = this;
-    this.setAnnouncements("off"); // 24 updates a second would drown a screen reader
-    this.button.setAttribute("aria-pressed", "true");
-    this.button.textContent = "Pause";
+    this.mark(true);
     this.timer = setInterval(function () { self.step(); }, FRAME_MS);
   };
 
@@ -290,15 +279,16 @@
     if (!this.timer) return;
     clearInterval(this.timer);
     this.timer = null;
-    this.setAnnouncements("polite");
-    this.button.setAttribute("aria-pressed", "false");
-    this.button.textContent = "Play";
+    this.mark(false);
     this.scene.remember();
   };
 
-  Animation.prototype.setAnnouncements = function (mode) {
-    var regions = this.root.querySelectorAll("[aria-live]");
-    for (var i = 0; i < regions.length; i++) regions[i].setAttribute("aria-live", mode);
+  /* The button's state; playing silences the readouts (24 updates a second). */
+  Animation.prototype.mark = function (playing) {
+    var regions = this.scene.root.querySelectorAll("[aria-live]");
+    for (var i = 0; i < regions.length; i++) regions[i].setAttribute("aria-live", playing ? "off" : "polite");
+    this.button.setAttribute("aria-pressed", String(playing));
+    this.button.textContent = playing ? "Pause" : "Play";
   };
 
   Animation.prototype.step = function () {
@@ -307,29 +297,20 @@
     scene.update();
   };
 
-  /* A box wider than the text (an equation, a table) scrolls and shows it; an equation's becomes
-   * focusable and says so (a table's is a labelled region already). Which boxes overflow depends
-   * on the font and the width: decided here, on load and on resize. */
+  /* A box wider than the text scrolls; an equation's becomes focusable and says so (a table's is a
+   * labelled region). Overflow depends on font and width: decided on resize. */
   function markScrollers() {
     var boxes = document.querySelectorAll(".equation, .report-scroll");
     for (var i = 0; i < boxes.length; i++) {
       var box = boxes[i], scrolls = box.scrollWidth > box.clientWidth + 1;
       box.classList.toggle("scrolls", scrolls);
       if (!box.classList.contains("equation")) continue;
-      if (scrolls) {
-        box.setAttribute("tabindex", "0");
-        box.setAttribute("role", "group");
-        box.setAttribute("aria-label", "equation, scrolls sideways");
-      } else {
-        box.removeAttribute("tabindex");
-        box.removeAttribute("role");
-        box.removeAttribute("aria-label");
-      }
+      var marks = { tabindex: "0", role: "group", "aria-label": "equation, scrolls sideways" };
+      for (var name in marks) if (scrolls) box.setAttribute(name, marks[name]); else box.removeAttribute(name);
     }
   }
 
-  /* A link to a scene's state sets its controls (ignoring a name that is no control and a value
-   * that is no stop) and shows the scene. */
+  /* A link to a scene's state sets its controls (ignoring unknown names and values) and shows it. */
   function openLink(scenes) {
     var link = /^#([^:]+):(.*)$/.exec(location.hash), given = {}; // "#collision:m1=2,e=0.5"
     var scene = link && scenes.filter(function (s) { return s.name === link[1]; })[0];
@@ -345,11 +326,10 @@
     scene.root.scrollIntoView();
   }
 
-  /* Search loads its index (a classic script: it works from disk) when first used. */
+  /* Search loads its index (a classic script, for file://) when first used. */
   function searchOnDemand() {
-    var input = document.querySelector("input[data-index]");
+    var input = document.querySelector("input[data-index]"), script = document.createElement("script");
     if (input) input.addEventListener("focus", function () {
-      var script = document.createElement("script");
       script.src = input.getAttribute("data-index");
       document.head.appendChild(script);
     }, { once: true });
@@ -361,7 +341,7 @@
     if (document.fonts && document.fonts.ready) document.fonts.ready.then(markScrollers);
     var elements = document.querySelectorAll("[data-scene]"), scenes = [];
     for (var i = 0; i < elements.length; i++) scenes.push(new Scene(elements[i]));
-    // Going Back restores the controls' positions after load without an input event: redraw.
+    // Back restores the controls after load without an input event: redraw.
     window.addEventListener("pageshow", function () {
       scenes.forEach(function (scene) { scene.update(); });
     });

@@ -383,7 +383,7 @@ def _evaluate_texts(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, t
         if output.labels:
             texts[output.name] = (output.labels[int(value)],)
         elif output.digits:  # significant digits: one correct text (ties are not singled out)
-            texts[output.name] = (significant_text(value, output.digits, output.unit),)
+            texts[output.name] = (significant_text(0.0 if abs(value) < output.floor else value, output.digits, output.unit),)
         else:
             texts[output.name] = tuple(with_unit(t, output.unit) for t in _roundings(value, output.decimals))
     return texts

@@ -4,7 +4,10 @@ would, at the corners of its slider box and at seeded random stops.
 At each stop: no readout shows a non-zero value as zero (the model's own value decides; a quantity
 that takes both signs over the sweep may round to zero near its sign change), no number readout is
 longer than WIDTH_BUDGET characters or wider than its box, and every dash carries the model's reason
-(a tooltip, and text that screen readers read). At the defaults and at a random stop, moving any
+(a tooltip, and text that screen readers read). Over the sweep, a one-signed number readout keeps its
+significant digits: their count varies by at most DIGIT_SPREAD (fixed decimals over values that span
+decades give "0.179 µm" and "1438.5919 µm"; integer counts are exact at every digit and exempt, and so
+are outputs the page computes from a proven expression, which keep fixed decimals). At the defaults and at a random stop, moving any
 slider from its first to its last stop changes something a reader sees: a readout, a layer of the
 figure, or a note under it (the scale of a normalised figure).
 """
@@ -18,10 +21,12 @@ import re
 import numpy as np
 import pytest
 
-from browser import BookScene, book, describe_stop, stop_inputs
+from browser import FIGURES, BookScene, book, describe_stop, stop_inputs
+from sitegen.compute.structure import structured_pieces
 
 PAGES, SCENES = book()
-WIDTH_BUDGET = 14  # characters of a number readout, value and unit ("−123.4 mJ/m³", "1.234 × 10⁻⁵")
+WIDTH_BUDGET = 18  # characters of a number readout, value and unit ("−123.4 mJ/m³", "2.251 × 10⁻⁷ μc²A²")
+DIGIT_SPREAD = 3
 CORNERS = 16  # at most this many corners of the slider box per scene (a seeded choice beyond)
 RANDOM_STOPS = 12
 DASH = "—"
@@ -100,17 +105,18 @@ def readout_problems(scene: BookScene, stops, seen: dict, values: dict[str, floa
     problems = ["the readouts overflow their panel"] if seen["panel"] else []
     for readout in seen["readouts"]:
         name, text, output = readout["name"], readout["text"], outputs[readout["name"]]
-        if DASH in text and not (readout["title"].strip() and readout["described"].strip()):
+        if text.startswith(DASH) and not (readout["title"].strip() and readout["described"].strip()):
             problems.append(f"{name} shows {text!r} without a reason (title {readout['title']!r}, "
                             f"described {readout['described']!r})")
-        if output.is_text:
+        if output.is_text or text == output.special:
             continue
         if len(text) > WIDTH_BUDGET:
             problems.append(f"{name} shows {text!r}: {len(text)} characters, more than {WIDTH_BUDGET}")
         if readout["overflows"]:
             problems.append(f"{name} shows {text!r}, wider than its box")
         value = values[name]
-        if _ZERO.match(text) and math.isfinite(value) and value != 0.0 and name not in signed:
+        # zero to within its accuracy (`floor`, for an output shown to significant digits) is zero
+        if _ZERO.match(text) and math.isfinite(value) and abs(value) > output.floor and name not in signed:
             problems.append(f"{name} shows {text!r} for the non-zero value {value:.6g}")
     return [f"[{_where(scene, stops)}] {p}" for p in problems]
 
@@ -146,22 +152,70 @@ def test_every_stop_tells_the_truth(scene_pages, scene):
     problems = []
     for k, (stops, state) in enumerate(zip(positions, seen)):
         problems += readout_problems(scene, stops, state, {n: v[k] for n, v in values.items()}, signed)
+    problems += digit_spread_problems(scene, seen, signed)
     assert not problems, f"{len(problems)} problems:\n" + "\n".join(problems[:15])
 
 
+def significant_digits(text: str) -> int:
+    """How many significant digits a shown number has ("0.0120 m" 3, "1.234 × 10⁻⁵" 4; 0 for zero)."""
+    number = re.match(r"[−-]?([\d.]+)", text)
+    return len(number[1].replace(".", "").lstrip("0")) if number else 0
+
+
+def digit_spread_problems(scene: BookScene, seen: list[dict], signed: set[str]) -> list[str]:
+    """One-signed, non-integer number readouts whose count of significant digits varies by more than DIGIT_SPREAD."""
+    problems = []
+    computed = structured_pieces(scene.scene, [o.name for o in scene.scene.readouts])
+    for output in scene.scene.readouts:
+        if output.is_text or output.name in signed or output.name in computed or (output.decimals == 0 and not output.digits):
+            continue
+        shown = {r["text"] for state in seen for r in state["readouts"] if r["name"] == output.name and r["text"] != output.special}
+        counts = {text: significant_digits(text) for text in shown if significant_digits(text)}
+        if counts and max(counts.values()) - min(counts.values()) > DIGIT_SPREAD:
+            fewest, most = min(counts, key=counts.get), max(counts, key=counts.get)
+            problems.append(f"{output.name} shows {fewest!r} and {most!r}: {counts[fewest]} and {counts[most]} significant digits")
+    return problems
+
+
+def figure_deps(scene: BookScene) -> set[str]:
+    """The sliders the scene's figure depends on: read by a layer or a note, directly or through an output."""
+    model, effects = scene.scene.model, scene.scene.effects
+    params = set()
+    for layer in FIGURES[scene.scene.spec.figure or model.name].layers(scene.scene):
+        for ref in layer.refs():
+            if isinstance(ref, str) and ref.startswith("in:"):
+                params.add(ref[3:])
+            elif isinstance(ref, str) and ref.startswith("out:"):
+                params |= set(model.deps_of(ref[4:], effects))
+    return params & set(scene.params)
+
+
+def _figure(state: dict) -> tuple:
+    return tuple(state["layers"])
+
+
 def _visible(state: dict) -> tuple:
-    return tuple(r["text"] for r in state["readouts"]) + tuple(state["layers"])
+    return tuple(r["text"] for r in state["readouts"]) + _figure(state)
 
 
 @pytest.mark.parametrize("scene", SCENES, ids=[s.key for s in SCENES])
 def test_every_slider_changes_what_a_reader_sees(scene_pages, scene):
-    """From the defaults and from a random stop, each slider's first and last stops look different."""
+    """Each slider, moved from its first to its last stop (from the defaults and from seeded random
+    stops), changes what a reader sees, and the figure itself (a layer, or the note giving its scale):
+    a slider that moves only numbers beside a normalised figure leaves the figure looking frozen. The
+    figure must change with every slider it depends on (through its layers and notes); one it does not
+    draw at all (a mass beside a force–time curve) may move only numbers. A slider may be inert at some
+    stops (a drag's coefficient while the force is a spring): one stop where it acts is enough."""
+    drawn = figure_deps(scene)
     rng = random.Random(f"{scene.key}-base")
-    bases = [scene.defaults, tuple(rng.randrange(a.count) for a in scene.axes)]
-    frozen = []
-    for base, (i, axis) in itertools.product(bases, enumerate(scene.axes)):
-        ends = [tuple(k if j == i else s for j, s in enumerate(base)) for k in (0, axis.count - 1)]
-        low, high = _see(scene_pages(scene), scene, ends)
-        if _visible(low) == _visible(high):
-            frozen.append(f"{axis.param} from {_where(scene, base)}")
-    assert not frozen, "sliders that change nothing a reader sees: " + "; ".join(frozen)
+    bases = [scene.defaults, *(tuple(rng.randrange(a.count) for a in scene.axes) for _ in range(3))]
+    frozen, figure_frozen = [], []
+    for i, axis in enumerate(scene.axes):
+        seen = [_see(scene_pages(scene), scene, [tuple(k if j == i else s for j, s in enumerate(base))
+                                                  for k in (0, axis.count - 1)]) for base in bases]
+        if all(_visible(low) == _visible(high) for low, high in seen):
+            frozen.append(axis.param)
+        if axis.param in drawn and all(_figure(low) == _figure(high) for low, high in seen):
+            figure_frozen.append(axis.param)
+    assert not frozen, f"sliders that change nothing a reader sees: {frozen}"
+    assert not figure_frozen, f"sliders that leave the figure as it was: {figure_frozen}"

@@ -38,12 +38,12 @@ def fmt(value: float, decimals: int) -> str:
 
 # --- significant digits: a readout whose values span decades ---------------------------------------------
 
-PREFIXES = {-12: "p", -9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G"}
+PREFIXES = {-15: "f", -12: "p", -9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G"}
 _POWER_OF = {text: power for power, text in PREFIXES.items()}
 # A unit an SI prefix may go on: an optional prefix, a base unit, then nothing or "/…", "·…" or " …" (not "m²").
-_UNIT = re.compile(r"([pnµmkMG]?)(Pa|Hz|m|s|g|J|W|N|K)(?=$|[/· ])(.*)")
+_UNIT = re.compile(r"([fpnµmkMG]?)(Pa|Hz|m|s|g|J|W|N|K)(?=$|[/· ])(.*)")
 # Prefixes that read naturally on a base unit (beyond them, a power of ten): no "Gm", "ks" or "MK".
-_PREFIX_RANGE = {"m": (-9, 3), "s": (-12, 0), "g": (-6, 3), "K": (0, 0)}
+_PREFIX_RANGE = {"m": (-12, 3), "s": (-15, 0), "g": (-6, 3), "K": (0, 0)}
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 _FROM_SUPERSCRIPT = str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")
 _POWER_UNIT = re.compile(r"× 10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)")
@@ -61,16 +61,17 @@ class Written:
     power: int
 
 
-def significant(values, digits: int, special: bool = False) -> tuple[np.ndarray, np.ndarray]:
+def significant(values, digits: int, special: bool = False, floor: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Each value rounded to `digits` significant digits as (mantissa, exponent): value ≈ mantissa ×
     10**exponent with `digits` digits in the mantissa (zero as 0 × 10**0). Correctly rounded from the
-    double (Python's own decimal formatting). With `special`, non-finite values get the SPECIAL mantissa."""
+    double (Python's own decimal formatting). With `special`, non-finite values get the SPECIAL mantissa;
+    a value smaller in magnitude than `floor` (the output's accuracy) is zero."""
     values = np.asarray(values, dtype=float)
     mantissas, exponents = np.zeros(values.shape, np.int64), np.zeros(values.shape, np.int64)
     for index, value in np.ndenumerate(values):
         if not math.isfinite(value):
             mantissas[index] = SPECIAL if special else 0
-        elif value != 0.0:
+        elif abs(value) >= floor and value != 0.0:
             digits_text, exponent = f"{value:.{digits - 1}e}".split("e")
             mantissas[index] = int(digits_text.replace(".", ""))
             exponents[index] = int(exponent) - (digits - 1)
@@ -86,10 +87,10 @@ def written(mantissa: int, exponent: int, digits: int, unit: str) -> Written:
     shift, base, prefixable = _unit_parts(unit)
     lead = exponent + digits - 1 + shift  # the power of the leading digit in the base unit
     prefix = 3 * (lead // 3)
-    low, high = _PREFIX_RANGE.get(prefixable, (-12, 9))
+    low, high = _PREFIX_RANGE.get(prefixable, (-15, 9))
     if prefixable and low <= prefix <= high:
         suffix = f" {PREFIXES[prefix]}{base}"
-    elif -3 <= lead <= 3 and not (prefixable and lead > high):  # plain decimals read best near 1
+    elif -4 <= lead <= 3 and not (prefixable and lead > high):  # plain decimals read best near 1
         prefix, suffix = 0, with_unit("", base)
     else:
         prefix = lead

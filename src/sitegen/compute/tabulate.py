@@ -125,7 +125,7 @@ def _finish_table(scene: ResolvedScene, axes: tuple[int, ...], name: str, array:
     _require_finite(scene, axes, output, array)
     require_showable(scene, output, array, lambda index: stop_text(scene, axes, index))
     if output.digits and not output.size:  # mantissa and exponent, kept together while axes are dropped
-        quanta = np.stack(significant(array, output.digits, special=bool(output.special)), axis=-1)
+        quanta = np.stack(significant(array, output.digits, special=bool(output.special), floor=output.floor), axis=-1)
         kept, quanta = drop_constant_axes(axes, quanta)
         return Table(name, kept, quanta.shape[: len(kept)], quanta[..., 0].reshape(-1), 0, special=output.special,
                      exponents=quanta[..., 1].reshape(-1), digits=output.digits)

@@ -34,7 +34,8 @@ def assemble_scenes(book: Book, run: BuildRun) -> Book:
 
 def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> SceneRecord:
     scene, tables, figure, page = record.scene, record.tables, record.figure, record.page
-    key = digest(scene_digest(record), source_digest(PAYLOAD_CODE))
+    # The figure's layers go into the payload: a change to the view's layers is a new payload.
+    key = digest(scene_digest(record), source_digest(PAYLOAD_CODE), repr(figure.layers))
     payload = run.remember("payloads", key, lambda: scene_payload(scene, tables, figure.layers).encode())
     caption = fill_slots(record.caption, page.found, book.mathml[page.slug], [])
     if record.accuracy is not None:

@@ -105,6 +105,7 @@ class Output:
     ragged: bool = False
     special: str = ""
     digits: int = 0  # significant digits (0: `decimals` decimals)
+    floor: float = 0.0  # with `digits`: below this magnitude (the output's accuracy) a value shows as 0
     why: str = ""  # why the value does not exist where the output shows `special`
     why_from: str = ""  # a text output giving that reason per point (instead of `why`)
     effect: str = ""  # the effect this output belongs to; shown only when the scene enables it

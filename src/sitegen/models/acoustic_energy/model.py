@@ -55,7 +55,7 @@ class AcousticEnergy(Model):
         Output("L_I", "intensity level L<sub>I</sub>", "dB", ("SPL", "R_r"), decimals=2, special="—",
                why="no net intensity: a standing wave's level is −∞ dB"),
         Output("transport", "⟨I⟩/(c⟨e⟩)", "", ("R_r",), decimals=3),
-        Output("ek_share", "e<sub>k</sub>/(e<sub>k</sub> + e<sub>p</sub>) at the probe", "%", ("R_r", "wt", "x_probe"), decimals=1, special="—",
+        Output("ek_share", "e<sub>k</sub>/(e<sub>k</sub> + e<sub>p</sub>) at the probe", "%", ("R_r", "wt", "x_probe"), decimals=1, digits=4, floor=1e-9, special="—",
                why="no energy at the probe at this instant"),
         Output("validity", "linear acoustics", "", ("SPL",), labels=("valid", "invalid (P > 0.1 p₀ or U/c > 0.01)")),
         # The figure's curves along x, in units of ⟨e⟩ᵢ (I as I/c, derivatives per ω).

@@ -33,6 +33,8 @@ class WorkFigure:
             Layer("chosen-chord", "polyline", 0, xs="out:chord_x", ys=(0.0, 0.0), style=CHOSEN),
             Layer("heading", "polygon", 0, xs="out:head_x", ys="out:head_y", style=_filled(s.INK)),
             Layer("drag", "polygon", 0, xs="out:drag_x", ys="out:drag_y", style=_filled(s.ORANGE)),
+            # The field arrows are drawn to one length: the note gives the spring constant they stand for.
+            Layer.note("scale", "field arrows scaled to their longest; k = ", "in:k"),
         ]
         if "spring_rest_length" in scene.effects:
             layers.append(Layer("rest-length", "polyline", 0, xs="out:rest_x", ys="out:rest_y", style=REST))

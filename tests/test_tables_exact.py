@@ -115,6 +115,9 @@ def test_every_checked_stop_is_exact_to_the_displayed_digit(scene):
                 assert shown == want, (name, stops)
             elif want is None:  # a pole: shown in words
                 assert table.special and shown == SPECIAL, (name, stops)
+            elif table.digits:  # significant digits: within half a unit of the entry's own last digit
+                unit = Fraction(10) ** int(table.exponents[table.flat_index(stops)])
+                worst[name] = max(worst.get(name, 0), abs(shown * unit - want) / unit)
             else:
                 error = abs(Fraction(shown, 10**table.decimals) - want) * 10**table.decimals
                 worst[name] = max(worst.get(name, 0), error)

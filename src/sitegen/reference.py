@@ -73,10 +73,14 @@ def _output_row(o: Output) -> str:
         shown = f"one of {len(o.labels)} phrases"
     elif o.size:
         shown = f"{'up to ' if o.ragged else ''}{o.size} numbers, {o.decimals} decimals"
+    elif o.digits:
+        shown = f"{o.digits} significant digits, unit prefix per value" + (f" (0 below {o.floor:g})" if o.floor else "")
     else:
         shown = f"{o.decimals} decimals"
     if o.special:
         shown += f"; {plain(o.special)} where it does not exist or is infinite"
+        why = o.why or (f"why: {o.why_from}" if o.why_from else "")
+        shown += f" ({why})" if why else ""
     return _row(o.name, plain(o.label), o.unit, deps, shown, o.effect)
 
 

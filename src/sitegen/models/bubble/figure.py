@@ -55,7 +55,7 @@ class BubbleFigure:
             xs = tuple(float(v) for v in np.round(np.linspace(0.0, _x_end(scene), CURVE_POINTS), 6))
             layers.append(Layer("drive", "polyline", 1, xs=xs, ys="out:driven_p_far", style={**_LINE, "stroke": s.ORANGE, "stroke-width": "1.8"}))
         if _view(scene) == "collapse":  # R/R0 against t/t_c is universal: the note gives the scale R0 sets
-            layers.append(Layer.note("scale", "scaled to R₀ = ", "in:R0", ", t_c = ", "out:t_c"))
+            layers.append(Layer.note("scale", "scaled to R₀ = ", "in:R0", " and the collapse time ", "out:t_c"))
         return layers
 
     def draw(self, scene, tables, narrow=False):

@@ -39,7 +39,7 @@ class KineticFigure:
                   style={"fill": s.FILL_BLUE, "stroke": s.BLUE, "stroke-width": "1"}),
             *sample,
             # Forces, pressures and speeds are drawn in units of p_ideal and v_th, which T and the gas set.
-            Layer.note("scale", "p_ideal = ", "out:p_ideal", " · v_th = ", "out:v_th"),
+            Layer.note("scale", "scales: ideal-gas pressure ", "out:p_ideal", " · thermal speed ", "out:v_th"),
             Layer("running-mean", "polyline", 1, xs=_fixed(edges[1:]), ys=f"out:{running}",
                   style={"fill": "none", "stroke": s.BLUE, "stroke-width": "2"}),
             Layer("velocity-histogram", "polygon", 2, xs="out:hist_x", ys="out:hist_y",

@@ -49,7 +49,7 @@ class OssiclesFigure:
             Layer("T-without", "polygon", 2, _bar(0.0, "out:T0_dB"), style={**bar, "fill": s.LOST, "stroke": s.MUTED}),
             Layer("T-with", "polygon", 2, _bar(1.0, "out:T1_dB"), style={**bar, "fill": s.FILL_BLUE, "stroke": s.BLUE}),
             # The gains drawn hold at every level: the note shows what the input level changes.
-            Layer.note("level", "at L_p = ", "in:SPL", ": p = ", "out:p_TM", " at the eardrum, ", "out:L_OW", " at the oval window"),
+            Layer.note("level", "at ", "in:SPL", " the gains drawn give ", "out:p_TM", " at the eardrum, ", "out:L_OW", " at the oval window"),
         ]
 
     def draw(self, scene, tables, narrow=False):

@@ -22,7 +22,7 @@ LAYERS = (
     ("sitegen.site",),  # HTML: scenes, pages, the accuracy report's parts, assets, the writer
     ("sitegen.models",),  # the built-in plugins: a model, its figure and helpers per folder
     ("sitegen.registry", "sitegen.reference"),  # finds the plugins (built-in, installed, the book's); lists them
-    ("sitegen.phases", "sitegen.build"),  # the build: its phases and the script that runs them
+    ("sitegen.phases", "sitegen.build", "sitegen.stamp"),  # the build: its phases, the script that runs them, its stamp
     ("sitegen.accuracy", "sitegen.review"),  # tools that use the build and the layers below it
     ("sitegen.cli",),
 )

@@ -821,7 +821,7 @@ _BUBBLE_LIMITS = [
     Limit("bubble", "inertia", "", "no-parameter", skip="inertia is the base law, always on"),
     Limit("bubble", "gas", "kappa", "kappa", skip="kappa is the polytropic exponent, not the gas amount; "
           "gas->0 is singular (the Rayleigh collapse), tested via K4 reference 1 (physics.md §13)"),
-    _bubble("vdw_hard_core", "h_frac", "h_frac->0(driven)", _small(-4.0), skip_suffixes=("Rmin_h",)),
+    _bubble("vdw_hard_core", "h_frac", "h_frac->0(driven)", _small(-4.0), skip_suffixes=("Rmin_h", "Rmin_h_why")),
     _bubble("vapour", "p_v", "p_v->0(driven)", _small(-6.0), effects=(*_B_EFFECTS, "vapour")),
     _bubble("vapour", "p_v", "p_v->0(ramp)", _small(-6.0), effects=_C_EFFECTS, inputs=_NUCLEUS),
     _bubble("surface_tension", "sigma", "sigma->0(driven)", _small(-10.0)),

@@ -90,7 +90,8 @@ def _top(module: str) -> str:
 
 
 def forget_sources() -> None:
-    """Drop the remembered source hashes, so the next key reads the files again."""
+    """Drop the remembered source hashes, so the next key reads the files again (what each source
+    imports stays remembered by its hash: a long-lived process re-parses only the files that changed)."""
     _module_record.cache_clear()
 
 
@@ -99,7 +100,19 @@ def _module_record(name: str) -> tuple[str, tuple[str, ...]]:
     """A module's source hash and the modules it imports that have source files (read once per process)."""
     path = _module_path(name)
     source = path.read_bytes()
-    return hashlib.sha256(source).hexdigest(), tuple(_imports(name, source, path.name == "__init__.py"))
+    sha = hashlib.sha256(source).hexdigest()
+    return sha, tuple(f for f in _imported_names(name, source, sha, path.name == "__init__.py") if _module_path(f) is not None)
+
+
+_IMPORTED: dict[tuple[str, str, bool], tuple[str, ...]] = {}  # (module, source hash, is package) -> what it names
+
+
+def _imported_names(name: str, source: bytes, sha: str, is_package: bool) -> tuple[str, ...]:
+    """What a module's source imports (parsed once per distinct source: parsing is most of a key's cost)."""
+    key = (name, sha, is_package)
+    if key not in _IMPORTED:
+        _IMPORTED[key] = tuple(_imports(name, source, is_package))
+    return _IMPORTED[key]
 
 
 def digest(*parts: str) -> str:
@@ -259,7 +272,7 @@ def _module_path(name: str) -> Path | None:
 
 
 def _imports(name: str, source: bytes, is_package: bool) -> list[str]:
-    """Absolute names of the modules with source files that a module imports, anywhere in its body
+    """Absolute names of what a module imports (modules, or names from them), anywhere in its body
     (imports inside functions count: the chain imports its reference integrator only to check)."""
     package = name if is_package else name.rpartition(".")[0]
     found = []
@@ -273,7 +286,7 @@ def _imports(name: str, source: bytes, is_package: bool) -> list[str]:
             found.extend(f"{target}.{alias.name}" for alias in node.names)  # `from . import x` imports a module
         elif isinstance(node, ast.Import):
             found.extend(alias.name for alias in node.names)
-    return [f for f in dict.fromkeys(found) if f and _module_path(f) is not None]
+    return [f for f in dict.fromkeys(found) if f]
 
 
 def _sha(text: str) -> str:

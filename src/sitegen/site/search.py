@@ -2,6 +2,7 @@
 code that searches it as one classic script (assets/search.js), so that search works from disk."""
 from __future__ import annotations
 
+import functools
 import json
 from html.parser import HTMLParser
 
@@ -66,13 +67,14 @@ class _Sections(HTMLParser):
             self.sections[-1][2].append(text)
 
 
-def page_sections(html: str) -> list[tuple[str, str, str]]:
+@functools.lru_cache(maxsize=64)  # a rebuild in a long-lived process (serve --watch) parses only the pages that changed
+def page_sections(html: str) -> tuple[tuple[str, str, str], ...]:
     """A page's sections as (heading id, heading, text): the h1's section has no id."""
     parser = _Sections()
     parser.feed(html)
     parser.close()
-    return [(anchor if index else "", title, " ".join("".join(words).split()))
-            for index, (anchor, title, words) in enumerate(parser.sections)]
+    return tuple((anchor if index else "", title, " ".join("".join(words).split()))
+                 for index, (anchor, title, words) in enumerate(parser.sections))
 
 
 def search_script(sections: dict[str, list], pages: list[Page]) -> bytes:

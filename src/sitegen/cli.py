@@ -1,9 +1,7 @@
-"""The `sitegen` command: build, serve, review, bench, models, and accept-figures/check-figures for the figure goldens."""
+"""The `sitegen` command: new, build, serve, review, bench, models, and accept-figures/check-figures for the figure goldens."""
 from __future__ import annotations
 
 import argparse
-import functools
-import http.server
 import os
 import sys
 from pathlib import Path
@@ -19,6 +17,10 @@ def main(argv: list[str] | None = None) -> int:
                                      epilog="Every command works on the book in the current folder (the folder of its "
                                             "book.toml), or in the folder given with --root.")
     commands = parser.add_subparsers(dest="command", required=True)
+    new_cmd = commands.add_parser("new", help="write a new book into DIR (a new or empty folder)",
+                                  description="write a new book into DIR: book.toml, a home page, a chapter with "
+                                              "a scene of the book's own model, and a test of that model")
+    new_cmd.add_argument("folder", type=Path, metavar="DIR")
     build_cmd = _command(commands, "build", "build the site into the book's output folder (book.toml 'output', default build/)")
     build_cmd.add_argument("--out", type=Path, default=None, help="output folder (default: the book's)")
     build_cmd.add_argument("--debug", action="store_true", help="show Python tracebacks")
@@ -28,8 +30,12 @@ def main(argv: list[str] | None = None) -> int:
     build_cmd.add_argument("--no-cache", action="store_true", help="compute every scene; neither read nor write tables in .cache/ (compiled code is still kept in .cache/compiled/)")
     serve_cmd = _command(commands, "serve", "serve the built site on 127.0.0.1")
     serve_cmd.add_argument("--dir", type=Path, default=None, help="folder to serve (default: the book's output folder)")
-    serve_cmd.add_argument("--port", type=int, default=8000)
-    serve_cmd.add_argument("--bind", default="127.0.0.1")
+    serve_cmd.add_argument("--port", type=int, default=8000, help="port (default 8000; 0: any free port)")
+    serve_cmd.add_argument("--host", "--bind", dest="host", default="127.0.0.1",
+                           help="address to listen on (default 127.0.0.1: this machine only)")
+    serve_cmd.add_argument("--watch", action="store_true",
+                           help="build the book, then rebuild it when its pages, book.toml, theme or models change; "
+                                "open pages reload by themselves and show a failed build's errors")
     review_cmd = _command(commands, "review", "compare two builds: the figures, tables and text that changed")
     review_cmd.add_argument("trees", nargs="*", type=Path, metavar="BUILD", help="OLD NEW, or with --base only NEW")
     review_cmd.add_argument("--base", metavar="REV", help="build git revision REV in a temporary worktree as OLD; NEW defaults to the book's output folder")
@@ -47,6 +53,8 @@ def main(argv: list[str] | None = None) -> int:
     models_cmd.add_argument("name", nargs="?", help="one model (default: every model)")
     models_cmd.add_argument("--builtin", action="store_true", help="only sitegen's built-in models (as in docs/models.md)")
     args = parser.parse_args(argv)
+    if args.command == "new":
+        return _new(args.folder)
     try:
         book = read_book(args.root, required=_needs_book(args))
     except ConfigError as problem:
@@ -58,7 +66,7 @@ def main(argv: list[str] | None = None) -> int:
 def _needs_book(args) -> bool:
     """Whether the command must find book.toml: not when every folder it uses is given."""
     if args.command == "serve":
-        return args.dir is None
+        return args.dir is None or args.watch
     if args.command == "review":
         return args.base is not None or len(args.trees) < 2
     if args.command in ("accept-figures", "check-figures"):
@@ -70,6 +78,20 @@ def _command(commands, name: str, text: str):
     command = commands.add_parser(name, help=text, description=text)
     command.add_argument("--root", type=Path, default=Path.cwd(), help="the book's folder, which holds book.toml (default: the current folder)")
     return command
+
+
+def _new(folder: Path) -> int:
+    from .newbook import FolderNotEmpty, new_book
+
+    try:
+        written = new_book(folder)
+    except FolderNotEmpty as problem:
+        print(f"sitegen: {problem}", file=sys.stderr)
+        return 2
+    print(f"wrote a new book into {folder}: {', '.join(written)}\n"
+          f"next: cd {folder} && sitegen build (then open build/index.html), or sitegen serve --watch to see "
+          f"each edit in the browser as you save it")
+    return 0
 
 
 def _review(args, book: BookConfig) -> int:
@@ -212,34 +234,27 @@ def _counter(line: str) -> tuple[int, int]:
     return int(done), int(total)
 
 
-class _SiteHandler(http.server.SimpleHTTPRequestHandler):
-    """Serves the files of one folder and nothing else: no listings, no path out of it (not through
-    '..', encoded or not, nor a symbolic link)."""
-
-    def send_head(self):
-        root = os.path.realpath(self.directory)
-        target = os.path.realpath(self.translate_path(self.path))
-        if target != root and not target.startswith(root + os.sep):
-            self.send_error(404, "File not found")
-            return None
-        return super().send_head()
-
-    def list_directory(self, path):
-        self.send_error(404, "No listing; link to a file")
-        return None
-
-
 def _serve(args, book: BookConfig) -> int:
+    from .preview.server import Live, site_server
+
+    if args.watch and args.dir is not None:
+        print("sitegen: serve --watch serves the book's output folder; leave out --dir", file=sys.stderr)
+        return 2
     directory = (args.dir or book.output).resolve()
-    if not (directory / "index.html").is_file():
+    if not args.watch and not (directory / "index.html").is_file():
         print(f"sitegen: nothing to serve in {directory}; build the book first (sitegen build)", file=sys.stderr)
         return 1
-    handler = functools.partial(_SiteHandler, directory=str(directory))
+    live = Live() if args.watch else None
     try:
-        server = http.server.ThreadingHTTPServer((args.bind, args.port), handler)
+        server = site_server(directory, args.host, args.port, live)
     except OSError as problem:
-        print(f"sitegen: cannot serve on {args.bind}:{args.port}: {problem.strerror or problem}; choose another --port", file=sys.stderr)
+        print(f"sitegen: cannot serve on {args.host}:{args.port}: {problem.strerror or problem}; choose another --port", file=sys.stderr)
         return 1
+    if args.watch:
+        os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+        from .preview.watch import serve_watching
+
+        return serve_watching(book, directory, server, live)
     with server:
         host, port = server.server_address[:2]
         print(f"serving {directory} at http://{host}:{port}/index.html (Ctrl-C stops)", flush=True)

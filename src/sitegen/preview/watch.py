@@ -1,0 +1,171 @@
+"""`sitegen serve --watch`: build the book, serve it, and rebuild it whenever its pages, book.toml,
+theme or models change, telling the open pages (server.Live) after every attempt.
+
+Changes come from the system's file events through watchfiles (no polling loop). The rebuild runs in
+this process with what is already loaded: the registry of models is kept unless a model or book.toml
+changed, and the cache keeps every scene whose key did not change, so a prose edit evaluates no model
+and an edit to a model recomputes only the scenes that use it.
+"""
+from __future__ import annotations
+
+import queue
+import threading
+import time
+from dataclasses import dataclass
+from http.server import ThreadingHTTPServer
+from pathlib import Path
+from typing import Iterator
+
+import watchfiles
+
+from ..build import BuildConfig, build
+from ..config import CONFIG_FILE, BookConfig, ConfigError, read_book
+from ..content.math import MathToolMissing
+from ..errors import BuildFailed, SceneCrashed
+from ..registry import Registry, load_registry, raising_line
+from .server import Live
+
+SETTLE_MS = 50  # a batch of changes ends after this long without another (one save is often several events)
+LONGEST_MS = 400  # ... or after this long in all, while changes keep coming
+
+
+def serve_watching(book: BookConfig, out: Path, server: ThreadingHTTPServer, live: Live, say=print) -> int:
+    """Build the book into `out`, serve it with `server` (which shows `live`) and rebuild on every
+    change until Ctrl-C; the exit status."""
+    stop, serving = threading.Event(), threading.Thread(target=server.serve_forever, name="preview-server", daemon=True)
+    try:
+        builder = Builder(book, out, live, say)
+        builder.rebuild(set())
+        serving.start()
+        host, port = server.server_address[:2]
+        say(f"serving {builder.out} at http://{host}:{port}/index.html, rebuilding on changes (Ctrl-C stops)", flush=True)
+        for changed in BookWatcher(builder.book, stop).batches():
+            builder.rebuild(changed)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        stop.set()
+        live.close()
+        if serving.is_alive():
+            server.shutdown()
+        server.server_close()
+    return 0
+
+
+@dataclass
+class Builder:
+    """Rebuilds one book into one folder, keeping the registry of models while neither a model nor
+    book.toml changed, and publishes each attempt to the open pages."""
+
+    book: BookConfig
+    out: Path
+    live: Live
+    say: object = print
+    registry: Registry | None = None
+
+    def rebuild(self, changed: set[Path]) -> bool:
+        """One attempt after `changed` (empty: the first build); whether it succeeded."""
+        start = time.perf_counter()
+        errors = self._refresh(changed)
+        report = None
+        if not errors:
+            report, errors = attempt(BuildConfig(self.book.root, self.book.content, self.out, cache=self.book.root / ".cache",
+                                                 book=self.book), self.registry, self._scene_line)
+        self.live.publish(report is not None, errors)
+        seconds = time.perf_counter() - start
+        what = ", ".join(sorted(self.book.relative(p) for p in changed)) or "the book"
+        if report is None:
+            self.say(f"build of {what} failed after {seconds:.2f} s ({len(errors)} error(s)); the pages show them:", flush=True)
+            for error in errors:
+                self.say(f"  {error}", flush=True)
+        else:
+            self.say(f"built {what} in {seconds:.2f} s: {report.pages} pages, {report.scenes} scenes "
+                     f"({report.computed} computed)", flush=True)
+        return report is not None
+
+    def _refresh(self, changed: set[Path]) -> list[str]:
+        """Read book.toml and load the models again when they changed; their errors, if any."""
+        if self.book.root / CONFIG_FILE in changed:
+            try:
+                self.book = read_book(self.book.root, required=True)
+            except ConfigError as problem:
+                return [str(problem)]
+            self.registry = None
+        if any(path.is_relative_to(self.book.models) for path in changed):
+            self.registry = None
+        if self.registry is None:
+            self.registry = load_registry(self.book)
+        return []
+
+    def _scene_line(self, line: str) -> None:
+        if line.startswith("[") and not line.endswith("cached"):  # the scenes this edit recomputed
+            self.say(f"  {line}", flush=True)
+
+
+def attempt(config: BuildConfig, registry: Registry, progress) -> tuple[object | None, list[str]]:
+    """(the build's report, []) or (None, its errors as the author reads them: file:line: ...)."""
+    try:
+        return build(config, progress=progress, registry=registry), []
+    except BuildFailed as failure:
+        return None, [str(error) for error in failure.errors]
+    except (MathToolMissing, SceneCrashed, OSError) as problem:
+        return None, [str(problem)]
+    except Exception as problem:  # a bug in a model or in sitegen: its line, as `sitegen build` names it
+        return None, [f"{raising_line(problem, [], config.book)}: {type(problem).__name__}: {problem}"]
+
+
+class BookWatcher:
+    """Batches of the book's changed files: its content, theme and models folders (each watched with
+    all it holds, where it exists) and, in the book's own folder, book.toml and those folders coming
+    or going. The book's folder itself is not watched deeply: it holds the output, .cache and more."""
+
+    def __init__(self, book: BookConfig, stop: threading.Event):
+        self.book, self.stop = book, stop
+        self.changes: queue.Queue[set[Path]] = queue.Queue()
+        self.regroup = threading.Event()  # a watched folder appeared or went: watch the folders anew
+
+    def batches(self) -> Iterator[set[Path]]:
+        """Each batch of changes, as they come (until `stop` is set)."""
+        top = {CONFIG_FILE} | {f.name for f in self._folders(existing=False) if f.parent == self.book.root}
+        self._start(lambda: self._watch([self.book.root], recursive=False, keep=lambda _, path: Path(path).name in top, stop=self.stop))
+        self._start(self._watch_folders)
+        while not self.stop.is_set():
+            try:
+                batch = self.changes.get(timeout=0.5)
+            except queue.Empty:
+                continue
+            if any(p.name in top and p.parent == self.book.root and p.name != CONFIG_FILE for p in batch):
+                self.regroup.set()
+            yield batch
+
+    def _folders(self, existing: bool = True) -> list[Path]:
+        folders = [self.book.content, self.book.theme, self.book.models]
+        return [f for f in folders if f.is_dir() or not existing]
+
+    def _watch_folders(self) -> None:
+        while not self.stop.is_set():
+            self.regroup.clear()
+            folders = self._folders()
+            if not folders:
+                self.regroup.wait(0.5)
+                continue
+            self._watch(folders, recursive=True, keep=watchfiles.DefaultFilter(), stop=_Either(self.stop, self.regroup))
+
+    def _watch(self, paths: list[Path], recursive: bool, keep, stop) -> None:
+        for found in watchfiles.watch(*paths, watch_filter=keep, debounce=LONGEST_MS, step=SETTLE_MS, stop_event=stop,
+                                      recursive=recursive, rust_timeout=500, yield_on_timeout=False, raise_interrupt=False):
+            self.changes.put({Path(path) for _, path in found})
+
+    @staticmethod
+    def _start(target) -> None:
+        threading.Thread(target=target, name="preview-watcher", daemon=True).start()
+
+
+class _Either:
+    """Set when either of two events is (what watchfiles asks of its stop_event)."""
+
+    def __init__(self, first: threading.Event, second: threading.Event):
+        self.first, self.second = first, second
+
+    def is_set(self) -> bool:
+        return self.first.is_set() or self.second.is_set()

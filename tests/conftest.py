@@ -39,6 +39,7 @@ SLOW_TESTS = (
     "tests/test_install.py::test_installing_writes_nothing_into_build",
     "tests/test_install.py::test_the_wheel_carries",
     "tests/test_install.py::test_the_installed_wheel_builds_a_book_elsewhere",
+    "tests/test_install.py::test_a_new_book_builds_and_previews_with_the_installed_tool",
 )
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 

@@ -4,6 +4,7 @@ package-lock.json), node on PATH is the one requirement outside Python, and inst
 from __future__ import annotations
 
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -13,6 +14,7 @@ import zipfile
 from pathlib import Path
 
 import pytest
+from scipy.integrate import quad
 
 from sitegen.content import math as tex
 from sitegen.content.markdown_ext import MathItem
@@ -103,27 +105,34 @@ def test_the_wheel_carries_temml_templates_and_assets(source_copy, tmp_path):
     assert not [n for n in names if "__pycache__" in n or n.startswith(("tests/", "content/", "build/"))]
 
 
-def test_the_installed_wheel_builds_a_book_elsewhere(source_copy, tmp_path):
+@pytest.fixture(scope="module")
+def installed(source_copy, tmp_path_factory) -> dict:
     """A fresh venv with the wheel (its libraries taken from this one's site-packages) and the swing
-    plugin's wheel builds the plugin book in a folder of its own, with no node_modules anywhere near;
-    an edit to the book's model changes the page and recomputes that model's scene only."""
-    wheels = tmp_path / "wheels"
+    plugin's wheel: its `sitegen`, its python, its site-packages and the environment to run them in."""
+    top = tmp_path_factory.mktemp("installed")
+    wheels = top / "wheels"
     _pip("wheel", "--no-deps", "--no-build-isolation", "-w", str(wheels), str(source_copy), str(ROOT / "tests" / "plugins" / "swing"))
-    env_dir = tmp_path / "venv"
+    env_dir = top / "venv"
     venv.create(env_dir, with_pip=True)
     python = env_dir / "bin" / "python"
     site = next((env_dir / "lib").glob("python3*/site-packages"))
     libraries = next(Path(p) for p in sys.path if p.endswith("site-packages") and (Path(p) / "numpy").is_dir())
     (site / "libraries.pth").write_text(f"{libraries}\n")  # numpy, scipy, matplotlib...: not sitegen (an editable .pth is not read from there)
     subprocess.run([python, "-m", "pip", "install", "--quiet", "--no-deps", "--no-index", *map(str, wheels.glob("*.whl"))], check=True)
-    book = tmp_path / "elsewhere" / "swings"
-    shutil.copytree(ROOT / "tests" / "plugins" / "book", book)
-    sitegen = [str(env_dir / "bin" / "sitegen"), "build", "--explain"]
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "NODE_PATH")} | {"OPENBLAS_NUM_THREADS": "1"}
-    first = subprocess.run(sitegen, cwd=book, capture_output=True, text=True, env=env)
-    assert first.returncode == 0, first.stderr
     where = subprocess.run([python, "-c", "import sitegen; print(sitegen.__file__)"], capture_output=True, text=True, env=env)
     assert where.stdout.startswith(str(site)), where.stdout  # the wheel's sitegen, not this checkout's
+    return {"sitegen": str(env_dir / "bin" / "sitegen"), "python": str(python), "env": env}
+
+
+def test_the_installed_wheel_builds_a_book_elsewhere(installed, tmp_path):
+    """The installed tool builds the plugin book in a folder of its own, with no node_modules anywhere
+    near; an edit to the book's model changes the page and recomputes that model's scene only."""
+    book = tmp_path / "elsewhere" / "swings"
+    shutil.copytree(ROOT / "tests" / "plugins" / "book", book)
+    sitegen, env = [installed["sitegen"], "build", "--explain"], installed["env"]
+    first = subprocess.run(sitegen, cwd=book, capture_output=True, text=True, env=env)
+    assert first.returncode == 0, first.stderr
     page = (book / "build" / "index.html").read_text()
     assert 'data-out="T">2.0385 s<' in page and 'data-out="period">4.443 s<' in page and "<math" in page
     model = book / "models" / "pendulum" / "model.py"
@@ -134,3 +143,32 @@ def test_the_installed_wheel_builds_a_book_elsewhere(source_copy, tmp_path):
     assert [line for line in second.stdout.splitlines() if "index#swing" in line][0].endswith("cached")
     assert 'data-out="T">2.03853 s<' in (book / "build" / "index.html").read_text()
     assert not any(p.name == "node_modules" for p in book.parents) and not (book / "node_modules").exists()
+
+
+def test_a_new_book_builds_and_previews_with_the_installed_tool(installed, tmp_path, chromium):
+    """`sitegen new mybook && cd mybook && sitegen build` with the installed wheel makes pages whose
+    scene shows the book's own model; its test passes; `sitegen serve --watch` there shows a prose
+    edit in the open page within a second."""
+    from preview import WatchServer
+
+    env = installed["env"]
+    made = subprocess.run([installed["sitegen"], "new", "mybook"], cwd=tmp_path, capture_output=True, text=True, env=env)
+    assert made.returncode == 0, made.stderr
+    book = tmp_path / "mybook"
+    built = subprocess.run([installed["sitegen"], "build"], cwd=book, capture_output=True, text=True, env=env)
+    assert built.returncode == 0, built.stderr
+    page = (book / "build" / "pendulum.html").read_text()
+    period = 4 * math.sqrt(1 / 9.81) * quad(lambda phi: (1 - math.sin(phi) ** 2 / 4) ** -0.5, 0, math.pi / 2)[0]  # 60°, 1 m
+    assert 'data-scene="pendulum"' in page and f'data-out="T">{period:.3f} s<' in page and "<math" in page
+    tested = subprocess.run([installed["python"], "-m", "pytest", "-q", "-p", "no:cacheprovider", "tests"], cwd=book,
+                            capture_output=True, text=True, env=env)
+    assert tested.returncode == 0 and " passed" in tested.stdout, tested.stdout + tested.stderr
+    server = WatchServer(book, [installed["sitegen"], "serve", "--watch", "--port", "0"], env)
+    try:
+        view = chromium.new_page()
+        view.goto(server.url("pendulum.html"))
+        (book / "content" / "pendulum.md").write_text((book / "content" / "pendulum.md").read_text() + "\nOne more line of prose.\n")
+        view.wait_for_function("document.body.innerText.includes('One more line of prose.')", timeout=1000)
+        view.close()
+    finally:
+        assert server.stop() == 0

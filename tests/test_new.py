@@ -1,0 +1,71 @@
+"""`sitegen new DIR`: writes the starter book (and nothing over an existing one), which builds at once
+into pages with a scene of the book's own model. (The installed wheel does the same in a fresh venv:
+tests/test_install.py.)"""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from sitegen.build import BuildConfig, build
+from sitegen.newbook import STARTER, starter_files
+
+NEW = [sys.executable, "-m", "sitegen.cli", "new"]
+
+
+def _tree(folder: Path) -> list[str]:
+    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file())
+
+
+def test_new_writes_the_starter_book(tmp_path):
+    """Every starter file, byte for byte (the package's gitignore as .gitignore), into a folder it makes."""
+    done = subprocess.run([*NEW, "mybook"], cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    book = tmp_path / "mybook"
+    expected = {(".gitignore" if p.as_posix() == "gitignore" else p.as_posix()): p for p in starter_files()}
+    assert _tree(book) == sorted(expected)
+    for name, source in expected.items():
+        assert (book / name).read_bytes() == (STARTER / source).read_bytes(), name
+    assert {"book.toml", "content/index.md", "content/pendulum.md", "models/pendulum/model.py",
+            "models/pendulum/figure.py", "tests/test_pendulum.py"} <= set(expected)
+    assert "cd mybook && sitegen build" in done.stdout
+
+
+def test_new_writes_into_an_empty_folder(tmp_path):
+    (tmp_path / "empty").mkdir()
+    done = subprocess.run([*NEW, "empty"], cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0 and (tmp_path / "empty" / "book.toml").is_file(), done.stderr
+
+
+@pytest.mark.parametrize("existing", ["notes.txt", ".git/config", "content/index.md"], ids=["a-file", "a-hidden-folder", "a-book"])
+def test_new_refuses_a_folder_that_is_not_empty(tmp_path, existing):
+    """Exit 2 with a sentence naming what is there; nothing is written or changed."""
+    folder = tmp_path / "book"
+    (folder / existing).parent.mkdir(parents=True, exist_ok=True)
+    (folder / existing).write_text("mine\n")
+    done = subprocess.run([*NEW, str(folder)], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2 and "Traceback" not in done.stderr
+    assert f"{folder} is not empty (it holds {existing.split('/')[0]}); sitegen new writes a book into a new or empty folder" in done.stderr
+    assert _tree(folder) == [existing] and (folder / existing).read_text() == "mine\n"
+
+
+def test_new_refuses_a_file(tmp_path):
+    (tmp_path / "book").write_text("mine\n")
+    done = subprocess.run([*NEW, "book"], cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2 and "is a file" in done.stderr and (tmp_path / "book").read_text() == "mine\n"
+
+
+def test_the_new_book_builds_with_a_scene_of_its_own_model(tmp_path):
+    """The starter builds without a change: a home page linking the chapter, whose scene is the book's
+    pendulum with its sliders, readouts and figure, and its equations numbered and referenced."""
+    subprocess.run([*NEW, "mybook"], cwd=tmp_path, check=True, capture_output=True, timeout=60)
+    config = BuildConfig.at(tmp_path / "mybook")
+    report = build(config, progress=None)
+    assert (report.pages, report.scenes, report.computed) == (2, 1, 1)
+    home, chapter = ((config.out / name).read_text() for name in ("index.html", "pendulum.html"))
+    assert 'href="pendulum.html"' in home
+    assert 'data-scene="pendulum"' in chapter and 'data-param="theta0"' in chapter and 'data-param="L"' in chapter
+    assert all(f'data-out="{name}"' in chapter for name in ("T", "T0", "ratio")) and 'data-layer="bob"' in chapter
+    assert chapter.count("<math") >= 4 and ">(2)<" in chapter

@@ -30,8 +30,9 @@ check: $(VENV)/.test-installed node_modules/.installed
 	grep -hv '^[.sxFE]*  *\[ *[0-9]*%\]$$' $$log/first $$log/second; rm -rf $$log; \
 	test $$first -eq 0 -a $$second -eq 0
 
-serve: site
-	$(BIN)/sitegen serve --dir build --port $(PORT)
+# Build, serve on 127.0.0.1 and rebuild on every change to the book; open pages reload by themselves.
+serve: $(VENV)/.site-installed tools-node
+	$(BIN)/sitegen serve --watch --port $(PORT)
 
 bench: $(VENV)/.test-installed node_modules/.installed tools-chromium
 	$(BIN)/python bench/run.py

@@ -3,6 +3,7 @@ into pages with a scene of the book's own model. (The installed wheel does the s
 tests/test_install.py.)"""
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -10,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from sitegen.build import BuildConfig, build
+from sitegen.errors import SceneCrashed
 from sitegen.newbook import STARTER, starter_files
 
 NEW = [sys.executable, "-m", "sitegen.cli", "new"]
@@ -69,3 +71,34 @@ def test_the_new_book_builds_with_a_scene_of_its_own_model(tmp_path):
     assert 'data-scene="pendulum"' in chapter and 'data-param="theta0"' in chapter and 'data-param="L"' in chapter
     assert all(f'data-out="{name}"' in chapter for name in ("T", "T0", "ratio")) and 'data-layer="bob"' in chapter
     assert chapter.count("<math") >= 4 and ">(2)<" in chapter
+
+
+def _starter_copy(tmp_path) -> BuildConfig:
+    subprocess.run([*NEW, "mybook"], cwd=tmp_path, check=True, capture_output=True, timeout=60)
+    return BuildConfig.at(tmp_path / "mybook")
+
+
+def test_a_dots_layer_with_a_fill_is_an_error_at_the_figures_line(tmp_path):
+    """Dots are drawn by their stroke: a fill would silently show nothing, so it fails the build at the
+    figure's own line, saying what to write instead."""
+    config = _starter_copy(tmp_path)
+    figure = config.root / "models" / "pendulum" / "figure.py"
+    text = figure.read_text()
+    figure.write_text(text.replace('style={"stroke": s.BLUE, "stroke-width": "14"}', 'style={"fill": s.BLUE, "stroke-width": "14"}'))
+    line = next(n for n, row in enumerate(figure.read_text().splitlines(), 1) if '"fill": s.BLUE' in row)
+    with pytest.raises(SceneCrashed) as crash:
+        build(config, progress=None)
+    message = str(crash.value)
+    fence = (config.root / "content" / "pendulum.md").read_text().splitlines().index("```scene") + 1
+    assert message.startswith(f"content/pendulum.md:{fence}: scene 'pendulum': models/pendulum/figure.py:{line}: ValueError: ")
+    assert "layer 'bob': a dots layer draws each dot with its stroke" in message and "give the dots' colour as 'stroke'" in message
+
+
+def test_a_polyline_without_a_fill_is_not_filled(tmp_path):
+    """SVG fills a shape unless told not to; a polyline layer is drawn as a line unless its style gives a fill."""
+    config = _starter_copy(tmp_path)
+    figure = config.root / "models" / "pendulum" / "figure.py"
+    figure.write_text(figure.read_text().replace('style={"fill": "none", "stroke": s.MUTED,', 'style={"stroke": s.MUTED,'))
+    build(config, progress=None)
+    arcs = re.findall(r'<polyline data-layer="arc"[^>]*>', (config.out / "pendulum.html").read_text())
+    assert len(arcs) == 2 and all('fill="none"' in arc for arc in arcs)  # the wide and the narrow figure

@@ -65,10 +65,11 @@ def resolve_record(record: SceneRecord, run: BuildRun) -> SceneRecord | None:
         run.error(error)
     if errors:
         return None
-    view = run.figures[figure]
-    outputs = needed_outputs(scene, view)
+    record = replace(record, scene=scene, view=run.figures[figure])
+    with run.scene(record, "listing its figure's layers"):  # the figure's own code: a mistake in it is named at its line
+        outputs = needed_outputs(scene, record.view)
     caption = markdown_to_html(spec.caption, page.source, spec.loc_of("caption").line, page.found, inline=True)
-    return replace(record, scene=scene, view=view, caption=caption, outputs=tuple(outputs), key=scene_key(scene, outputs))
+    return replace(record, caption=caption, outputs=tuple(outputs), key=scene_key(scene, outputs))
 
 
 def figure_name(spec) -> str:

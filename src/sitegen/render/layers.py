@@ -16,7 +16,9 @@ class Layer:
 
     Its vertices are either `points`, pairs of scalar references, or the vectors `xs` and `ys`,
     each a vector output ("out:NAME") or a tuple of fixed numbers. "dots" draws a round dot at
-    every vertex. A "text" layer is a note under the figure (e.g. the scale of normalised axes): its `text`
+    every vertex, in the colour of its `stroke` and as wide as its `stroke-width` (a `fill` would
+    show nothing, so one is an error); a polyline is not filled unless its style gives a `fill`.
+    A "text" layer is a note under the figure (e.g. the scale of normalised axes): its `text`
     joins phrases and references, an output written as its readout is, a parameter as its control.
     """
 
@@ -33,6 +35,13 @@ class Layer:
     def note(cls, name: str, *text: str) -> "Layer":
         """A text layer: a note under the figure that changes with the sliders."""
         return cls(name, "text", -1, text=text)
+
+    def __post_init__(self):
+        if self.kind not in KINDS:
+            raise ValueError(f"layer '{self.name}': kind '{self.kind}' is none of {', '.join(KINDS)}")
+        if self.kind == "dots" and self.style.get("fill", "none") != "none":
+            raise ValueError(f"layer '{self.name}': a dots layer draws each dot with its stroke, so a fill shows nothing; "
+                             f"give the dots' colour as 'stroke' (and their diameter as 'stroke-width'), not as 'fill'")
 
     def refs(self) -> list:
         """Every reference the layer reads."""

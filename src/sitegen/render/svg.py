@@ -89,7 +89,7 @@ def _layers_svg(layers: list[Layer], points: list[list[tuple[float, float]]], fr
         parts.append(f'<clipPath id="layers-clip-{index}"><rect x="{x}" y="{y}" width="{w}" height="{h}"/></clipPath>')
         parts.append(f'<g clip-path="url(#layers-clip-{index})"><g transform="matrix({a} 0 0 {d} {e} {f})">')
         for layer, pts in members:
-            attributes = dict(layer.style)
+            attributes = {"fill": "none", **layer.style} if layer.kind == "polyline" else dict(layer.style)  # SVG fills by default
             if layer.kind == "dots":  # a zero-length stroke with round caps is a dot
                 # inline style: matplotlib's stylesheet sets stroke-linecap: butt on every element
                 # (merged into the layer's own style: an element may carry one style attribute)

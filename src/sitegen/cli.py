@@ -13,6 +13,19 @@ from .errors import BuildFailed, SceneCrashed
 
 def main(argv: list[str] | None = None) -> int:
     """Run one sitegen command; return the process exit status."""
+    args = command_parser().parse_args(argv)
+    if args.command == "new":
+        return _new(args.folder)
+    try:
+        book = read_book(args.root, required=_needs_book(args))
+    except ConfigError as problem:
+        print(f"sitegen: {problem}", file=sys.stderr)
+        return 2
+    return COMMANDS[args.command](args, book)
+
+
+def command_parser() -> argparse.ArgumentParser:
+    """The command line: every subcommand with its options."""
     parser = argparse.ArgumentParser(prog="sitegen", description="Build an offline interactive physics book.",
                                      epilog="Every command works on the book in the current folder (the folder of its "
                                             "book.toml), or in the folder given with --root.")
@@ -52,15 +65,7 @@ def main(argv: list[str] | None = None) -> int:
     models_cmd = _command(commands, "models", "list the models a book can use: parameters, outputs, effects, numerics")
     models_cmd.add_argument("name", nargs="?", help="one model (default: every model)")
     models_cmd.add_argument("--builtin", action="store_true", help="only sitegen's built-in models (as in docs/models.md)")
-    args = parser.parse_args(argv)
-    if args.command == "new":
-        return _new(args.folder)
-    try:
-        book = read_book(args.root, required=_needs_book(args))
-    except ConfigError as problem:
-        print(f"sitegen: {problem}", file=sys.stderr)
-        return 2
-    return COMMANDS[args.command](args, book)
+    return parser
 
 
 def _needs_book(args) -> bool:

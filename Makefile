@@ -37,6 +37,7 @@ serve: $(VENV)/.site-installed tools-node
 bench: $(VENV)/.test-installed node_modules/.installed tools-chromium
 	$(BIN)/python bench/run.py
 	$(BIN)/python bench/shelf.py
+	$(BIN)/python bench/preview.py
 	$(BIN)/sitegen bench
 
 # Build revision BASE (default HEAD) in a temporary git worktree, build the working tree, and write

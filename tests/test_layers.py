@@ -23,7 +23,7 @@ LAYERS = (
     ("sitegen.models",),  # the built-in plugins: a model, its figure and helpers per folder
     ("sitegen.registry", "sitegen.reference"),  # finds the plugins (built-in, installed, the book's); lists them
     ("sitegen.phases", "sitegen.build", "sitegen.stamp"),  # the build: its phases, the script that runs them, its stamp
-    ("sitegen.accuracy", "sitegen.review"),  # tools that use the build and the layers below it
+    ("sitegen.accuracy", "sitegen.review", "sitegen.preview", "sitegen.newbook"),  # tools that use the build and the layers below it
     ("sitegen.cli",),
 )
 # Who may import the built-in models by name: their own plugins, the registry (which lists them) and the
@@ -34,6 +34,8 @@ MODEL_USERS = ("sitegen.models", "sitegen.registry", "sitegen.accuracy")
 def _modules() -> dict[str, Path]:
     found = {}
     for path in sorted(PACKAGE.rglob("*.py")):
+        if path.relative_to(PACKAGE).parts[0] == "starter":
+            continue  # the book `sitegen new` copies: its models and test are a book's, imported as the book's
         parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
         found[".".join(parts[:-1] if parts[-1] == "__init__" else parts)] = path
     return found

@@ -186,7 +186,8 @@ class TableCache:
             before = json.loads(index.read_text())
         except (FileNotFoundError, ValueError):
             before = None
-        self._write(index, json.dumps(asdict(key), sort_keys=True).encode())
+        if before != asdict(key):  # rewritten only when it changed: a rebuild of cached scenes writes nothing here
+            self._write(index, json.dumps(asdict(key), sort_keys=True).encode())
         if cached:
             return "cached"
         if before is None:

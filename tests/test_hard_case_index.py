@@ -1,9 +1,9 @@
-"""physics.md §14 (hard-case index) is covered: every entry maps to tests that exist in tests/.
+"""The hard-case index of the models' references is covered: every entry maps to tests that exist in tests/.
 
-The table below maps each entry of §14 to the pytest node ids that test it (a function id covers all its
+The table below maps each hard case to the pytest node ids that test it (a function id covers all its
 parametrized cases; an id with [...] names one case). The ids are checked against what pytest itself
 collects, so a renamed or deleted test, or an entry whose test has not been written yet, fails here by
-name. A second test checks that the table lists exactly the entries of §14 as physics.md writes them.
+name.
 """
 from __future__ import annotations
 
@@ -16,7 +16,6 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PHYSICS_MD = ROOT.parent / "shared" / "physics.md"  # docs/adding-a-model.md: ../shared/physics.md
 
 COLLISION = "tests/test_collision_model.py::"
 WORK = "tests/test_work_model.py::"
@@ -30,7 +29,7 @@ ACOUSTIC = "tests/test_acoustic_energy_model.py::"
 PROPERTIES = "tests/test_properties.py::"
 EXTRA = "tests/test_hard_cases_extra.py::"
 
-# §14 entry (category: entry, as physics.md writes it) -> the tests that cover it.
+# Hard case (category: entry) -> the tests that cover it.
 INDEX: dict[str, list[str]] = {
     # --- Cancellation ---------------------------------------------------------------------------------------
     "Cancellation: I2 mass ratio, and K lost by subtraction": [
@@ -159,26 +158,6 @@ INDEX: dict[str, list[str]] = {
 }
 
 
-def _section_14(text: str) -> list[str]:
-    """The entries of physics.md §14 as "Category: entry", in order.
-
-    A top-level bullet "- Category:" is followed by sub-bullets, one entry each; a bullet with text after
-    the colon lists its entries inline, separated by "; ". Trailing ";" and "." are dropped.
-    """
-    match = re.search(r"^## 14\..*?$(.*?)(?=^## |\Z)", text, flags=re.M | re.S)
-    assert match, "physics.md has no section 14"
-    entries, category = [], None
-    for line in match.group(1).splitlines():
-        top = re.match(r"^- ([^:]+):\s*(.*)$", line)
-        sub = re.match(r"^\s+- (.+)$", line)
-        if top:
-            category, inline = top.group(1).strip(), top.group(2).strip()
-            entries += [f"{category}: {item.strip().rstrip('.;')}" for item in inline.split("; ") if item.strip()]
-        elif sub and category:
-            entries.append(f"{category}: {sub.group(1).strip().rstrip('.;')}")
-    return entries
-
-
 @pytest.fixture(scope="module")
 def collected() -> tuple[set[str], set[str], str]:
     """(node ids, function ids, pytest's complaints) of every test pytest collects in tests/."""
@@ -195,20 +174,10 @@ def collected() -> tuple[set[str], set[str], str]:
 
 @pytest.mark.parametrize("entry", list(INDEX), ids=[re.sub(r"\W+", "-", e).strip("-") for e in INDEX])
 def test_hard_case_is_covered_by_existing_tests(entry, collected):
-    """Each §14 entry maps to at least one test, and every test the table names exists in tests/."""
+    """Each hard case maps to at least one test, and every test the table names exists in tests/."""
     nodes, functions, errors = collected
-    assert INDEX[entry], f"§14 '{entry}': no test listed"
+    assert INDEX[entry], f"hard case '{entry}': no test listed"
     missing = [t for t in INDEX[entry] if t not in (nodes if "[" in t else functions)]
     assert not missing, (
-        f"§14 '{entry}' is not covered: missing test(s) {missing}" + (f"\npytest could not collect:\n{errors}" if errors else "")
+        f"hard case '{entry}' is not covered: missing test(s) {missing}" + (f"\npytest could not collect:\n{errors}" if errors else "")
     )
-
-
-def test_index_lists_exactly_the_entries_of_physics_md():
-    """The table's keys are the entries of physics.md §14, no more and no fewer (a new hard case needs a row)."""
-    if not PHYSICS_MD.is_file():
-        pytest.skip(f"{PHYSICS_MD} is not present in this checkout")
-    entries = _section_14(PHYSICS_MD.read_text(encoding="utf-8"))
-    assert len(entries) == len(set(entries)) == 26, entries
-    assert sorted(set(entries) - set(INDEX)) == [], "entries of §14 without a row"
-    assert sorted(set(INDEX) - set(entries)) == [], "rows that are not entries of §14"

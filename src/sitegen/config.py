@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 CONFIG_FILE = "book.toml"
+PLUGIN_GROUP = "sitegen.models"  # the entry-point group of installed model plugins
 DEFAULT_FOOTER = "Built by sitegen. Every figure was computed when the book was built; this page works offline."
 TEXTS = ("title", "author", "language", "base_url", "footer")
 FOLDERS = ("content", "models", "theme", "output", "goldens")

@@ -28,7 +28,7 @@ from importlib import metadata
 from pathlib import Path
 from typing import Mapping
 
-from .config import BookConfig
+from .config import PLUGIN_GROUP, BookConfig
 from .errors import AuthorError, SourceLoc
 from .physics.base import Model
 
@@ -44,7 +44,6 @@ BUILTINS = (  # in this order: the accuracy page lists the models' report parts 
     "sitegen.models.chain",
     "sitegen.models.bubble",
 )
-GROUP = "sitegen.models"  # the entry-point group of installed plugins
 BOOK_PACKAGE = "sitegen_book_models"  # the book's models are imported as BOOK_PACKAGE.<name>
 FIGURE_METHODS = ("layers", "draw")
 
@@ -103,7 +102,7 @@ def _builtin_plugins():
 
 
 def _entry_point_plugins(book: BookConfig | None):
-    for entry in sorted(metadata.entry_points(group=GROUP), key=lambda e: (e.name, e.value)):
+    for entry in sorted(metadata.entry_points(group=PLUGIN_GROUP), key=lambda e: (e.name, e.value)):
         package = f"{entry.dist.name} {entry.dist.version}" if entry.dist else "an installed package"
         source = f"package {package} (entry point '{entry.name} = {entry.value}')"
         try:

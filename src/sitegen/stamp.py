@@ -21,10 +21,9 @@ import platform
 import sys
 from pathlib import Path
 
-from .config import CONFIG_FILE, BookConfig
+from .config import CONFIG_FILE, PLUGIN_GROUP, BookConfig
 
 PACKAGE = Path(__file__).resolve().parent
-ENTRY_POINTS = "sitegen.models"  # the plugin group (registry.py reads the same)
 STAMPS = "stamps"  # the folder under the book's .cache/
 
 
@@ -83,7 +82,7 @@ def _stamp_path(book: BookConfig, out: Path) -> Path:
 def _plugin_folders() -> list[tuple[str, Path]] | None:
     """(name, source folder or file) of each installed plugin's top-level package, found without importing it."""
     found = []
-    for entry in sorted(importlib.metadata.entry_points(group=ENTRY_POINTS), key=lambda e: (e.name, e.value)):
+    for entry in sorted(importlib.metadata.entry_points(group=PLUGIN_GROUP), key=lambda e: (e.name, e.value)):
         top = entry.value.split(":")[0].split(".")[0]
         try:
             spec = importlib.util.find_spec(top)

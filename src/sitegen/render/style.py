@@ -1,40 +1,13 @@
 """One visual language for every figure: fonts, colours, line weights, deterministic SVG."""
 from __future__ import annotations
 
-import functools
-
 import matplotlib
 
 matplotlib.use("svg")
 
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib import mathtext  # noqa: E402
 
-
-def _share_math_parses() -> None:
-    """Let every figure reuse matplotlib's parse of a math string, not only the figure that parsed it.
-
-    Log axes label their ticks in math ($10^{-3}$), and matplotlib caches a parse per parser, that is per figure,
-    50 at most, so a book's cold build parsed 600 times the 112 strings its figures use (about 8 s). A parse
-    depends only on the kind of output and its arguments (matplotlib's own cache assumes as much), so sharing
-    them changes no byte.
-    """
-    parse = getattr(mathtext.MathTextParser._parse_cached, "__wrapped__", None)
-    if parse is None:  # the cache is a detail of matplotlib's; without it there is nothing to share
-        return
-
-    @functools.lru_cache(maxsize=4096)
-    def shared(output_type, s, dpi, prop, antialiased, load_glyph_flags):
-        return parse(_PARSERS[output_type], s, dpi, prop, antialiased, load_glyph_flags)
-
-    def parse_once(self, s, dpi, prop, antialiased, load_glyph_flags):
-        return shared(self._output_type, s, dpi, prop, antialiased, load_glyph_flags)
-
-    mathtext.MathTextParser._parse_cached = parse_once
-
-
-_PARSERS = {"vector": mathtext.MathTextParser("path"), "raster": mathtext.MathTextParser("agg")}
-_share_math_parses()
+from . import shared_measures  # noqa: E402,F401  (figures share matplotlib's text measurements)
 
 INK = "#1d2430"
 MUTED = "#5b6472"

@@ -178,6 +178,8 @@ _SPOTS = ((1, 1), (1, -1), (-1, 1), (-1, -1), (0, 1), (0, -1), (1, 0), (-1, 0))
 
 def _annotate(ax, panel: Panel) -> None:
     """Each point's label (major ones first) where it covers no marker, ring, line or earlier label."""
+    # One renderer measures every label: asked for none, matplotlib makes a new one (an SVG print) per question.
+    renderer = ax.figure._get_renderer()
     to_pt = ax.transData.transform
     frame = ax.get_window_extent()
     bounds = (frame.x0, frame.y0, frame.x1, frame.y1)
@@ -191,7 +193,7 @@ def _annotate(ax, panel: Panel) -> None:
         obstacles.append(_square(to_pt((panel.exact.x, panel.floor)), 7))
     for point, colour in sorted(points, key=lambda item: not item[0].major):
         if point.text:
-            box = _label(ax, panel, point, colour, bounds, obstacles)
+            box = _label(ax, panel, point, colour, bounds, obstacles, renderer)
             if box:
                 obstacles.append(box)
 
@@ -221,12 +223,12 @@ def _free(box: tuple, bounds: tuple, obstacles: list[tuple]) -> bool:
     return _inside(box, bounds) and not any(_overlaps(box, o) for o in obstacles)
 
 
-def _label(ax, panel: Panel, point: Point, colour: str, bounds, obstacles) -> tuple | None:
+def _label(ax, panel: Panel, point: Point, colour: str, bounds, obstacles, renderer) -> tuple | None:
     """A point's label at the first free spot around it, measured as drawn; None (and no label) if none is free."""
     label = ax.annotate(point.text, (point.x, _clamped(panel, point.y)), xytext=(0, 0), textcoords="offset points",
                         ha="left", va="bottom", fontsize=LABEL_SIZE, color=colour, zorder=4)
     # Measured once, with the figure's own renderer; at 72 dpi an offset in points moves it as many pixels.
-    x0, y0, x1, y1 = label.get_window_extent().extents
+    x0, y0, x1, y1 = label.get_window_extent(renderer).extents
     width, height = x1 - x0, y1 - y0
     gap = MARKER_HALF + LABEL_MARGIN + 0.5  # clear of the point's own marker
     for sx, sy in _SPOTS:

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import functools
 import json
+import re
 import zlib
 from dataclasses import dataclass
 from pathlib import Path
@@ -157,14 +158,30 @@ def _slider_view(scene: ResolvedScene, index: int, stop: int) -> dict:
 def scene_payload(scene: ResolvedScene, tables: dict[str, Table], layers: tuple[Layer, ...]) -> str:
     """The scene's tables, slider grids and layer recipes as JSON safe inside a <script> element."""
     sliders = [_axis_json(scene, i) for i in range(len(scene.axes))]
+    encoded: list[str] = []
     payload = {
         "sliders": sliders,
-        "tables": _tables_json(tables, {o.name: o.unit for o in scene.model.outputs}),
+        "tables": _tables_json(tables, {o.name: o.unit for o in scene.model.outputs}, encoded),
         "readouts": [_readout_json(o) for o in scene.readouts],
         "layers": [_layer_json(layer, scene) for layer in layers],
     }
-    text = json.dumps(payload, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
+    text = _spliced(json.dumps(payload, separators=(",", ":"), ensure_ascii=False, allow_nan=False), encoded)
     return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+
+
+_MARK = "\ue000"  # a private-use character, in no text: it brackets the number of a table's encoded rows
+_PLACEHOLDER = re.compile(f'"{_MARK}(\\d+){_MARK}"')
+
+
+def _placeholder(text: str, encoded: list[str]) -> str:
+    """Stands in the payload for rows already written as JSON (to measure their packed size), not encoded twice."""
+    encoded.append(text)
+    return f"{_MARK}{len(encoded) - 1}{_MARK}"
+
+
+def _spliced(text: str, encoded: list[str]) -> str:
+    """The payload with each table's JSON in place of its placeholder."""
+    return _PLACEHOLDER.sub(lambda m: encoded[int(m[1])], text)
 
 
 def _readout_json(output) -> dict:
@@ -187,7 +204,7 @@ def _axis_json(scene: ResolvedScene, index: int) -> dict:
     return out
 
 
-def _tables_json(tables: dict[str, Table], units: dict[str, str]) -> dict:
+def _tables_json(tables: dict[str, Table], units: dict[str, str], encoded: list[str]) -> dict:
     """Every table once: an output whose table equals an earlier one's refers to it by name."""
     out, first_of = {}, {}
     for name, table in sorted(tables.items()):
@@ -196,12 +213,12 @@ def _tables_json(tables: dict[str, Table], units: dict[str, str]) -> dict:
             continue
         exponents = b"" if table.exponents is None else table.exponents.tobytes() + units.get(name, "").encode()
         key = (table.axes, table.decimals, table.labels, table.quanta.tobytes(), table.summed_axes, table.raw, exponents)
-        out[name] = {"same": first_of[key]} if key in first_of else _table_json(table, units.get(name, ""))
+        out[name] = {"same": first_of[key]} if key in first_of else _table_json(table, units.get(name, ""), encoded)
         first_of.setdefault(key, name)
     return out
 
 
-def _table_json(table: Table, unit: str = "") -> dict:
+def _table_json(table: Table, unit: str, encoded: list[str]) -> dict:
     rows = table.rows()
     if table.special:  # the marker becomes null, shown as the output's phrase
         rows = [None if q == SPECIAL else q for q in rows]
@@ -213,9 +230,12 @@ def _table_json(table: Table, unit: str = "") -> dict:
         out["sum"] = 1
     if table.raw:  # the values themselves (a coordinate of an expression), not counts of a digit
         out["raw"] = 1
-    deltas = None if table.special or table.labels or table.raw else _deltas(rows)
-    if deltas is not None and _packed_size(deltas) < _packed_size(rows):
-        out.update(q=deltas, enc="delta")
+    rows_json = _json(rows)
+    deltas = None if table.special or table.labels or table.raw else _json(_deltas(rows))
+    if deltas is not None and _packed_size(deltas) < _packed_size(rows_json):
+        out.update(q=_placeholder(deltas, encoded), enc="delta")
+    else:
+        out["q"] = _placeholder(rows_json, encoded)
     if table.labels:
         out["labels"] = list(table.labels)
     if table.special:
@@ -251,8 +271,12 @@ def _deltas(rows: list) -> list:
     return [b - a for a, b in zip([0, *rows[:-1]], rows)]
 
 
-def _packed_size(rows: list) -> int:
-    return len(zlib.compress(json.dumps(rows, separators=(",", ":")).encode(), 6))
+def _json(rows: list) -> str:
+    return json.dumps(rows, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
+
+
+def _packed_size(text: str) -> int:
+    return len(zlib.compress(text.encode(), 6))
 
 
 def _layer_json(layer: Layer, scene: ResolvedScene) -> dict:

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import matplotlib.pyplot as plt
 import numpy as np
-from matplotlib.ticker import LogLocator, NullFormatter
+from matplotlib.ticker import LogLocator, NullFormatter, NullLocator
 
 from . import style as s
 
@@ -27,6 +27,7 @@ MARKER_HALF = 3.5  # pt: half the size of a marker, an obstacle for labels
 LINE_HALF = 1.5  # pt: half the width of a line, an obstacle for labels
 LABEL_MARGIN = 1.0  # pt kept clear round a label: a browser draws a text's box a little taller than matplotlib measures it
 RING_SIZE = 15  # pt: the ring round the chosen setting
+MINOR_DECADES = 3  # an axis spanning more decades than this has no minor ticks
 
 
 @dataclass(frozen=True)
@@ -131,8 +132,6 @@ def _draw_panel(ax, panel: Panel, xlabel: str, ylabel: str) -> None:
     ax.set_xlabel(xlabel, fontsize=9)
     ax.set_ylabel(ylabel, fontsize=9)
     ax.tick_params(labelsize=8)
-    for axis in (ax.xaxis, ax.yaxis):
-        axis.set_minor_formatter(NullFormatter())  # "2×10²" minor labels collide on short decades
     ax.yaxis.set_major_locator(LogLocator(base=10.0, numticks=8))
     for index, series in enumerate(panel.series):
         _draw_series(ax, panel, series, COLOURS[index % len(COLOURS)], MARKERS[index % len(MARKERS)])
@@ -143,9 +142,23 @@ def _draw_panel(ax, panel: Panel, xlabel: str, ylabel: str) -> None:
         ax.annotate(panel.line[1], (0.99, panel.line[0]), xycoords=("axes fraction", "data"), xytext=(0, 3),
                     textcoords="offset points", ha="right", va="bottom", fontsize=LABEL_SIZE, color=s.MUTED)
     _limits(ax, panel)
+    _minor_ticks(ax)
     if panel.chosen:
         ax.plot([panel.chosen.x], [_clamped(panel, panel.chosen.y)], marker="o", ms=RING_SIZE, mfc="none", mec=s.INK,
                 mew=1.8, ls="none", zorder=6)
+
+
+def _minor_ticks(ax) -> None:
+    """Unlabelled minor ticks on an axis of a few decades; an axis of more marks its decades only.
+
+    Minor ticks help to read a value between two decades; over many decades they are clutter (matplotlib draws
+    none beyond ten) and they were half the cost of drawing these diagrams.
+    """
+    for axis, (low, high) in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
+        if math.log10(high / low) > MINOR_DECADES:
+            axis.set_minor_locator(NullLocator())
+        else:
+            axis.set_minor_formatter(NullFormatter())  # "2×10²" minor labels collide on short decades
 
 
 def _clamped(panel: Panel, y: float) -> float:

@@ -122,6 +122,12 @@ def events_of(hits, code, column):
 
 
 @kernel
+def split_hits(hits, max_code, min_code, speed_code):
+    """The maxima and minima (τ, r) and the speed extrema (τ, ṙ) among the hits."""
+    return events_of(hits, max_code, 2), events_of(hits, min_code, 2), events_of(hits, speed_code, 3)
+
+
+@kernel
 def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
     """Step from y0 at τ = 0 to t_bound with events, samples and the evaluation cap.
 

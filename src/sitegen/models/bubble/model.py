@@ -137,7 +137,9 @@ class Bubble(Model):
     error_metric = "max |ΔR|/R₀ over R(t) and its extrema"
     check_stops = 16  # each costs a solve and a tight reference solve (compiled: 1–50 ms)
     checks_digits = True
-    chunk_stops = 16  # an ODE solve per stop: blocks of 16 stops spread a scene over workers and pace its progress lines
+    # An ODE solve per stop: blocks spread a scene over workers and pace its progress lines; a block's stops are
+    # solved on THREADS threads, so it holds enough of them (64, not 16) that one slow stop does not leave a thread idle.
+    chunk_stops = 64
     reports = {**{f"bubble-{case}": f"the work–precision diagram of bubble case {case}" for case in "ABC"},
                "settings": "the bubble scenes' settings: every stop's shown digits against time"}
 

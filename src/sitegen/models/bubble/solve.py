@@ -35,7 +35,7 @@ from .terms import (
 from ...physics import compiled
 from .kernel_march import (
     CAP_CODE, CORE_CODE, DOP853_METHOD, ENDED, FAILED_CODE, G_ACCELERATION, G_RADIUS_LEVEL, G_SPEED, G_SPEED_LEVEL, KM_CODE,
-    MACH_CODE, POINT_CODE, RADAU_METHOD, UNBOUNDED_CODE, events_of, march,
+    MACH_CODE, POINT_CODE, RADAU_METHOD, UNBOUNDED_CODE, march, split_hits,
 )
 from . import kernel_read
 from .kernel_terms import pack
@@ -75,7 +75,7 @@ FAILED = "failed"  # the solver gave up (step size underflow)
 STATUS_CODES = {OK: ENDED, FAILED: FAILED_CODE, CAP_NFEV: CAP_CODE, MACH: MACH_CODE, KM_STOP: KM_CODE, POINT: POINT_CODE,
                 CORE: CORE_CODE, UNBOUNDED_GROWTH: UNBOUNDED_CODE}
 _STATUS_OF = {code: status for status, code in STATUS_CODES.items()}
-_RECORDS = {"max": 1, "min": 2, "speed": 3}  # an event table's record codes
+_RECORDS = {"max": 1, "min": 2, "speed": 3}  # an event table's record codes (split_hits takes them in this order)
 
 
 @dataclass(frozen=True)
@@ -247,8 +247,7 @@ def _marched(pb: Problem, y0, method: str, rtol: float, caps: Caps, atol: float 
         return _make_run(KM_STOP, method, rtol, _Stepper([], grid, y0), 0, time.perf_counter() - start)
     code, end, samples, hits, nfev = march(COMPILED[method], pack(pb), np.array(y0, float), rtol, atol, pb.tau_end,
                                               grid, event_table(pb), caps.max_nfev)
-    maxima, minima, speeds = (_frozen(events_of(hits, _RECORDS[role], column), copy=False)
-                              for role, column in (("max", 2), ("min", 2), ("speed", 3)))
+    maxima, minima, speeds = (_frozen(rows, copy=False) for rows in split_hits(hits, *_RECORDS.values()))
     return Run(_STATUS_OF[code], method, rtol, grid, _frozen(samples[:, 0]), _frozen(samples[:, 1]),
                (float(end[0]), float(end[1]), float(end[2])), maxima, minima, speeds, int(nfev), time.perf_counter() - start)
 

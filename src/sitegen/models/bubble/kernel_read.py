@@ -130,13 +130,9 @@ def max_nan(a, b, started):
 
 
 @kernel
-def python_max(values):
-    """Python's max(values): a later value replaces the running one only if it compares larger."""
-    best = values[0]
-    for x in values[1:]:
-        if x > best:
-            best = x
-    return best
+def larger_of(best, x):
+    """One step of Python's max() over a sequence: x replaces the running value only if it compares larger."""
+    return x if x > best else best
 
 
 @kernel
@@ -151,27 +147,68 @@ def nan_max(values, absolute):
 
 
 @kernel
-def is_event(t, x, extrema, a, b):
-    """Whether (t, x) is one of the extrema of [a, b] found by events (not a window's end)."""
-    for i in range(extrema.shape[0]):
-        if a <= extrema[i, 0] <= b and extrema[i, 0] == t and extrema[i, 1] == x:
+def is_event(t, x, rows, a, b):
+    """Whether (t, x) is one of the rows of [a, b] (an extremum found by events, not a window's end)."""
+    for i in range(rows.shape[0]):
+        if a <= rows[i, 0] <= b and rows[i, 0] == t and rows[i, 1] == x:
             return True
     return False
 
 
 @kernel
-def visible(t, y_event, tau, y, spacing):
-    """Whether an extremum (t, y) lies farther than CURVE_GAP from the chord between the grid samples around
-    it (or past the last sample, where there is no chord)."""
+def visible(t, y_event, tau, y, n, spacing):
+    """Whether an extremum (t, y) lies farther than CURVE_GAP from the chord between the first n grid samples
+    around it (or past the last one, where there is no chord)."""
     left = int(math.floor(t / spacing))
-    if left + 1 >= tau.shape[0]:
+    if left + 1 >= n:
         return True
-    chord = y[left] + (y[min(left + 1, y.shape[0] - 1)] - y[left]) * (t - tau[left]) / spacing
+    chord = y[left] + (y[min(left + 1, n - 1)] - y[left]) * (t - tau[left]) / spacing
     return abs(y_event - chord) > CURVE_GAP
 
 
 @kernel
-def curve(q, tau, r, end, code, extrema, out_x, out_y):
+def add_visible(q, rows, t_stop, tau, y, n, spacing, t_out, y_out, count):
+    """Append the rows (τ, r) up to t_stop that are visible (as (τ, y)) to t_out, y_out after `count`; the new count."""
+    for i in range(rows.shape[0]):
+        if rows[i, 0] <= t_stop:
+            y_row = to_y(q, rows[i, 1])
+            if visible(rows[i, 0], y_row, tau, y, n, spacing):
+                t_out[count], y_out[count] = rows[i, 0], y_row
+                count += 1
+    return count
+
+
+@kernel
+def deepest(depth, count):
+    """Which entries np.argsort(−depth, kind="stable")[:count] keeps: the deepest, ties to the earlier, NaN last."""
+    n = depth.shape[0]
+    keep, finite, nans = np.zeros(n, np.bool_), 0, 0
+    for j in range(n):
+        finite += 0 if math.isnan(depth[j]) else 1
+    for i in range(n):
+        if math.isnan(depth[i]):
+            rank, nans = finite + nans, nans + 1
+        else:
+            rank = 0
+            for j in range(n):
+                rank += 1 if depth[j] > depth[i] or (depth[j] == depth[i] and j < i) else 0
+        keep[i] = rank < count
+    return keep
+
+
+@kernel
+def sort_by_time(t, y, n):
+    """Sort the first n (t, y) by t, ties kept in order (as a stable sort; a few hundred extrema at most)."""
+    for k in range(1, n):
+        t_k, y_k, j = t[k], y[k], k - 1
+        while j >= 0 and t[j] > t_k:
+            t[j + 1], y[j + 1] = t[j], y[j]
+            j -= 1
+        t[j + 1], y[j + 1] = t_k, y_k
+
+
+@kernel
+def curve(q, tau, r, end, code, maxima, minima, out_x, out_y):
     """The drawn curve into out_x, out_y (left NaN past its end): the reached samples, the visible extrema up to the
     stop (the deepest CURVE_EXTREMA) and a terminal stop, in time order, one point per time.
 
@@ -181,32 +218,38 @@ def curve(q, tau, r, end, code, extrema, out_x, out_y):
     where R(t) is quasi-static, ringing far below the resolution makes tiny extrema (about 1e-10 R0) whose number
     and times differ between any two solvers, and merging them would shift every later point of the curve.
     """
-    reached = np.isfinite(r)
-    t_grid, y_grid = tau[reached], np.empty(reached.sum())
-    for i, k in enumerate(np.flatnonzero(reached)):
-        y_grid[i] = to_y(q, r[k])
+    t_grid, y_grid, n_grid = np.empty(tau.shape[0]), np.empty(tau.shape[0]), 0
+    for k in range(tau.shape[0]):
+        if math.isfinite(r[k]):
+            t_grid[n_grid], y_grid[n_grid] = tau[k], to_y(q, r[k])
+            n_grid += 1
     spacing = tau[1] - tau[0]
-    t_ext, y_ext = np.empty(extrema.shape[0]), np.empty(extrema.shape[0])
-    n_ext = 0
-    for i in range(extrema.shape[0]):
-        if extrema[i, 0] <= end[0]:
-            y = to_y(q, extrema[i, 1])
-            if visible(extrema[i, 0], y, t_grid, y_grid, spacing):
-                t_ext[n_ext], y_ext[n_ext] = extrema[i, 0], y
-                n_ext += 1
-    t_ext, y_ext = t_ext[:n_ext], y_ext[:n_ext]
-    if n_ext > CURVE_EXTREMA:  # the deepest, in time order
-        kept = np.sort(np.argsort(-np.abs(y_ext - y_grid[0]), kind="mergesort")[:CURVE_EXTREMA])
-        t_ext, y_ext = t_ext[kept], y_ext[kept]
-    terminal = MACH_CODE <= code <= UNBOUNDED_CODE
-    t_all = np.concatenate((t_grid, t_ext, np.full(1 if terminal else 0, end[0])))
-    y_all = np.concatenate((y_grid, y_ext, np.full(1 if terminal else 0, to_y(q, end[1]))))
-    order = np.argsort(t_all, kind="mergesort")  # stable: samples before extrema before the stop at one time
-    n = 0
-    for j in range(order.shape[0]):
-        if j == 0 or t_all[order[j]] > t_all[order[j - 1]]:
-            out_x[n], out_y[n] = to_x(q, t_all[order[j]]), y_all[order[j]]
+    t_ext, y_ext = np.empty(maxima.shape[0] + minima.shape[0]), np.empty(maxima.shape[0] + minima.shape[0])
+    n_ext = add_visible(q, maxima, end[0], t_grid, y_grid, n_grid, spacing, t_ext, y_ext, 0)
+    n_ext = add_visible(q, minima, end[0], t_grid, y_grid, n_grid, spacing, t_ext, y_ext, n_ext)
+    if n_ext > CURVE_EXTREMA:  # the deepest, in their order
+        keep, kept = deepest(np.abs(y_ext[:n_ext] - y_grid[0]), CURVE_EXTREMA), 0
+        for i in range(n_ext):
+            if keep[i]:
+                t_ext[kept], y_ext[kept] = t_ext[i], y_ext[i]
+                kept += 1
+        n_ext = kept
+    sort_by_time(t_ext, y_ext, n_ext)
+    # Merge in time order, samples before extrema before the stop at one time (a stable sort of them all),
+    # keeping the first point of each time.
+    stop = 1 if MACH_CODE <= code <= UNBOUNDED_CODE else 0
+    i, j, n, previous = 0, 0, 0, 0.0
+    while i < n_grid or j < n_ext or stop:
+        if i < n_grid and (j >= n_ext or t_grid[i] <= t_ext[j]) and (not stop or t_grid[i] <= end[0]):
+            t, y, i = t_grid[i], y_grid[i], i + 1
+        elif j < n_ext and (not stop or t_ext[j] <= end[0]):
+            t, y, j = t_ext[j], y_ext[j], j + 1
+        else:
+            t, y, stop = end[0], to_y(q, end[1]), 0
+        if n == 0 or t > previous:
+            out_x[n], out_y[n] = to_x(q, t), y
             n += 1
+        previous = t
 
 
 @kernel
@@ -214,7 +257,12 @@ def flag(q, v, code, speeds):
     """point.FLAGS index: how the run ended, or invalid if the incompressible wall passed 0.2c (Q_INVALID_SPEED)."""
     if code != UNBOUNDED_CODE and flag_of_code(code) > 0:
         return flag_of_code(code)
-    fastest = python_max(np.append(np.abs(speeds[:, 1]), nan_max(v, True)))
+    fastest = nan_max(v, True)  # Python's max over the speed extrema's sizes, then this
+    if speeds.shape[0]:
+        best = abs(speeds[0, 1])
+        for i in range(1, speeds.shape[0]):
+            best = larger_of(best, abs(speeds[i, 1]))
+        fastest = larger_of(best, fastest)
     if fastest > q[Q_INVALID_SPEED]:
         return 1
     return flag_of_code(code)
@@ -235,7 +283,9 @@ def blake_state(q, r, end, code, maxima):
         return 2
     if q[Q_RAMP_TO] < q[Q_P_BLAKE]:
         return 3
-    largest = python_max(np.append(nan_max(r, False), maxima[:, 1]))
+    largest = nan_max(r, False)  # Python's max over this, then the maxima
+    for i in range(maxima.shape[0]):
+        largest = larger_of(largest, maxima[i, 1])
     return 1 if largest > q[Q_R_B] else 0
 
 
@@ -255,7 +305,8 @@ def gas_peaks(q, r_min):
 def read(q, tau, r, v, end, code, maxima, minima, speeds):
     """Every dynamic output of one run as a row (the layout above; the solver's label is left to the caller)."""
     size = tau.shape[0] + CURVE_EXTREMA + 1  # the curve: samples, merged extrema and the stop
-    row = np.full(CURVE_X + 2 * size, math.nan)
+    row = np.empty(CURVE_X + 2 * size)
+    row[:] = math.nan
     tau_end, part = q[Q_TAU_END], q[Q_PART]
     t_max, r_max, t_min, r_min, speed = window(tau, r, v, end, code, maxima, minima, speeds, 0.0, part, tau_end)
     row[R_MAX], row[T_RMAX], row[R_MIN], row[T_RMIN] = r_max, to_x(q, t_max), r_min, to_x(q, t_min)
@@ -273,11 +324,10 @@ def read(q, tau, r, v, end, code, maxima, minima, speeds):
         row[WHY + i] = reason
     if MACH_CODE <= code <= UNBOUNDED_CODE:
         row[STOP_X], row[STOP_Y] = to_x(q, end[0]), to_y(q, end[1])
-    extrema = np.concatenate((maxima, minima))
     marked = 0  # the R_max and R_min dots: extrema found by events, after the start
     for t, x in ((t_max, r_max), (t_min, r_min)):
-        if t > 0 and is_event(t, x, extrema, 0.0, part):
+        if t > 0 and (is_event(t, x, maxima, 0.0, part) or is_event(t, x, minima, 0.0, part)):
             row[MARK_X + marked], row[MARK_Y + marked] = to_x(q, t), to_y(q, x)
             marked += 1
-    curve(q, tau, r, end, code, extrema, row[CURVE_X:CURVE_X + size], row[CURVE_X + size:])
+    curve(q, tau, r, end, code, maxima, minima, row[CURVE_X:CURVE_X + size], row[CURVE_X + size:])
     return row

@@ -5,7 +5,10 @@ same problem at the same rtol they must end the same way and agree far below the
 """
 from __future__ import annotations
 
+import ast
 import dataclasses
+import importlib.util
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +20,7 @@ from sitegen.models.bubble.model import ALL, preset_problem
 from sitegen.models.bubble.point import compose, read_run
 from sitegen.models.bubble.solve import COMPILED, EXPLICIT, IMPLICIT, STIFF, integrate, method_for
 from sitegen.models.bubble.terms import RADIATION, make_rhs
+from sitegen.physics import compiled
 
 ROOT = Path(__file__).resolve().parents[1]
 PRESETS = ["A", "B", "C", "stiff"]
@@ -105,3 +109,29 @@ def test_compiled_path_agrees_with_scipy_at_sampled_stops_of_every_bubble_scene(
         a, b = read_run(mine, pb, scales, scene.effects), read_run(theirs, pb, scales, scene.effects)
         for key in ("R_max", "R_min", "R_max2", "R_min2", "mach", "flag", "growth"):
             assert a[key] == pytest.approx(b[key], rel=1e-4 if pb.stiffness > STIFF else 1e-6), (point, key)
+
+
+def _kernel_modules() -> list[str]:
+    """The bubble's kernel modules (importing the model imports them all)."""
+    import sitegen.models.bubble.model  # noqa: F401
+
+    return sorted({k.py_func.__module__ for k in compiled._KERNELS if ".bubble." in k.py_func.__module__})
+
+
+@pytest.mark.parametrize("module_name", _kernel_modules())
+def test_every_constant_a_kernel_reads_is_in_a_file_the_compiled_key_digests(module_name):
+    """A kernel bakes the module constants it reads into its compiled code, which is cached under a digest of
+    the kernel files: a constant imported from another file (terms.py, say) could change without a recompile."""
+    module, files = importlib.import_module(module_name), {k.py_func.__code__.co_filename for k in compiled._KERNELS}
+    imported = {}  # name -> the module it is imported from
+    for node in ast.walk(ast.parse(Path(module.__file__).read_text())):
+        if isinstance(node, ast.ImportFrom):
+            source = importlib.util.resolve_name("." * node.level + (node.module or ""), module.__package__)
+            imported.update({alias.asname or alias.name: source for alias in node.names})
+    for value in vars(module).values():
+        if getattr(value, "py_func", None) is None or value.py_func.__module__ != module_name:
+            continue
+        for name in value.py_func.__code__.co_names:
+            source = imported.get(name)
+            if source and isinstance(value.py_func.__globals__.get(name), (int, float, np.ndarray)):
+                assert sys.modules[source].__file__ in files, f"{value.py_func.__name__} reads {name} from {source}"

@@ -13,8 +13,12 @@ from scipy.special import betainc, betaincinv
 
 from sitegen.compute.quantize import fmt
 from sitegen.models.bubble.model import PRESETS, Bubble, preset_problem, run_preset
-from sitegen.models.bubble.point import BLAKE_LABELS, SOLVER_LABELS, compose, read_run
-from sitegen.models.bubble.solve import ANALYTIC, EXPLICIT, IMPLICIT, MACH, OK, UNBOUNDED_GROWTH, choose_method, integrate, solve
+from sitegen.models.bubble import kernel_read
+from sitegen.models.bubble.point import BLAKE_LABELS, FLAGS, MISSING, SOLVER_LABELS, compose, read_run
+from sitegen.models.bubble.solve import (
+    ANALYTIC, CAP_NFEV, CORE, EXPLICIT, FAILED, IMPLICIT, KM_STOP, MACH, OK, POINT, STATUS_CODES, UNBOUNDED_GROWTH, choose_method,
+    integrate, solve,
+)
 from sitegen.models.bubble.terms import (
     P0, WATER, Problem, blake, energy, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau,
 )
@@ -381,3 +385,20 @@ def test_read_run_never_returns_nan_outside_the_curve_padding():
         pb, scales = preset_problem(preset)
         values = read_run(solve(pb), pb, scales, PRESETS[preset][0])
         assert not any(np.isnan(v) for name, v in values.items() if np.ndim(v) == 0), preset
+
+
+@pytest.mark.parametrize("status, phrase", [
+    (OK, "valid"), (MACH, "the wall reaches |Ṙ| = c"), (KM_STOP, "stopped at |Ṙ| = 0.9c"), (POINT, "collapses to a point"),
+    (CORE, "van der Waals hard core"), (UNBOUNDED_GROWTH, "unbounded growth"), (CAP_NFEV, "evaluation cap hit"),
+    (FAILED, "solver failed"),
+])
+def test_the_compiled_reading_flags_each_end_of_a_run_by_its_phrase(status, phrase):
+    """The compiled reading's flag for a run's status indexes the phrase that names it."""
+    assert phrase in FLAGS[kernel_read.flag_of_code(STATUS_CODES[status])]
+
+
+@pytest.mark.parametrize("reason, phrase", [(kernel_read.NO_GAS, "no gas"), (kernel_read.NO_CORE, "no van der Waals hard core"),
+                                            (kernel_read.NOT_REACHED, "not reached")])
+def test_the_compiled_reading_says_why_a_value_is_missing_by_its_phrase(reason, phrase):
+    """The reasons the compiled reading gives beyond how the run ended index the phrases that say them."""
+    assert MISSING[reason].startswith(phrase)

@@ -22,6 +22,7 @@ from ...physics.compiled import kernel
 DOP853_METHOD, RADAU_METHOD = 0, 1
 G_SPEED, G_ACCELERATION, G_SPEED_LEVEL, G_RADIUS_LEVEL = 0, 1, 2, 3  # g = ṙ, r̈, ṙ − level, r − level
 ENDED, FAILED_CODE, CAP_CODE = 0, 1, 2  # the run's end when no terminal event stopped it (else the event's code)
+MACH_CODE, KM_CODE, POINT_CODE, CORE_CODE, UNBOUNDED_CODE = range(3, 8)  # the terminal events' codes (solve.STOPS)
 ROOT_EPS = 4.0 * np.finfo(np.float64).eps  # Brent's absolute and relative tolerance, as bubble_solve's brentq
 
 
@@ -106,6 +107,24 @@ def record(hits, count, code, t, r, v):
         hits = bigger
     hits[count, 0], hits[count, 1], hits[count, 2], hits[count, 3] = code, t, r, v
     return hits
+
+
+@kernel
+def events_of(hits, code, column):
+    """The (τ, r) or (τ, ṙ) (column 2 or 3) of the hits recorded with one code, in their order."""
+    rows = np.empty((hits.shape[0], 2))
+    n = 0
+    for i in range(hits.shape[0]):
+        if hits[i, 0] == code:
+            rows[n, 0], rows[n, 1] = hits[i, 1], hits[i, column]
+            n += 1
+    return rows[:n].copy()
+
+
+@kernel
+def split_hits(hits, max_code, min_code, speed_code):
+    """The maxima and minima (τ, r) and the speed extrema (τ, ṙ) among the hits."""
+    return events_of(hits, max_code, 2), events_of(hits, min_code, 2), events_of(hits, speed_code, 3)
 
 
 @kernel

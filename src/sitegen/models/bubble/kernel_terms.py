@@ -13,9 +13,11 @@ import numpy as np
 from .terms import CORE_MARGIN, KELLER_MIKSIS, KM_FLOOR, R_FLOOR, RADIATION, Problem
 from ...physics.compiled import kernel
 
-# Indices into the packed parameter vector.
-P_INF, GAS, KAPPA, E3, VAPOUR, SIGMA2, VISC4, SOUND, COMPRESSIBLE, DRIVE, OMEGA, RAMP_TO, RAMP_TIME, VOLUME_FLOOR = range(14)
-SIZE = 14
+# Indices into the packed parameter vector. The floors travel in it too: a kernel reads no constant of terms.py,
+# whose edits the compiled code's cache key (the kernel files' digest) would not see.
+(P_INF, GAS, KAPPA, E3, VAPOUR, SIGMA2, VISC4, SOUND, COMPRESSIBLE, DRIVE, OMEGA, RAMP_TO, RAMP_TIME, VOLUME_FLOOR, RADIUS_FLOOR,
+ DENOMINATOR_FLOOR) = range(16)
+SIZE = 16
 PLAIN_FORM, RADIATION_FORM, KM_FORM = 0.0, 1.0, 2.0  # the value at COMPRESSIBLE
 
 
@@ -28,6 +30,7 @@ def pack(pb: Problem) -> np.ndarray:
         pb.p_inf, pb.gas, pb.kappa, e3, pb.vapour, 2.0 * pb.sigma, 4.0 * pb.visc, pb.sound, form, pb.drive, pb.omega,
         pb.ramp_to, pb.ramp_time)
     values[VOLUME_FLOOR] = max(e3 * 3.0 * CORE_MARGIN, R_FLOOR**3)
+    values[RADIUS_FLOOR], values[DENOMINATOR_FLOOR] = R_FLOOR, KM_FLOOR
     return values
 
 
@@ -82,7 +85,7 @@ def wall(p, r, v):
 @kernel
 def rhs(p, t, y0, y1):
     """(ṙ, r̈) at (τ, r, ṙ): make_rhs's right-hand side (the terms again, without `wall`'s derivatives)."""
-    r, v = max(y0, R_FLOOR), y1
+    r, v = max(y0, p[RADIUS_FLOOR]), y1
     pw, q, g = p[VAPOUR], 0.0, 0.0
     if p[GAS] > 0.0:
         volume = max(r * r * r - p[E3], p[VOLUME_FLOOR])
@@ -99,7 +102,7 @@ def rhs(p, t, y0, y1):
     c = p[SOUND]
     if p[COMPRESSIBLE] == KM_FORM:
         numerator = (1.0 + v / c) * drive - 1.5 * (1.0 - v / (3.0 * c)) * v * v + r / c * q
-        denominator = max((1.0 - v / c) * r + p[VISC4] / c, KM_FLOOR * r)
+        denominator = max((1.0 - v / c) * r + p[VISC4] / c, p[DENOMINATOR_FLOOR] * r)
         return v, numerator / denominator
     if p[COMPRESSIBLE] == RADIATION_FORM:
         return v, (drive - 1.5 * v * v + r / c * g) / r
@@ -109,8 +112,8 @@ def rhs(p, t, y0, y1):
 @kernel
 def jacobian(p, t, y0, y1):
     """(∂r̈/∂r, ∂r̈/∂ṙ) at (τ, r, ṙ); the rest of the Jacobian is [0, 1]. Floors count as constants."""
-    r, v = max(y0, R_FLOOR), y1
-    floor = 0.0 if y0 < R_FLOOR else 1.0
+    r, v = max(y0, p[RADIUS_FLOOR]), y1
+    floor = 0.0 if y0 < p[RADIUS_FLOOR] else 1.0
     pw, pw_r, pw_v, q, q_r, q_v, g, g_r, g_v = wall(p, r, v)
     drive = pw - far_field(p, t)
     c = p[SOUND]
@@ -119,8 +122,8 @@ def jacobian(p, t, y0, y1):
         n_r = (1.0 + v / c) * pw_r + q / c + r / c * q_r
         n_v = drive / c + (1.0 + v / c) * pw_v + 0.5 * v * v / c - 3.0 * v * (1.0 - v / (3.0 * c)) + r / c * q_v
         denominator, d_r, d_v = (1.0 - v / c) * r + p[VISC4] / c, 1.0 - v / c, -r / c
-        if denominator < KM_FLOOR * r:
-            denominator, d_r, d_v = KM_FLOOR * r, KM_FLOOR, 0.0
+        if denominator < p[DENOMINATOR_FLOOR] * r:
+            denominator, d_r, d_v = p[DENOMINATOR_FLOOR] * r, p[DENOMINATOR_FLOOR], 0.0
         a = numerator / denominator
         return floor * (n_r - a * d_r) / denominator, (n_v - a * d_v) / denominator
     if p[COMPRESSIBLE] == RADIATION_FORM:

@@ -7,20 +7,16 @@ output in display units, with inf where a value does not exist (the page shows "
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
-from . import terms
-from .solve import (
-    ANALYTIC, CAP_NFEV, CORE, CURVE_POINTS, EXPLICIT, EXPLICIT_RTOL, FAILED, IMPLICIT, IMPLICIT_RTOL, KM_STOP, MACH,
-    POINT, STIFF, UNBOUNDED_GROWTH, Run,
-)
+from . import kernel_read, terms
+from .solve import ANALYTIC, CURVE_POINTS, EXPLICIT, EXPLICIT_RTOL, IMPLICIT, IMPLICIT_RTOL, STATUS_CODES, STIFF, Run
 from .terms import P0, T0, Problem
 
 DRIVE_PERIODS = 2  # the driven bubble runs two acoustic periods from rest at R0
-CURVE_EXTREMA = 200  # event-detected extrema merged into the drawn curve (the deepest, if more)
-CURVE_SIZE = CURVE_POINTS + CURVE_EXTREMA + 1  # samples, extrema and the stop
-CURVE_GAP = 1e-3  # the drawn curve's resolution in y (its 3 decimals): extrema closer to the chord add nothing
+CURVE_SIZE = CURVE_POINTS + kernel_read.CURVE_EXTREMA + 1  # samples, extrema and the stop
 
 NEEDS = {"vdw_hard_core": "gas", "thermal_damping": "gas", "radiation": "gas"}
 PROTOCOLS = ("step", "drive", "ramp")  # what is done to the liquid pressure: one per scene
@@ -40,8 +36,18 @@ FLAGS = (
 # what the bubble lacks for that quantity.
 MISSING = FLAGS + ("no gas in the bubble: nothing is compressed", "no van der Waals hard core (h = 0)",
                    "not reached before the run ended")
-_NO_GAS, _NO_CORE, _NOT_REACHED = range(len(FLAGS), len(FLAGS) + 3)
-_FLAG_OF_STATUS = {MACH: 2, KM_STOP: 3, POINT: 4, CORE: 5, UNBOUNDED_GROWTH: 6, CAP_NFEV: 7, FAILED: 8}
+# Where each output of a run (read_run's keys) lies in kernel_read's row: an index, or a slice for an array.
+_LABELS = ("flag", "growth", "solver")  # indices into FLAGS, BLAKE_LABELS, SOLVER_LABELS
+ROW_OF = {
+    **{key: index for index, key in enumerate(kernel_read.SCALARS)},
+    **{f"{kernel_read.SCALARS[key]}_why": kernel_read.WHY + i for i, key in enumerate(kernel_read.WHY_OF)},
+    "mark_x": slice(kernel_read.MARK_X, kernel_read.MARK_X + 2), "mark_y": slice(kernel_read.MARK_Y, kernel_read.MARK_Y + 2),
+    "stop_x": slice(kernel_read.STOP_X, kernel_read.STOP_X + 1), "stop_y": slice(kernel_read.STOP_Y, kernel_read.STOP_Y + 1),
+    "curve_x": slice(kernel_read.CURVE_X, kernel_read.CURVE_X + CURVE_SIZE),
+    "curve_y": slice(kernel_read.CURVE_X + CURVE_SIZE, kernel_read.CURVE_X + 2 * CURVE_SIZE),
+}
+
+
 def _power(rtol: float) -> str:
     """An rtol as a label writes it: 1e−6."""
     return f"{rtol:.0e}".replace("e-0", "e−").replace("e-", "e−")
@@ -59,11 +65,6 @@ BLAKE_LABELS = (
     "keeps growing, slowly: still below the Blake radius, but past the threshold no size is in equilibrium",
     "unbounded: reached 10 Blake radii",
 )
-
-GUARDS = (MACH, KM_STOP, POINT, CORE)  # terminal events that end a run before its window does
-TERMINAL = GUARDS + (UNBOUNDED_GROWTH,)
-ABANDONED = (CAP_NFEV, FAILED)
-
 
 def check_effects(effects) -> None:
     """Raise ValueError for an effect set that is not a model: a missing companion or two rivals."""
@@ -121,12 +122,12 @@ def compose(point: dict, effects) -> tuple[Problem, Scales]:
     if "keller_miksis" in on or "radiation" in on:
         fields["compressible"] = terms.KELLER_MIKSIS if "keller_miksis" in on else terms.RADIATION
     if "ramp" in on:
-        r_b, p_blake = terms.blake_nucleus(sigma, vapour)
+        r_b, p_blake = blake_point(sigma, vapour)
         # The depth x = (p0 − p_target)/(p0 − p_Blake): the share of the way from p0 down to the threshold,
         # so x > 1 lies beyond it for every nucleus (p_Blake > 0 for large ones, where p_target/p_Blake
         # would run the wrong way).
-        fields.update(ramp_to=1.0 - point["depth"] * (1.0 - float(p_blake)), ramp_time=point["t_ramp"] * 1e-6 / t_ref,
-                      r_unbounded=terms.UNBOUNDED * float(r_b))
+        fields.update(ramp_to=1.0 - point["depth"] * (1.0 - p_blake), ramp_time=point["t_ramp"] * 1e-6 / t_ref,
+                      r_unbounded=terms.UNBOUNDED * r_b)
     pb = Problem(**fields, tau_end=_window(point, on, Problem(**fields), t_ref))
     return pb, Scales(point, on, pb)
 
@@ -161,160 +162,43 @@ def _thermal(point: dict, fields: dict, radius: float, rho: float) -> dict:
 
 def read_run(run: Run, pb: Problem, scales: Scales, effects) -> dict:
     """Every dynamic output of one run, in display units (inf where there is no value)."""
-    part = pb.tau_end / DRIVE_PERIODS if "drive" in effects else pb.tau_end
-    first, second = _extremes(run, pb, 0.0, part), _extremes(run, pb, part, pb.tau_end)
-    to_y = _y_transform(pb, effects)
-    out = {
-        "R_max": first["r_max"][1], "t_Rmax": scales.x(first["r_max"][0]),
-        "R_min": first["r_min"][1], "t_Rmin": scales.x(first["r_min"][0]),
-        "mach": first["speed"] / pb.sound,
-        "R_max2": second["r_max"][1], "R_min2": second["r_min"][1],
-        "flag": _flag(run, pb), "solver": _solver_label(run, pb), "growth": _blake_state(run, pb),
-    }
-    out.update(_gas_peaks(pb, first["r_min"][1]))
-    out.update(_figure_marks(run, scales, to_y, first))
-    out.update(_why_missing(out, pb))
+    row, out = read_row(run, pb, scales, effects), {}
+    for key, where in ROW_OF.items():
+        if isinstance(where, slice):
+            out[key] = row[where]
+        else:  # labels and reasons are indices
+            out[key] = int(row[where]) if key in _LABELS or key.endswith("_why") else float(row[where])
     return out
 
 
-def _why_missing(out: dict, pb: Problem) -> dict:
-    """For each number ("<key>_why"): 0 where it has a value, else why not, as an index into MISSING."""
-    ended = out["flag"] if out["flag"] >= 2 else _NOT_REACHED
-    whys = {}
-    for key in ("R_max", "t_Rmax", "R_min", "t_Rmin", "mach", "pg_peak", "Tg_peak", "Rmin_h", "R_max2", "R_min2"):
-        reason = 0 if math.isfinite(out[key]) else ended
-        if reason and math.isfinite(out["R_min"]):  # the minimum exists: the quantity needs what is missing
-            reason = _NO_CORE if key == "Rmin_h" else _NO_GAS if key in ("pg_peak", "Tg_peak") else reason
-        whys[f"{key}_why"] = reason
-    return whys
+def read_row(run: Run, pb: Problem, scales: Scales, effects) -> np.ndarray:
+    """Every dynamic output of one run as kernel_read lays out a row (`read_run` names its entries)."""
+    row = kernel_read.read(reading(pb, scales, effects), run.tau, run.r, run.v, run.end, STATUS_CODES[run.status],
+                           run.maxima, run.minima, run.speeds)
+    row[kernel_read.SOLVER] = _solver_label(run, pb)
+    return row
 
 
-def _extremes(run: Run, pb: Problem, a: float, b: float) -> dict:
-    """R_max, R_min (τ, r) and max |ṙ| over [a, b] from events, plus the ends of [a, b] if reached.
-
-    A run stopped by a guard inside [a, b] has no R_min there (the collapse it was heading into is
-    not computed, e.g. the empty collapse stopped at |Ṙ| = c); an abandoned run has no value at all.
-    Ties go to the earliest candidate (events first, then the window's ends).
-    """
-    missing = (np.inf, np.inf)
-    if run.status in ABANDONED:
-        return {"r_max": missing, "r_min": missing, "speed": np.inf, "events": (_NONE, _NONE)}
-    inside = lambda rows: rows[(rows[:, 0] >= a) & (rows[:, 0] <= b)]  # noqa: E731
-    maxima, minima, speeds = inside(run.maxima), inside(run.minima), inside(run.speeds)
-    events = maxima, minima
-    index = [int(round(t / pb.tau_end * (len(run.tau) - 1))) for t in (a, b)]
-    if not math.isnan(run.r[index[1]]):  # the run covered [a, b]: its ends are candidates too
-        ends = np.array([(run.tau[k], run.r[k]) for k in index])
-        maxima, minima = np.concatenate([maxima, ends]), np.concatenate([minima, ends])
-        speeds = np.concatenate([speeds, [(run.tau[k], run.v[k]) for k in index]])
-    stop_t, stop_r, stop_v = run.end
-    if a <= stop_t <= b and run.status == UNBOUNDED_GROWTH:
-        maxima = np.concatenate([maxima, [(stop_t, stop_r)]])
-    if a <= stop_t <= b and run.status in (MACH, KM_STOP):
-        speeds = np.concatenate([speeds, [(stop_t, stop_v)]])
-    if a <= stop_t <= b and run.status in GUARDS:  # the minimum of [a, b] lies beyond the stop: unknown
-        minima = _NONE
-    return {
-        "r_max": tuple(maxima[np.argmax(maxima[:, 1])]) if len(maxima) else missing,
-        "r_min": tuple(minima[np.argmin(minima[:, 1])]) if len(minima) else missing,
-        "speed": float(np.max(np.abs(speeds[:, 1]))) if len(speeds) else np.inf,
-        "events": events,
-    }
-
-
-_NONE = np.empty((0, 2))
-
-
-def _gas_peaks(pb: Problem, r_min: float) -> dict:
-    """Peak gas pressure (GPa), adiabatic temperature (K) and R_min/h at the minimum radius."""
-    found = math.isfinite(r_min)
-    out = {"pg_peak": np.inf, "Tg_peak": np.inf, "Rmin_h": r_min / pb.eta if found and pb.eta else np.inf}
-    if found and pb.gas:
-        e3 = pb.eta**3
-        compression = (1.0 - e3) / (r_min**3 - e3)
-        out.update(pg_peak=pb.gas * compression**pb.kappa * P0 * 1e-9, Tg_peak=T0 * compression ** (pb.kappa - 1.0))
-    return out
-
-
-def _y_transform(pb: Problem, effects):
-    """The figure's radius coordinate: log10(R/R0) driven, log10(R/R_B) under a ramp, else R/R0.
-
-    Logarithms because the driven and ramped radii span decades across the sliders' stops.
-    """
+def reading(pb: Problem, scales: Scales, effects) -> np.ndarray:
+    """What the reading of a run needs to know of its point (kernel_read's Q_ entries, in their order)."""
+    r_b, p_blake = blake_point(pb.sigma, pb.vapour)
+    y_kind, y_scale = kernel_read.Y_PLAIN, 1.0  # the figure's y: logarithms where radii span decades
     if "drive" in effects:
-        return lambda r: np.log10(np.asarray(r, float))
-    r_b = pb.r_unbounded / terms.UNBOUNDED
-    if "ramp" in effects and math.isfinite(r_b):  # without surface tension there is no Blake radius
-        return lambda r: np.log10(np.asarray(r, float) / r_b)
-    return lambda r: np.asarray(r, float)
+        y_kind = kernel_read.Y_LOG
+    elif "ramp" in effects and math.isfinite(pb.r_unbounded):  # without surface tension there is no Blake radius
+        y_kind, y_scale = kernel_read.Y_LOG_BLAKE, pb.r_unbounded / terms.UNBOUNDED
+    part = pb.tau_end / DRIVE_PERIODS if "drive" in effects else pb.tau_end
+    # the wall speed past which the incompressible model is flagged invalid (a compressible one has no such limit)
+    invalid = terms.INVALID_MACH * pb.sound if pb.compressible == terms.NONE else math.inf
+    return np.array((pb.tau_end, part, pb.sound, invalid, pb.eta, pb.eta**3, pb.gas, pb.kappa, pb.ramp_to, y_kind, y_scale,
+                     scales.t_ref, scales.x_unit, r_b, p_blake, P0, T0))
 
 
-def _figure_marks(run: Run, scales: Scales, to_y, first: dict) -> dict:
-    """The drawn curve (samples with the extrema and the stop merged in), the stop and the R_max, R_min dots.
-
-    Grid samples alone miss a violent collapse: in preset B they bottom out near 0.5 R0 while the
-    event-detected minimum is 0.176 R0 (physics.md §0.3), so the curve passes through the events.
-    """
-    curve = _curve_points(run, to_y)
-    pad = CURVE_SIZE - len(curve)
-    out = {
-        "curve_x": np.concatenate([scales.x(curve[:, 0]), np.full(pad, np.nan)]),
-        "curve_y": np.concatenate([curve[:, 1], np.full(pad, np.nan)]),
-        "stop_x": np.full(1, np.nan), "stop_y": np.full(1, np.nan),
-    }
-    if run.status in TERMINAL:
-        out.update(stop_x=scales.x([run.end[0]]), stop_y=to_y([run.end[1]]))
-    marked = [row for row in (first["r_max"], first["r_min"])
-              if row[0] > 0 and any(np.any(np.all(group == row, axis=1)) for group in first["events"])]
-    xs, ys = np.full(2, np.nan), np.full(2, np.nan)
-    for k, (t, r) in enumerate(marked):
-        xs[k], ys[k] = scales.x(t), to_y(r)
-    out.update(mark_x=xs, mark_y=ys)
-    return out
-
-
-def _curve_points(run: Run, to_y) -> np.ndarray:
-    """(τ, y) of the grid samples, the visible extrema (the deepest CURVE_EXTREMA) and a terminal stop, in time order.
-
-    An extremum joins the curve only where the line through the grid samples would miss it by more
-    than the drawing's resolution (CURVE_GAP in y). That keeps the curve well defined: where R(t) is
-    quasi-static, ringing far below the resolution makes tiny extrema (about 1e-10 R0) whose number and
-    times differ between any two solvers, and merging them would shift every later point of the curve.
-    """
-    reached = np.isfinite(run.r)
-    tau, y = run.tau[reached], to_y(run.r[reached])
-    extrema = np.concatenate([run.maxima, run.minima])
-    extrema = extrema[extrema[:, 0] <= run.end[0]]
-    extrema = np.stack([extrema[:, 0], to_y(extrema[:, 1])], axis=1)
-    extrema = extrema[_visible(extrema, tau, y, run.tau[1] - run.tau[0])]
-    if len(extrema) > CURVE_EXTREMA:
-        depth = np.abs(extrema[:, 1] - y[0])
-        extrema = extrema[np.sort(np.argsort(-depth, kind="stable")[:CURVE_EXTREMA])]
-    stop = [(run.end[0], float(to_y(run.end[1])))] if run.status in TERMINAL else []
-    points = np.concatenate([np.stack([tau, y], axis=1), extrema, np.reshape(stop, (-1, 2))])
-    points = points[np.argsort(points[:, 0], kind="stable")]
-    keep = np.concatenate([[True], np.diff(points[:, 0]) > 0])  # one point per time (t = 0 is both)
-    return points[keep]
-
-
-def _visible(extrema: np.ndarray, tau: np.ndarray, y: np.ndarray, spacing: float) -> np.ndarray:
-    """Which extrema (τ, y) lie farther than CURVE_GAP from the chord between the grid samples around them
-    (all of those past the last sample, where there is no chord)."""
-    left = np.floor(extrema[:, 0] / spacing).astype(int)
-    inside = left + 1 < len(tau)
-    k = np.where(inside, left, 0)
-    chord = y[k] + (y[np.minimum(k + 1, len(y) - 1)] - y[k]) * (extrema[:, 0] - tau[k]) / spacing
-    return ~inside | (np.abs(extrema[:, 1] - chord) > CURVE_GAP)
-
-
-def _flag(run: Run, pb: Problem) -> int:
-    """Index into FLAGS: how the run ended, or invalid if the incompressible wall passed 0.2c."""
-    if run.status in _FLAG_OF_STATUS and run.status != UNBOUNDED_GROWTH:
-        return _FLAG_OF_STATUS[run.status]
-    fastest = max([abs(v) for v in run.speeds[:, 1]] + [float(np.nanmax(np.abs(run.v)))])
-    if pb.compressible == terms.NONE and fastest > terms.INVALID_MACH * pb.sound:
-        return 1
-    return _FLAG_OF_STATUS.get(run.status, 0)
+@lru_cache(maxsize=4096)
+def blake_point(sigma: float, vapour: float) -> tuple[float, float]:
+    """terms.blake_nucleus at one point, as floats (remembered: a scene has few distinct nuclei)."""
+    r_b, p_blake = terms.blake_nucleus(sigma, vapour)
+    return float(r_b), float(p_blake)
 
 
 def _solver_label(run: Run, pb: Problem) -> int:
@@ -325,23 +209,3 @@ def _solver_label(run: Run, pb: Problem) -> int:
     if (run.method, run.rtol) in choices:
         return choices[(run.method, run.rtol)]
     return 4 + SCENE_METHODS.index(run.method) if run.method in SCENE_METHODS else 3
-
-
-def _blake_state(run: Run, pb: Problem) -> int:
-    """Index into BLAKE_LABELS: the verdict on the nucleus at the end of the ramp and hold.
-
-    A large nucleus grows slowly: within the hold it may not reach R_B even beyond the threshold, so the
-    verdict reads the end of the run too (R > R_B and Ṙ > 0: past the unstable size, it goes on growing)
-    and, below R_B, whether any size is in equilibrium at the final pressure (beyond the threshold, none
-    is: a pressure below p_Blake pulls every nucleus open, however slowly).
-    """
-    if run.status == UNBOUNDED_GROWTH:
-        return 4
-    r_b, p_blake = terms.blake_nucleus(pb.sigma, pb.vapour)
-    _, r_end, v_end = run.end
-    if r_end > r_b and v_end > 0.0:
-        return 2
-    if pb.ramp_to < float(p_blake):
-        return 3
-    largest = max([float(np.nanmax(run.r))] + list(run.maxima[:, 1]))
-    return 1 if largest > r_b else 0

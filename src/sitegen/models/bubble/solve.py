@@ -34,9 +34,10 @@ from .terms import (
 )
 from ...physics import compiled
 from .kernel_march import (
-    CAP_CODE, DOP853_METHOD, ENDED, FAILED_CODE, G_ACCELERATION, G_RADIUS_LEVEL, G_SPEED, G_SPEED_LEVEL, RADAU_METHOD,
-    march,
+    CAP_CODE, CORE_CODE, DOP853_METHOD, ENDED, FAILED_CODE, G_ACCELERATION, G_RADIUS_LEVEL, G_SPEED, G_SPEED_LEVEL, KM_CODE,
+    MACH_CODE, POINT_CODE, RADAU_METHOD, UNBOUNDED_CODE, march, split_hits,
 )
+from . import kernel_read
 from .kernel_terms import pack
 from ...physics.numerics import Numerics
 
@@ -70,9 +71,11 @@ CAP_NFEV = "cap_nfev"  # the evaluation cap was hit
 FAILED = "failed"  # the solver gave up (step size underflow)
 
 
-STOPS = (MACH, KM_STOP, POINT, CORE, UNBOUNDED_GROWTH)  # terminal statuses, by their code in the event table
-_ENDS = {ENDED: OK, FAILED_CODE: FAILED, CAP_CODE: CAP_NFEV}
-_RECORDS = {"max": 1, "min": 2, "speed": 3}  # an event table's record codes
+# Each status's code, as the event table and the compiled march and reading name it.
+STATUS_CODES = {OK: ENDED, FAILED: FAILED_CODE, CAP_NFEV: CAP_CODE, MACH: MACH_CODE, KM_STOP: KM_CODE, POINT: POINT_CODE,
+                CORE: CORE_CODE, UNBOUNDED_GROWTH: UNBOUNDED_CODE}
+_STATUS_OF = {code: status for status, code in STATUS_CODES.items()}
+_RECORDS = {"max": 1, "min": 2, "speed": 3}  # an event table's record codes (split_hits takes them in this order)
 
 
 @dataclass(frozen=True)
@@ -143,9 +146,10 @@ def stiff_atol(pb: Problem, rtol: float) -> float | None:
     return max(default_atol(rtol), ATOL_FLOOR) if pb.stiffness > STIFF else None
 
 
+@lru_cache(maxsize=1024)
 def sample_grid(tau_end: float) -> np.ndarray:
-    """The fixed sample times of a run, CURVE_POINTS over [0, τ_end]."""
-    return np.linspace(0.0, tau_end, CURVE_POINTS)
+    """The fixed sample times of a run, CURVE_POINTS over [0, τ_end] (read-only: runs of one length share it)."""
+    return _frozen(np.linspace(0.0, tau_end, CURVE_POINTS))
 
 
 def choose_method(pb: Problem) -> tuple[str, float]:
@@ -211,7 +215,7 @@ def event_table(pb: Problem) -> np.ndarray:
         rows.append((G_RADIUS_LEVEL, pb.eta * (1.0 + CORE_MARGIN), -1, CORE, ""))
     if math.isfinite(pb.r_unbounded):
         rows.append((G_RADIUS_LEVEL, pb.r_unbounded, +1, UNBOUNDED_GROWTH, ""))
-    codes = [(kind, level, direction, STOPS.index(stop) + 3 if stop else 0, _RECORDS.get(role, 0))
+    codes = [(kind, level, direction, STATUS_CODES[stop] if stop else 0, _RECORDS.get(role, 0))
              for kind, level, direction, stop, role in rows]
     return np.array(codes, float)
 
@@ -225,33 +229,38 @@ def bubble_events(pb: Problem, fun) -> list[Event]:
         return lambda t, y: y[column] - level
 
     roles = {code: role for role, code in _RECORDS.items()}
-    return [Event(g(int(kind), level), int(direction), STOPS[int(stop) - 3] if stop else "", roles.get(int(record), ""))
+    return [Event(g(int(kind), level), int(direction), _STATUS_OF[int(stop)] if stop else "", roles.get(int(record), ""))
             for kind, level, direction, stop, record in event_table(pb)]
 
 
 def integrate_compiled(pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), atol: float | None = None) -> Run:
     """The compiled path of `integrate`: the same events, samples and statuses, no Python per step."""
-    start = time.perf_counter()
     ensure_compiled()
+    return _marched(pb, y0, method, rtol, caps, atol)
+
+
+def _marched(pb: Problem, y0, method: str, rtol: float, caps: Caps, atol: float | None) -> Run:
+    start = time.perf_counter()
     grid = sample_grid(pb.tau_end)
     atol = default_atol(rtol) if atol is None else atol
     if pb.compressible == KELLER_MIKSIS and abs(y0[1]) >= pb.speed_limit:
         return _make_run(KM_STOP, method, rtol, _Stepper([], grid, y0), 0, time.perf_counter() - start)
     code, end, samples, hits, nfev = march(COMPILED[method], pack(pb), np.array(y0, float), rtol, atol, pb.tau_end,
                                               grid, event_table(pb), caps.max_nfev)
-    status = _ENDS[code] if code in _ENDS else STOPS[code - 3]
-    pick = lambda role, column: _frozen(hits[hits[:, 0] == _RECORDS[role]][:, [1, column]]).reshape(-1, 2)  # noqa: E731
-    samples.setflags(write=False)
-    return Run(status, method, rtol, _frozen(grid), samples[:, 0], samples[:, 1], (float(end[0]), float(end[1]), float(end[2])),
-               pick("max", 2), pick("min", 2), pick("speed", 3), int(nfev), time.perf_counter() - start)
+    maxima, minima, speeds = (_frozen(rows, copy=False) for rows in split_hits(hits, *_RECORDS.values()))
+    return Run(_STATUS_OF[code], method, rtol, grid, _frozen(samples[:, 0]), _frozen(samples[:, 1]),
+               (float(end[0]), float(end[1]), float(end[2])), maxima, minima, speeds, int(nfev), time.perf_counter() - start)
 
 
 def ensure_compiled() -> tuple[float, bool]:
     """Compile the bubble's kernels, or load them from the cache (once per process): (seconds, compiled)."""
-    def warm_up():
+    def warm_up():  # each entry point once, with the types of the build's calls
         pb = Problem(gas=1.0, kappa=1.4, visc=0.01, drive=0.5, omega=1.0, tau_end=0.5)
-        for code in COMPILED.values():
-            march(code, pack(pb), np.array([1.0, 0.0]), 1e-6, 1e-9, pb.tau_end, sample_grid(pb.tau_end), event_table(pb), 10_000)
+        for method in COMPILED:
+            run = _marched(pb, (1.0, 0.0), method, 1e-6, Caps(10_000), 1e-9)
+        q = np.ones(kernel_read.READING_SIZE)  # a reading of any point whose window is the run's
+        q[kernel_read.Q_TAU_END] = q[kernel_read.Q_PART] = pb.tau_end
+        kernel_read.read(q, run.tau, run.r, run.v, run.end, STATUS_CODES[run.status], run.maxima, run.minima, run.speeds)
 
     return compiled.prepare(warm_up)
 
@@ -365,8 +374,8 @@ def _root(event: Event, dense, t_old: float, t_new: float) -> float:
         return t_new
 
 
-def _frozen(array) -> np.ndarray:
-    array = np.array(array, float)
+def _frozen(array, copy: bool = True) -> np.ndarray:
+    array = np.array(array, float, order="C", copy=copy or None)  # one layout: the compiled reading has one signature
     array.setflags(write=False)
     return array
 

@@ -130,9 +130,15 @@ def _pulse_images(s, sigma, period: float, amplitude: float):
     # Reduce s first (np.mod is exact), then measure from x0: s and s ± P then round identically.
     shifted = np.mod(s, period) - CENTRE
     shifted = np.where(shifted >= period / 2, shifted - period, shifted)  # the image of x0 nearest s
-    total = 0.0
-    for k in (-1, 0, 1):
-        total = total + amplitude * np.exp(-((shifted - k * period) ** 2) / (2 * sigma**2))
+    spread, total = 2 * sigma**2, 0.0
+    for k in (-1, 0, 1):  # u0 of each image, in place: the same operations as A exp(−(s − kP)²/2σ²)
+        image = shifted - k * period
+        image *= image
+        np.negative(image, out=image)
+        image /= spread
+        np.exp(image, out=image)
+        image *= amplitude
+        total = total + image
     return total
 
 
@@ -145,11 +151,15 @@ def continuum(x, t, sigma, launch, ends: str = "fixed", amplitude: float = AMPLI
     def images(s):
         return _pulse_images(s, sigma, period, amplitude)
 
-    def reflected(s):  # the extension of u0 beyond [0, L] that the ends impose (a ring needs none)
-        return images(s) + sign * images(-s) if sign else images(s)
-
-    right = images(x - SPEED * t) + sign * images(-x - SPEED * t) if sign else images(x - SPEED * t)
-    split = 0.5 * (reflected(x - SPEED * t) + reflected(x + SPEED * t))
+    # The launches share their images: x − ct, and −x − ct = −(x + ct) exactly (rounding is symmetric).
+    behind, ahead = x - SPEED * t, x + SPEED * t
+    moving = images(behind)
+    if not sign:  # a ring needs no reflections
+        right, split = moving, 0.5 * (moving + images(ahead))
+    else:  # the extension of u0 beyond [0, L] that the ends impose, for each travelling half
+        mirrored = images(-ahead)
+        right = moving + sign * mirrored
+        split = 0.5 * ((moving + sign * images(-behind)) + (images(ahead) + sign * mirrored))
     return np.where(launch == RIGHT_MOVING, right, split)
 
 
@@ -161,7 +171,11 @@ def continuum_energy(sigma, launch):
 
 def deviation(n: int, sigma, t, launch, terms: Terms = BARE):
     """max_j |u_j − u_c(x_j)| / A: how far the chain is from the continuum string (the physics error)."""
-    u, _ = chain_motion(n, sigma, t, launch, terms, amplitude=1.0)
+    return _deviation(chain_motion(n, sigma, t, launch, terms, amplitude=1.0)[0], n, sigma, t, launch, terms)
+
+
+def _deviation(u: np.ndarray, n: int, sigma, t, launch, terms: Terms):
+    """`deviation` of displacements u/A already computed by chain_motion."""
     x = positions(n, terms.ends)
     sigma, t, launch = np.broadcast_arrays(*(np.asarray(v, float) for v in (sigma, t, launch)))
     reference = continuum(x, t[..., None], sigma[..., None], launch[..., None], terms.ends, amplitude=1.0)
@@ -261,8 +275,12 @@ class Chain(Model):
         ends = groups[1][..., 0]
         a = np.where(ends == ENDS.index("fixed"), spacing(np.rint(N), "fixed"), spacing(np.rint(N), "free"))
 
+        motions = {}  # the deviation and the drawn dots read the same motion of each chain: solved once
+
         def motion(n, terms, w):
-            return chain_motion(n, sigma[w], t[w], launch[w], terms, 1.0)
+            if (n, terms) not in motions:
+                motions[n, terms] = chain_motion(n, sigma[w], t[w], launch[w], terms, 1.0)
+            return motions[n, terms]
 
         def modes(pick):
             return lambda: _per_chain(groups, lambda n, terms, w: _padded(np.log10(_sorted_modes(n, terms)[pick])), MAX_N)
@@ -274,7 +292,7 @@ class Chain(Model):
             "c": lambda: np.full(N.shape, SPEED),  # a√(κ/m) = c by construction (tested separately)
             "omega_max": lambda: np.hypot(2 * SPEED / a, groups[1][..., 2]),
             "sigma_over_a": lambda: sigma / a,
-            "dev": lambda: _per_chain(groups, lambda n, terms, w: deviation(n, sigma[w], t[w], launch[w], terms)),
+            "dev": lambda: _per_chain(groups, lambda n, terms, w: _deviation(motion(n, terms, w)[0], n, sigma[w], t[w], launch[w], terms)),
             "E_chain": lambda: _per_chain(groups, lambda n, terms, w: _initial_energy(n, sigma[w], launch[w], terms, 1.0)),
             "E_continuum": lambda: continuum_energy(sigma, launch),
             "E_chain_mJ": lambda: 1e3 * _per_chain(groups, lambda n, terms, w: _initial_energy(n, sigma[w], launch[w], terms, AMPLITUDE)),

@@ -31,7 +31,7 @@ GOLDEN_STEP = (np.sqrt(5.0) - 1.0) / 2.0  # 1/phi: start positions s_i = {i/phi}
 TRAIN_BINS = 80  # time bins of the impulse train; the running mean is sampled at their right edges
 HIST_SPAN = 4.0  # the v_x histogram covers |v_x| <= 4 v_th
 HIST_SIZE = 2 * int(2 * HIST_SPAN / 0.25) + 2  # vertices of the finest histogram (bins of 0.25 v_th)
-TIME_CHUNK = 2  # edge times counted per pass: small arrays stay in cache at N = 1e5
+CHUNK_VALUES = 200_000  # counts per pass (molecules × edge times): the arrays stay in cache, a small N takes few passes
 
 _WINDOW = ("N", "t_w", "sampling")  # what the wall record depends on
 _TRAIN_SIZE = 2 * TRAIN_BINS + 2
@@ -233,12 +233,26 @@ def _image_index(x: np.ndarray) -> np.ndarray:
 def cumulative_impulse(z: np.ndarray, s: np.ndarray, times: np.ndarray) -> np.ndarray:
     """Σ_i 2|z_i| n_i(t) at each time t: the impulse delivered to the wall by then, in units m v_th."""
     weight = 2.0 * np.abs(z)
+    inside = bool(np.all((s >= 0.0) & (s < 1.0)))  # as molecules() draws them
     impulse = np.empty(len(times))
-    for k in range(0, len(times), TIME_CHUNK):
-        hits = wall_hits(s, z, times[k : k + TIME_CHUNK, None])
+    step = max(1, CHUNK_VALUES // max(len(z), 1))
+    for k in range(0, len(times), step):
+        tau = times[k : k + step, None]
+        hits = _hits_from_inside(s, z, tau) if inside else wall_hits(s, z, tau)
         hits *= weight
-        impulse[k : k + TIME_CHUNK] = np.sum(hits, axis=1)  # float64 sums: the terms are ~1e-23 N·s in SI
+        impulse[k : k + step] = np.sum(hits, axis=1)  # float64 sums: the terms are ~1e-23 N·s in SI
     return impulse
+
+
+def _hits_from_inside(s, z, tau) -> np.ndarray:
+    """wall_hits for starts inside the box (0 ≤ s < 1), in fewer passes: there the start's image index is −1,
+    so the count is the end's index + 1 moving out (the end at or above the start) and −1 − that index moving
+    in (the end below 1): |index + 1| either way, the same floats, +0.0 included."""
+    end = np.multiply(z, tau, out=np.empty(np.broadcast_shapes(np.shape(s), np.shape(z), np.shape(tau))))
+    end += s
+    hits = _image_index(end)
+    hits += 1.0
+    return np.abs(hits, out=hits)
 
 
 @dataclass(frozen=True)

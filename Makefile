@@ -55,14 +55,18 @@ accept-figures: $(VENV)/.site-installed tools-node
 clean:
 	rm -rf build .build.new-* .build.old build-bench .cache build-review
 
-$(VENV)/.site-installed: pyproject.toml
-	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+
+$(VENV)/.site-installed: pyproject.toml | $(BIN)/python
 	$(BIN)/pip install --quiet --disable-pip-version-check -e .
 	touch $@
 
-$(VENV)/.test-installed: $(VENV)/.site-installed pyproject.toml
+# One pip run installs the package with its test tools, so it stands for the site's install too
+# (on a fresh clone, `make test` resolves and installs everything once).
+$(VENV)/.test-installed: pyproject.toml | $(BIN)/python
 	$(BIN)/pip install --quiet --disable-pip-version-check -e '.[test]'
-	touch $@
+	touch $(VENV)/.site-installed $@
 
 node_modules/.installed: package.json package-lock.json | tools-node
 	npm ci --ignore-scripts --no-audit --no-fund --loglevel=error

@@ -543,13 +543,25 @@ def spread(count: int, n: int = 8) -> list[int]:
 
 
 _SINGULAR: dict[str, dict[str, list[tuple[int, ...]]]] = {}
+# A model solved per point (an ODE per stop) is searched on a sub-grid of at most about this many
+# points: every k-th stop of each axis, and its last. Closed forms are searched at every stop.
+SOLVED_SEARCH_POINTS = 500
+
+
+def _search_stops(counts: tuple[int, ...], limit: int | None) -> list[list[int]]:
+    """The stops of each axis to search: all of them, or the coarsest every-k-th (with the last) within `limit` points."""
+    step = 1
+    while limit and math.prod(len(range(0, c - 1, step)) + 1 for c in counts) > limit:
+        step += 1
+    return [sorted({*range(0, c, step), c - 1}) for c in counts]
 
 
 def singular_stops(scene: BookScene) -> dict[str, list[tuple[int, ...]]]:
     """For each readout with a `special` phrase, the full slider positions (the other controls at
     their defaults) where the model's value is not finite: ±inf where the physics is singular,
     NaN where the quantity does not exist. Each group of outputs with the same dependencies is
-    searched over its whole grid in one vectorised evaluation (memoised per scene)."""
+    searched over its whole grid in one vectorised evaluation (a model that solves an equation per
+    point, over a sub-grid; memoised per scene)."""
     if scene.key in _SINGULAR:
         return _SINGULAR[scene.key]
     sc = scene.scene
@@ -559,11 +571,13 @@ def singular_stops(scene: BookScene) -> dict[str, list[tuple[int, ...]]]:
             dep_axes = tuple(i for i, a in enumerate(sc.axes) if a.param in sc.model.deps_of(output.name, sc.effects))
             groups.setdefault(dep_axes, []).append(output.name)
     found: dict[str, list[tuple[int, ...]]] = {}
+    solved = sc.model.is_numerical(sc.effects)
     for dep_axes, names in groups.items():
-        shape = tuple(sc.axes[i].count for i in dep_axes)
+        searched = _search_stops(tuple(sc.axes[i].count for i in dep_axes), SOLVED_SEARCH_POINTS if solved else None)
+        shape = tuple(len(ks) for ks in searched)
         if math.prod(shape) > 2_000_000:
             raise NotImplementedError(f"{names}: {math.prod(shape)} points is too many to search")
-        grids = np.meshgrid(*(sc.axes[i].values() for i in dep_axes), indexing="ij")
+        grids = np.meshgrid(*(sc.axes[i].values()[ks] for i, ks in zip(dep_axes, searched)), indexing="ij")
         inputs = {k: np.full(shape, v) for k, v in stop_inputs(sc, sc.default_stops).items()}
         for i, grid in zip(dep_axes, grids):
             inputs[sc.axes[i].param] = grid
@@ -573,8 +587,8 @@ def singular_stops(scene: BookScene) -> dict[str, list[tuple[int, ...]]]:
             found[name] = []
             for where in zip(*np.nonzero(bad)):
                 stops = list(sc.default_stops)
-                for i, k in zip(dep_axes, where):
-                    stops[i] = int(k)
+                for i, ks, k in zip(dep_axes, searched, where):
+                    stops[i] = ks[k]
                 found[name].append(tuple(stops))
     _SINGULAR[scene.key] = found
     return found

@@ -8,18 +8,24 @@ new test cannot forget them.
 """
 from __future__ import annotations
 
+import fcntl
 import os
 import shutil
 from pathlib import Path
+from typing import Callable
 
 import pytest
 
 import sitegen.build
 from sitegen.build import BuildConfig, build
+from sitegen.physics.compiled import CACHE_ENV
 from sitegen.registry import builtin_registry
 
 ROOT = Path(__file__).resolve().parents[1]
 BOOK = Path(__file__).resolve().parent / "book"  # the tiny book: a few pages, one scene per model family
+# Compiled code is keyed by content (kernels' sources, numba, target), so every book the tests build, in
+# this process or another, shares the project's: the kernels compile once per checkout, not once per book.
+COMPILED = ROOT / ".cache" / "compiled"
 BROWSER_MODULES = {"test_browser", "test_accessibility"}
 # Tests that take seconds each on their own (node-id prefixes), left to `make test`:
 SLOW_TESTS = (
@@ -35,6 +41,7 @@ SLOW_TESTS = (
     "tests/test_build.py::test_computing_from_nothing_is_deterministic_across_hash_seeds",
     "tests/test_review.py::test_review_against_a_revision_builds_it_in_a_temporary_worktree",
     "tests/test_executors.py::test_dask_cluster_gives_the_serial_bytes",
+    "tests/test_determinism_load.py::",  # bubble books built in other processes, beside spinning CPUs
     # pip building and installing the wheel (and a fresh venv that builds a book with it)
     "tests/test_install.py::test_installing_writes_nothing_into_build",
     "tests/test_install.py::test_the_wheel_carries",
@@ -42,10 +49,16 @@ SLOW_TESTS = (
     "tests/test_install.py::test_a_new_book_builds_and_previews_with_the_installed_tool",
 )
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault(CACHE_ENV, str(COMPILED))  # the tests that call the solvers directly, and their subprocesses
 
 
-def pytest_collection_modifyitems(items) -> None:
+COLLECTED = pytest.StashKey[list]()  # the node ids of every test collected, before -m or -k leave any out
+
+
+@pytest.hookimpl(tryfirst=True)  # before -m and -k deselect: they read these marks
+def pytest_collection_modifyitems(config, items) -> None:
     """Mark what builds the real book (or is listed in SLOW_TESTS) `slow` and what drives Chromium `browser`."""
+    config.stash[COLLECTED] = [item.nodeid for item in items]
     for item in items:
         names = set(getattr(item, "fixturenames", ()))
         if "built_site" in names or item.nodeid.startswith(SLOW_TESTS):
@@ -54,13 +67,22 @@ def pytest_collection_modifyitems(items) -> None:
             item.add_marker(pytest.mark.browser)
 
 
+def share_compiled(root: Path) -> None:
+    """Point the book at `root` to the project's compiled code (.cache/compiled/, a link)."""
+    COMPILED.mkdir(parents=True, exist_ok=True)
+    (root / ".cache").mkdir(parents=True, exist_ok=True)
+    (root / ".cache" / "compiled").symlink_to(COMPILED, target_is_directory=True)
+
+
 def copy_book(root: Path, cache: Path | None = None) -> BuildConfig:
-    """A copy of the tiny book at `root` (its book.toml, content and goldens), with a copy of `cache` when given."""
+    """A copy of the tiny book at `root` (its book.toml, content and goldens), with a copy of `cache`
+    when given; its compiled code is the project's."""
     shutil.copytree(BOOK / "content", root / "content")
     shutil.copytree(BOOK / "goldens", root / "goldens")
     shutil.copy(BOOK / "book.toml", root / "book.toml")
     if cache is not None:
-        shutil.copytree(cache, root / ".cache")
+        shutil.copytree(cache, root / ".cache", ignore=shutil.ignore_patterns("compiled"))
+    share_compiled(root)
     return BuildConfig.at(root)
 
 
@@ -80,15 +102,36 @@ def register(monkeypatch):
     return _register
 
 
+@pytest.fixture(scope="session")
+def collected_ids(request) -> list[str]:
+    """The node ids of every test this run collected, selected or not."""
+    return request.config.stash[COLLECTED]
+
+
 BUILTIN = builtin_registry()  # the built-in models and figures, for tests that use them directly
+
+
+def made_once(tmp_path_factory, name: str, make: Callable[[Path], object]) -> Path:
+    """The folder `name`, filled by `make(folder)` once per test run: when pytest-xdist runs the tests in
+    several processes, the first to ask makes it while the others wait for it, and all read the same."""
+    base = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        base = base.parent  # the workers' temporary folders sit side by side in the run's own
+    folder, done = base / name, base / f"{name}.done"
+    with open(base / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes, also if `make` fails
+        if not done.exists():
+            shutil.rmtree(folder, ignore_errors=True)  # what a failed attempt left
+            folder.mkdir()
+            make(folder)
+            done.touch()
+    return folder
 
 
 @pytest.fixture(scope="session")
 def tiny_built(tmp_path_factory) -> BuildConfig:
     """The tiny book built once from nothing (its own cache, filled by this build)."""
-    config = copy_book(tmp_path_factory.mktemp("tiny"))
-    build(config, progress=None)
-    return config
+    return BuildConfig.at(made_once(tmp_path_factory, "tiny", lambda folder: build(copy_book(folder), progress=None)))
 
 
 @pytest.fixture(scope="session")
@@ -111,8 +154,7 @@ def built_site(tmp_path_factory) -> Path:
     build of the book that computes everything, and the other builds of the book in the suite
     reuse its tables.
     """
-    folder = tmp_path_factory.mktemp("site")
-    build(BuildConfig.at(ROOT, folder / "build"), progress=None)
+    folder = made_once(tmp_path_factory, "site", lambda folder: build(BuildConfig.at(ROOT, folder / "build"), progress=None))
     return folder / "build"
 
 

@@ -5,8 +5,6 @@ each kind of failure — file:line errors, an exit status, and no Python traceba
 """
 from __future__ import annotations
 
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -159,36 +157,39 @@ def test_byte_order_mark_is_ignored(tmp_path):
 # --- the command ------------------------------------------------------------------------------------
 
 
-def run_cli(root: Path, *extra: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "sitegen.cli", "build", "--root", str(root), "--no-cache", *extra],
-                          capture_output=True, text=True, timeout=300, check=False)
+def run_cli(root: Path, capsys, *extra: str) -> tuple[int, str]:
+    """`sitegen build --root ROOT --no-cache ...` (in this process, as the command runs it): its exit
+    status and what it printed on stderr. An exception it let out would fail the test."""
+    capsys.readouterr()
+    status = cli.main(["build", "--root", str(root), "--no-cache", *extra])
+    return status, capsys.readouterr().err
 
 
-def test_every_error_of_every_page_in_one_run(tmp_path):
+def test_every_error_of_every_page_in_one_run(tmp_path, capsys):
     """The command prints every author error of the book, sorted, then a summary; exit 1."""
     pages = {name: (ROOT / "tests" / "invalid" / f"{name}.md").read_text(encoding="utf-8")
              for name in ("not-finite-or-reversed", "front-matter-types", "bad-tex")}
     make_book(tmp_path, pages)
-    done = run_cli(tmp_path)
+    status, err = run_cli(tmp_path, capsys)
     expected = [line for name in sorted(pages) for line in (ROOT / "tests" / "invalid" / f"{name}.expected").read_text().splitlines()]
-    assert done.returncode == 1
-    assert done.stderr.splitlines() == [*expected, f"build failed: {len(expected)} error(s); {tmp_path / 'build'} was left as it was"]
+    assert status == 1
+    assert err.splitlines() == [*expected, f"build failed: {len(expected)} error(s); {tmp_path / 'build'} was left as it was"]
 
 
-def test_missing_content_folder(tmp_path):
+def test_missing_content_folder(tmp_path, capsys):
     """A book without content/ is one line and exit 2, not an empty site."""
     (tmp_path / "book.toml").write_text("")
-    done = run_cli(tmp_path)
-    assert done.returncode == 2 and "no folder content in" in done.stderr and "Traceback" not in done.stderr
+    status, err = run_cli(tmp_path, capsys)
+    assert status == 2 and "no folder content in" in err and "Traceback" not in err
 
 
-def test_output_that_cannot_be_written(tmp_path):
+def test_output_that_cannot_be_written(tmp_path, capsys):
     """An output folder that cannot be made (here: under a file) is one line and exit 2."""
     make_book(tmp_path, {})
     (tmp_path / "file").write_text("not a folder")
-    done = run_cli(tmp_path, "--out", str(tmp_path / "file" / "build"))
-    assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr
-    assert done.stderr.startswith("sitegen: ") and "holds the last complete build" in done.stderr
+    status, err = run_cli(tmp_path, capsys, "--out", str(tmp_path / "file" / "build"))
+    assert status == 2 and "Traceback" not in err, err
+    assert err.startswith("sitegen: ") and "holds the last complete build" in err
 
 
 def test_internal_error_is_reported_without_traceback(tmp_path, register_model, capsys):

@@ -15,7 +15,8 @@ animated scenes; and the singular stops whose readouts are words rather than num
 Speed: one browser for the session and one loaded page per (page, transport, javascript) shared
 by the tests (each test first puts its scene back on its defaults); a test that navigates or
 needs its own browser settings opens a fresh page. DOM reads are batched in one page.evaluate().
-Keyboard tests run over file:// only.
+Loading is tested from disk and over http; keyboard, random-state, expression, layer and animation
+tests run over file:// only (the script works on the same inline tables either way).
 """
 from __future__ import annotations
 
@@ -410,8 +411,8 @@ def test_singular_stops_show_words(scene_page, scene, transport):
     """Where the model is singular (±inf) or the quantity does not exist (NaN), an output with a
     `special` shows that phrase, without a unit: e.g. the lever's mechanical advantage with the
     pivot at the end, the intensity level in front of a perfect reflector, the potential energy
-    of drag. Every such output is searched over its whole grid; a few of its singular stops each
-    (the first, the last and up to four more) are set on the page."""
+    of drag. Every such output is searched over its grid (a solved model's over a sub-grid); a few of
+    its singular stops each (the first, the last and up to four more) are set on the page."""
     found = singular_stops(scene)
     if not any(found.values()):
         pytest.skip(f"no stop of {scene.key} makes {', '.join(found)} non-finite")
@@ -452,11 +453,12 @@ def test_known_singular_stops():
 RANDOM_STATES = 200
 
 
-@pytest.mark.parametrize("scene,transport", _scene_params())
+@pytest.mark.parametrize("scene,transport", _scene_params(transports=("file",)))
 def test_random_scene_states(scene_page, scene, transport):
     """Random positions of all controls at once (sliders by value + `input`, choices by checking a
     radio + `input`/`change`): catches table indexing mistakes across axes. No readout, control
-    text or layer ever shows NaN, Infinity or undefined."""
+    text or layer ever shows NaN, Infinity or undefined. (From disk: once a page has loaded, its
+    script reads the same inline tables over http; test_control_by_value moves every control there.)"""
     page, log, mark = scene_page(scene, transport)
     rng = random.Random(f"{scene.key}/1")
     failures = []

@@ -35,14 +35,35 @@ slider e: 0..1 step 0.25 default 1
 """
 
 
-@pytest.fixture
-def book(tmp_path) -> BuildConfig:
-    """A small book (home page and a page with two scenes) with its own cache."""
-    content = tmp_path / "content"
+def _write_book(root: Path) -> BuildConfig:
+    """A small book (home page and a page with two scenes) at `root`, with its own cache."""
+    content = root / "content"
     content.mkdir()
     shutil.copy(ROOT / "content" / "index.md", content / "index.md")
     (content / CHAPTER).write_text(PAGE)
-    return BuildConfig(tmp_path, content, tmp_path / "build", cache=tmp_path / ".cache")
+    return BuildConfig(root, content, root / "build", cache=root / ".cache")
+
+
+@pytest.fixture
+def book(tmp_path) -> BuildConfig:
+    """The small book, never built: an empty cache."""
+    return _write_book(tmp_path)
+
+
+@pytest.fixture(scope="module")
+def first_build(tmp_path_factory) -> Path:
+    """The small book after its first build (from an empty cache), once for the module."""
+    root = tmp_path_factory.mktemp("first")
+    build(_write_book(root), progress=None)
+    return root
+
+
+@pytest.fixture
+def built(tmp_path, first_build) -> BuildConfig:
+    """A copy of the small book as its first build left it: its pages, build/ and cache (the start of
+    every test of a rebuild)."""
+    shutil.copytree(first_build, tmp_path, dirs_exist_ok=True)
+    return BuildConfig(tmp_path, tmp_path / "content", tmp_path / "build", cache=tmp_path / ".cache")
 
 
 def _edit(config: BuildConfig, old: str, new: str) -> None:
@@ -64,39 +85,35 @@ def test_first_build_computes_every_scene_as_new(book):
     assert set(_statuses(report).values()) == {"computed: new"}
 
 
-def test_rebuild_with_nothing_changed_evaluates_nothing(book):
+def test_rebuild_with_nothing_changed_evaluates_nothing(built):
     """The second build takes every scene from the cache: zero model evaluations."""
-    build(book, progress=None)
-    report = build(book, progress=None)
+    report = build(built, progress=None)
     assert (report.computed, report.evaluations, report.cached) == (0, 0, report.scenes)
 
 
-def test_prose_edit_evaluates_nothing(book):
+def test_prose_edit_evaluates_nothing(built):
     """Editing a sentence changes the page but no scene's key."""
-    build(book, progress=None)
-    _edit(book, "The first law is best read as a definition;", "The first law is really a definition;")
-    report = build(book, progress=None)
+    _edit(built, "The first law is best read as a definition;", "The first law is really a definition;")
+    report = build(built, progress=None)
     assert report.computed == 0 and report.evaluations == 0
-    assert "really a definition" in (book.out / "newtons-laws.html").read_text()
+    assert "really a definition" in (built.out / "newtons-laws.html").read_text()
 
 
-def test_one_scene_edited_only_that_scene_is_computed(book):
+def test_one_scene_edited_only_that_scene_is_computed(built):
     """Changing one scene's slider grid recomputes that scene alone, and says why."""
-    build(book, progress=None)
-    _edit(book, "slider F_pk: 0..50 step 2 default 12", "slider F_pk: 0..50 step 1 default 12")
-    report = build(book, progress=None)
+    _edit(built, "slider F_pk: 0..50 step 2 default 12", "slider F_pk: 0..50 step 1 default 12")
+    report = build(built, progress=None)
     statuses = _statuses(report)
     assert report.computed == 1
     assert statuses.pop("newtons-laws#impulse") == "computed: spec changed"
     assert set(statuses.values()) == {"cached"}
 
 
-def test_model_code_change_is_named(book, monkeypatch):
+def test_model_code_change_is_named(built, monkeypatch):
     """When the model's source hash changes, every scene of the rebuild says 'model code changed'."""
-    build(book, progress=None)
     real = cache_module.source_digest
     monkeypatch.setattr(cache_module, "source_digest", lambda modules: "edited-" + real(modules))
-    report = build(book, progress=None)
+    report = build(built, progress=None)
     assert set(_statuses(report).values()) == {"computed: model code changed"}
 
 
@@ -115,53 +132,48 @@ def test_source_digest_follows_the_bytes_of_the_model_file(tmp_path, monkeypatch
     cache_module.forget_sources()
 
 
-def test_library_version_change_is_named(book, monkeypatch):
+def test_library_version_change_is_named(built, monkeypatch):
     """A different numpy/scipy/matplotlib makes every scene recompute, saying so."""
-    build(book, progress=None)
     monkeypatch.setattr(cache_module, "library_digest", lambda: "numpy==0.0")
-    report = build(book, progress=None)
+    report = build(built, progress=None)
     assert set(_statuses(report).values()) == {"computed: library version changed"}
 
 
-def test_damaged_entry_is_reported_and_recomputed(book):
+def test_damaged_entry_is_reported_and_recomputed(built):
     """A truncated cache entry fails its checksum: the build says so, recomputes it, and is correct."""
-    build(book, progress=None)
-    expected = (book.out / "newtons-laws.html").read_bytes()
-    entry = sorted((book.cache / "tables").rglob("*.bin"))[0]
+    expected = (built.out / "newtons-laws.html").read_bytes()
+    entry = sorted((built.cache / "tables").rglob("*.bin"))[0]
     entry.write_bytes(entry.read_bytes()[: len(entry.read_bytes()) // 2])
-    report = build(book, progress=None)
+    report = build(built, progress=None)
     assert report.computed == 1
     assert any("damaged" in line for line in report.scene_lines)
-    assert (book.out / "newtons-laws.html").read_bytes() == expected
+    assert (built.out / "newtons-laws.html").read_bytes() == expected
 
 
-def test_cached_and_uncached_builds_are_byte_identical(book, tmp_path):
+def test_cached_and_uncached_builds_are_byte_identical(built, tmp_path):
     """Warm cache, cold cache and no cache give the same bytes."""
-    build(book, progress=None)
-    warm = BuildConfig(book.root, book.content, tmp_path / "warm", cache=book.cache)
-    none = BuildConfig(book.root, book.content, tmp_path / "none", cache=None)
+    warm = BuildConfig(built.root, built.content, tmp_path / "warm", cache=built.cache)
+    none = BuildConfig(built.root, built.content, tmp_path / "none", cache=None)
     build(warm, progress=None)
     build(none, progress=None)
-    for path in sorted(p for p in book.out.rglob("*") if p.is_file()):
-        relative = path.relative_to(book.out)
+    for path in sorted(p for p in built.out.rglob("*") if p.is_file()):
+        relative = path.relative_to(built.out)
         assert (warm.out / relative).read_bytes() == path.read_bytes() == (none.out / relative).read_bytes(), relative
 
 
-def test_cache_writes_leave_no_temporary_files(book):
+def test_cache_writes_leave_no_temporary_files(built):
     """Entries are written to a temporary file and renamed; none is left behind."""
-    build(book, progress=None)
-    assert not [p for p in book.cache.rglob(".tmp-*")]
+    assert not [p for p in built.cache.rglob(".tmp-*")]
 
 
-def test_changed_default_redraws_the_figure(book, tmp_path):
+def test_changed_default_redraws_the_figure(built, tmp_path):
     """A new default moves the figure's layers: a warm-cache build equals a build without cache."""
-    build(book, progress=None)
-    _edit(book, "slider F_pk: 0..50 step 2 default 12", "slider F_pk: 0..50 step 2 default 20")
-    warm = build(book, progress=None)
+    _edit(built, "slider F_pk: 0..50 step 2 default 12", "slider F_pk: 0..50 step 2 default 20")
+    warm = build(built, progress=None)
     assert warm.computed == 0  # the tables do not depend on the default
-    fresh = BuildConfig(book.root, book.content, tmp_path / "fresh", cache=None)
+    fresh = BuildConfig(built.root, built.content, tmp_path / "fresh", cache=None)
     build(fresh, progress=None)
-    assert (book.out / CHAPTER.replace(".md", ".html")).read_bytes() == (fresh.out / CHAPTER.replace(".md", ".html")).read_bytes()
+    assert (built.out / CHAPTER.replace(".md", ".html")).read_bytes() == (fresh.out / CHAPTER.replace(".md", ".html")).read_bytes()
 
 
 def test_a_scene_key_reads_its_own_model_and_not_the_others():

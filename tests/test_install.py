@@ -83,21 +83,34 @@ def _pip(*args: str) -> None:
                    capture_output=True)
 
 
+@pytest.fixture(scope="module")
+def wheel(source_copy, tmp_path_factory) -> dict:
+    """sitegen's wheel, built once with `pip wheel .` from the source copy, and the copy's build/ and
+    whole tree just before and just after."""
+    out = tmp_path_factory.mktemp("wheel")
+    before = (_tree(source_copy / "build"), _tree(source_copy))
+    _pip("wheel", "--no-deps", "--no-build-isolation", "-w", str(out), str(source_copy))
+    return {"path": next(out.glob("sitegen-*.whl")), "before": before, "after": (_tree(source_copy / "build"), _tree(source_copy))}
+
+
 @pytest.mark.parametrize("command", ["wheel", "install"])
-def test_installing_writes_nothing_into_build(source_copy, tmp_path, command):
+def test_installing_writes_nothing_into_build(source_copy, tmp_path, request, command):
     """After a site is built into build/, `pip wheel .` and `pip install .` leave build/ as it was (and
     the source tree gains no egg-info or build folder of theirs)."""
-    before, tree_before = _tree(source_copy / "build"), _tree(source_copy)
-    where = ["-w", str(tmp_path)] if command == "wheel" else ["--target", str(tmp_path / "target")]
-    _pip(command, "--no-deps", "--no-build-isolation", *where, str(source_copy))
-    assert _tree(source_copy / "build") == before
-    assert _tree(source_copy) == tree_before
+    if command == "wheel":
+        built = request.getfixturevalue("wheel")
+        before, after = built["before"], built["after"]
+    else:
+        before = (_tree(source_copy / "build"), _tree(source_copy))
+        _pip("install", "--no-deps", "--no-build-isolation", "--target", str(tmp_path / "target"), str(source_copy))
+        after = (_tree(source_copy / "build"), _tree(source_copy))
+    assert after[0] == before[0]
+    assert after[1] == before[1]
 
 
-def test_the_wheel_carries_temml_templates_and_assets(source_copy, tmp_path):
+def test_the_wheel_carries_temml_templates_and_assets(wheel):
     """What a build needs besides Python code is inside the wheel."""
-    _pip("wheel", "--no-deps", "--no-build-isolation", "-w", str(tmp_path), str(source_copy))
-    names = zipfile.ZipFile(next(tmp_path.glob("sitegen-*.whl"))).namelist()
+    names = zipfile.ZipFile(wheel["path"]).namelist()
     for needed in ("sitegen/content/temml/temml.min.js", "sitegen/content/temml/Temml-Latin-Modern.css",
                    "sitegen/content/temml/LICENSE", "sitegen/content/tex2mathml.js", "sitegen/site/templates/base.html",
                    "sitegen/site/static/sitegen.js", "sitegen/site/static/latinmodern-math.woff2", "sitegen/models/chain/__init__.py"):
@@ -106,19 +119,20 @@ def test_the_wheel_carries_temml_templates_and_assets(source_copy, tmp_path):
 
 
 @pytest.fixture(scope="module")
-def installed(source_copy, tmp_path_factory) -> dict:
+def installed(wheel, tmp_path_factory) -> dict:
     """A fresh venv with the wheel (its libraries taken from this one's site-packages) and the swing
     plugin's wheel: its `sitegen`, its python, its site-packages and the environment to run them in."""
     top = tmp_path_factory.mktemp("installed")
     wheels = top / "wheels"
-    _pip("wheel", "--no-deps", "--no-build-isolation", "-w", str(wheels), str(source_copy), str(ROOT / "tests" / "plugins" / "swing"))
+    _pip("wheel", "--no-deps", "--no-build-isolation", "-w", str(wheels), str(ROOT / "tests" / "plugins" / "swing"))
+    shutil.copy(wheel["path"], wheels)
     env_dir = top / "venv"
-    venv.create(env_dir, with_pip=True)
+    venv.create(env_dir)  # without pip: this environment's pip installs into it (pip --python)
     python = env_dir / "bin" / "python"
     site = next((env_dir / "lib").glob("python3*/site-packages"))
     libraries = next(Path(p) for p in sys.path if p.endswith("site-packages") and (Path(p) / "numpy").is_dir())
     (site / "libraries.pth").write_text(f"{libraries}\n")  # numpy, scipy, matplotlib...: not sitegen (an editable .pth is not read from there)
-    subprocess.run([python, "-m", "pip", "install", "--quiet", "--no-deps", "--no-index", *map(str, wheels.glob("*.whl"))], check=True)
+    _pip("--python", str(python), "install", "--no-deps", "--no-index", *map(str, wheels.glob("*.whl")))
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "NODE_PATH")} | {"OPENBLAS_NUM_THREADS": "1"}
     where = subprocess.run([python, "-c", "import sitegen; print(sitegen.__file__)"], capture_output=True, text=True, env=env)
     assert where.stdout.startswith(str(site)), where.stdout  # the wheel's sitegen, not this checkout's

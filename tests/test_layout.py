@@ -7,6 +7,8 @@ and no slider's label runs into the slider or its value. Print is checked in tes
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import pytest
 
 from browser import ROOT
@@ -25,80 +27,102 @@ WIDTHS = (320, 390, 768, 1280)
 SCHEMES = ("light", "dark")
 
 
+def _settled(page) -> None:
+    page.evaluate("new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
+
+
 @pytest.fixture(scope="module")
 def page_at(chromium, built_site):
-    """page_at(name, width, scheme) -> the page opened from disk in a viewport of that width (one
-    context per width and scheme, reused by the tests that only read the page)."""
+    """page_at(name, width, scheme) -> the page opened from disk (one context per scheme, one page per
+    page and scheme, reused by the tests that only read it), its window `width` px wide. A page whose
+    window is resized lays out as one loaded at that width: its CSS answers to the width, and its
+    script decides what scrolls on every resize."""
     contexts, pages = {}, {}
 
     def _get(name: str, width: int, scheme: str):
-        if (width, scheme) not in contexts:
-            contexts[width, scheme] = chromium.new_context(viewport={"width": width, "height": 844}, color_scheme=scheme)
-        if (name, width, scheme) not in pages:
-            page = contexts[width, scheme].new_page()
+        if scheme not in contexts:
+            contexts[scheme] = chromium.new_context(viewport={"width": width, "height": 844}, color_scheme=scheme)
+        if (name, scheme) not in pages:
+            page = contexts[scheme].new_page()
+            page.set_viewport_size({"width": width, "height": 844})
             errors = []
             page.on("pageerror", lambda e: errors.append(str(e)))
             page.goto((built_site / name).as_uri(), wait_until="load")
             page.evaluate("document.fonts.ready.then(() => true)")
-            page.evaluate("new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))")
+            _settled(page)
             assert not errors, errors
-            pages[name, width, scheme] = page
-        return pages[name, width, scheme]
+            pages[name, scheme] = page
+        page = pages[name, scheme]
+        if page.viewport_size["width"] != width:
+            page.set_viewport_size({"width": width, "height": 844})
+            _settled(page)
+        return page
 
     yield _get
     for context in contexts.values():
         context.close()
 
 
-def _params():
-    return [pytest.param(name, width, scheme, id=f"{name[:-5]}-{width}-{scheme}")
-            for name in PAGES for width in WIDTHS for scheme in SCHEMES]
+@dataclass(frozen=True)
+class Case:
+    name: str
+    width: int
+    scheme: str
 
 
-@pytest.mark.parametrize("name,width,scheme", _params())
-def test_nothing_wider_than_its_box_without_a_scroller(page_at, name, width, scheme):
+# Page, scheme, then width: each page is loaded once per scheme and widened three times.
+CASES = [Case(name, width, scheme) for name in PAGES for scheme in SCHEMES for width in WIDTHS]
+
+
+@pytest.fixture(scope="module", params=CASES, ids=[f"{c.name[:-5]}-{c.width}-{c.scheme}" for c in CASES])
+def case(request):
+    """One page at one width in one scheme; module scope, so that pytest runs every check of a case
+    before it moves on to the next (and resizes each page only when the width changes)."""
+    return request.param
+
+
+@pytest.fixture
+def page(page_at, case):
+    return page_at(case.name, case.width, case.scheme)
+
+
+def test_nothing_wider_than_its_box_without_a_scroller(page):
     """The page does not scroll sideways; a box that does (an equation, a table) shows it."""
-    problems = overflow_problems(page_at(name, width, scheme))
+    problems = overflow_problems(page)
     assert not problems, "\n".join(problems[:15])
 
 
-@pytest.mark.parametrize("name,width,scheme", _params())
-def test_every_scene_shows_its_whole_figure(page_at, name, width, scheme):
+def test_every_scene_shows_its_whole_figure(page, case):
     """One figure per scene (the phone's below 480 px), inside the scene and the screen, never scrolled."""
-    page = page_at(name, width, scheme)
     problems = figure_problems(page)
     assert not problems, "\n".join(problems[:15])
     variants = page.evaluate("""() => [...document.querySelectorAll('svg.scene-svg')]
         .filter(s => s.getBoundingClientRect().width > 0).map(s => s.classList.contains('narrow') ? 'narrow' : 'wide')""")
-    assert set(variants) <= ({"narrow"} if width < 480 else {"wide"}), variants
+    assert set(variants) <= ({"narrow"} if case.width < 480 else {"wide"}), variants
 
 
-@pytest.mark.parametrize("name,width,scheme", _params())
-def test_figure_text_stays_inside_and_legible(page_at, name, width, scheme):
+def test_figure_text_stays_inside_and_legible(page):
     """No text of a shown figure (scenes and the accuracy page's diagrams) reaches outside its SVG,
     and none is drawn smaller than 8 px."""
-    problems = svg_text_problems(page_at(name, width, scheme))
+    problems = svg_text_problems(page)
     assert not problems, "\n".join(problems[:15])
 
 
-@pytest.mark.parametrize("name,width,scheme", _params())
-def test_no_two_texts_of_a_figure_collide(page_at, name, width, scheme):
+def test_no_two_texts_of_a_figure_collide(page):
     """Point labels, titles, legends and ticks of a shown figure never overlap one another."""
-    problems = text_collision_problems(page_at(name, width, scheme))
+    problems = text_collision_problems(page)
     assert not problems, "\n".join(problems[:15])
 
 
-@pytest.mark.parametrize("name,width,scheme", _params())
-def test_no_legend_covers_a_panel(page_at, name, width, scheme):
+def test_no_legend_covers_a_panel(page):
     """Legends sit outside the plotting areas, where the data is drawn (the accuracy diagrams too)."""
-    problems = legend_problems(page_at(name, width, scheme))
+    problems = legend_problems(page)
     assert not problems, "\n".join(problems[:15])
 
 
-@pytest.mark.parametrize("name,width,scheme", _params())
-def test_no_label_runs_into_a_control(page_at, name, width, scheme):
+def test_no_label_runs_into_a_control(page):
     """A slider's label, the slider and its value text never overlap (e.g. "incident SPL (dB)")."""
-    problems = control_label_problems(page_at(name, width, scheme))
+    problems = control_label_problems(page)
     assert not problems, "\n".join(problems[:15])
 
 

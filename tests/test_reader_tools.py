@@ -24,23 +24,41 @@ PAGES, SCENES = book()
 ORDER = [p.output_name for p in reading_order(PAGES)]
 
 
+def _open(chromium, built_site, contexts: list, target: str, javascript: bool = True, width: int = 1280):
+    """(page, errors): `target` (a URL or a page's name) opened in a new context, fonts settled."""
+    context = chromium.new_context(java_script_enabled=javascript, viewport={"width": width, "height": 844})
+    contexts.append(context)
+    page = context.new_page()
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.on("console", lambda m: errors.append(f"{m.type}: {m.text}") if m.type in ("error", "warning") else None)
+    page.goto(target if ":" in target else (built_site / target).as_uri(), wait_until="load")
+    page.evaluate("document.fonts.ready.then(() => true)")
+    return page, errors
+
+
 @pytest.fixture
 def fresh(chromium, built_site):
     """fresh(url or page name, javascript=True, width=1280) -> (page, errors): a new page in its own context."""
     contexts = []
+    yield lambda target, **options: _open(chromium, built_site, contexts, target, **options)
+    for context in contexts:
+        context.close()
 
-    def _open(target: str, javascript: bool = True, width: int = 1280):
-        context = chromium.new_context(java_script_enabled=javascript, viewport={"width": width, "height": 844})
-        contexts.append(context)
-        page = context.new_page()
-        errors = []
-        page.on("pageerror", lambda e: errors.append(str(e)))
-        page.on("console", lambda m: errors.append(f"{m.type}: {m.text}") if m.type in ("error", "warning") else None)
-        page.goto(target if ":" in target else (built_site / target).as_uri(), wait_until="load")
-        page.evaluate("document.fonts.ready.then(() => true)")
-        return page, errors
 
-    yield _open
+@pytest.fixture(scope="module")
+def shared(chromium, built_site):
+    """shared(page name, javascript=True, width=1280) -> (page, errors): one loaded page per name and
+    options for the module, for the tests that only read it or put back what they change."""
+    contexts, pages = [], {}
+
+    def _get(name: str, **options):
+        key = (name, *sorted(options.items()))
+        if key not in pages:
+            pages[key] = _open(chromium, built_site, contexts, name, **options)
+        return pages[key]
+
+    yield _get
     for context in contexts:
         context.close()
 
@@ -63,11 +81,13 @@ def _elsewhere(scene) -> dict[str, int]:
 
 
 @pytest.mark.parametrize("scene", SCENES, ids=[s.key for s in SCENES])
-def test_scene_state_round_trips_through_its_link(fresh, scene):
+def test_scene_state_round_trips_through_its_link(fresh, shared, scene):
     """Move every control; the address becomes "#<scene>:<param>=<value>,..." naming each moved
     control; that link opened in a fresh page sets the same stops, shows the same readouts (the
     model's) and scrolls to the scene; Reset then brings back the defaults and the plain link."""
-    page, errors = fresh(scene.page.output_name)
+    page, page_errors = shared(scene.page.output_name)
+    seen = len(page_errors)
+    assert read_state(page, scene).stops == scene.defaults  # (the page is shared: each test resets its scene)
     moved = move(page, scene, _elsewhere(scene))
     link = _wait_for_hash(page, f"#{scene.id}:")
     pairs = dict(pair.split("=", 1) for pair in link.split(":", 1)[1].split(","))
@@ -80,6 +100,7 @@ def test_scene_state_round_trips_through_its_link(fresh, scene):
             assert abs(Decimal(unquote(text)) - Decimal(str(float(axis.stop(moved.control(param).index))))) < Decimal("1e-6"), (param, text)
 
     opened, opened_errors = fresh(page.url)
+    page.click(f"#{scene.dom_id} button[data-reset]")  # the shared page back on the defaults
     state = read_state(opened, scene)
     assert state.stops == moved.stops
     assert state.readouts == moved.readouts and scene_problems(scene, state) == []
@@ -90,7 +111,8 @@ def test_scene_state_round_trips_through_its_link(fresh, scene):
     reset = read_state(opened, scene)
     assert reset.stops == scene.defaults and scene_problems(scene, reset) == []
     assert _wait_for_hash(opened, f"#{scene.dom_id}") == f"#{scene.dom_id}"
-    assert not errors and not opened_errors, errors + opened_errors
+    errors = page_errors[seen:] + opened_errors
+    assert not errors, errors
 
 
 def _stop_of(scene, param: str, value: str) -> int:
@@ -154,10 +176,10 @@ def test_back_still_leaves_the_page(fresh, built_site):
 
 
 @pytest.mark.parametrize("name", ORDER)
-def test_every_page_links_to_its_neighbours_and_the_whole_book(fresh, name):
+def test_every_page_links_to_its_neighbours_and_the_whole_book(shared, name):
     """Previous and next follow the contents; the contents link every page, the current one marked;
-    every section heading links to itself."""
-    page, errors = fresh(name, javascript=False)
+    every section heading links to itself (in the page as built: read without its script)."""
+    page, errors = shared(name, javascript=False, width=390)
     at = ORDER.index(name)
     pager = page.evaluate("""() => Object.fromEntries([...document.querySelectorAll('nav.pager a')]
         .map(a => [a.getAttribute('rel'), a.getAttribute('href')]))""")
@@ -253,10 +275,10 @@ def test_search_says_when_nothing_is_found(fresh):
 
 
 @pytest.mark.parametrize("name", [p.output_name for p in PAGES])
-def test_without_javascript_controls_are_hidden_and_a_line_says_why(fresh, name):
+def test_without_javascript_controls_are_hidden_and_a_line_says_why(shared, name):
     """No slider, radio button, play or reset button or search box shows; a page with scenes says that
     its figures show their defaults (the readouts and values are there, as tests elsewhere check)."""
-    page, errors = fresh(name, javascript=False, width=390)
+    page, errors = shared(name, javascript=False, width=390)
     shown = page.evaluate("""() => [...document.querySelectorAll('input, button:not(.contents-button)')]
         .filter(e => e.getBoundingClientRect().width > 0).map(e => e.outerHTML.slice(0, 60))""")
     assert shown == []

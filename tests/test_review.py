@@ -164,7 +164,8 @@ def two_builds(tmp_path_factory, tiny_built) -> tuple[Path, Path]:
     shutil.copytree(tiny_built.content, root / "content")
     shutil.copytree(ROOT / "src" / "sitegen", root / "src" / "sitegen", ignore=shutil.ignore_patterns("__pycache__"))
     (root / "book.toml").write_text("")
-    shutil.copytree(tiny_built.cache, root / ".cache")  # a warm start: only the changed scene is recomputed
+    # a warm start: only the changed scene is recomputed (the compiled code, a link to the project's, is not needed)
+    shutil.copytree(tiny_built.cache, root / ".cache", ignore=shutil.ignore_patterns("compiled"))
     old = _build_copy(root, root / "old")
     model = root / MODEL_FILE
     text = model.read_text()

@@ -240,6 +240,7 @@ def integrate_compiled(pb: Problem, y0, method: str, rtol: float, caps: Caps = C
 
 
 def _marched(pb: Problem, y0, method: str, rtol: float, caps: Caps, atol: float | None) -> Run:
+    """integrate_compiled once the kernels are ready (the warm-up calls it to compile them)."""
     start = time.perf_counter()
     grid = sample_grid(pb.tau_end)
     atol = default_atol(rtol) if atol is None else atol

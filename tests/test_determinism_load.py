@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 BOOK = """+++
 title = "Bubbles"
@@ -58,10 +60,16 @@ def _tree(folder: Path) -> dict[str, bytes]:
     return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
-def test_a_build_beside_a_busy_cpu_is_byte_identical_to_a_quiet_one(tmp_path):
-    """Every core kept busy by spinning processes while the second build runs: no output depends on the clock."""
-    root = _book(tmp_path / "book")
-    _build(root, tmp_path / "quiet")
+@pytest.fixture(scope="module")
+def quiet(tmp_path_factory) -> tuple[Path, str]:
+    """The book built from nothing on a machine left alone, with the portable target: its folder and its log."""
+    root = _book(tmp_path_factory.mktemp("quiet") / "book")
+    return root, _build(root, root.parent / "site")
+
+
+def test_a_build_beside_a_busy_cpu_is_byte_identical_to_a_quiet_one(quiet, tmp_path):
+    """Every core kept busy by spinning processes while a build runs: no output depends on the clock."""
+    root, _ = quiet
     spinners = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(os.cpu_count() or 2)]
     try:
         _build(root, tmp_path / "busy")
@@ -69,14 +77,13 @@ def test_a_build_beside_a_busy_cpu_is_byte_identical_to_a_quiet_one(tmp_path):
         for spinner in spinners:
             spinner.kill()
             spinner.wait()
-    assert _tree(tmp_path / "busy") == _tree(tmp_path / "quiet")
+    assert _tree(tmp_path / "busy") == _tree(root.parent / "site")
 
 
-def test_kernels_compiled_for_the_host_cpu_show_the_same_bytes_as_the_portable_ones(tmp_path):
+def test_kernels_compiled_for_the_host_cpu_show_the_same_bytes_as_the_portable_ones(quiet, tmp_path):
     """The same book with the kernels compiled for this machine's CPU (its FMA and vector units allowed)
     gives the same site as with the portable target the build uses (first run: one compile of the host's)."""
-    root = _book(tmp_path / "book")
-    generic = _build(root, tmp_path / "generic")
+    root, generic = quiet
     host = _build(root, tmp_path / "host", SITEGEN_COMPILE_TARGET="host")
     assert "compile   bubble" in generic and "compile   bubble" in host
-    assert _tree(tmp_path / "host") == _tree(tmp_path / "generic")
+    assert _tree(tmp_path / "host") == _tree(root.parent / "site")

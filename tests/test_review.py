@@ -159,14 +159,14 @@ def test_page_text_keeps_scenes_as_markers_and_readouts_on_one_line(tiny_site):
 
 @pytest.fixture(scope="module")
 def two_builds(tmp_path_factory, tiny_built) -> tuple[Path, Path]:
-    """The tiny book built from a snapshot of the sources, then again with one model constant changed."""
+    """The tiny book as the session built it, and built again (in another process) from a copy of the
+    sources with one model constant changed."""
     root = tmp_path_factory.mktemp("book")
     shutil.copytree(tiny_built.content, root / "content")
+    shutil.copy(tiny_built.root / "book.toml", root / "book.toml")
     shutil.copytree(ROOT / "src" / "sitegen", root / "src" / "sitegen", ignore=shutil.ignore_patterns("__pycache__"))
-    (root / "book.toml").write_text("")
     # a warm start: only the changed scene is recomputed (the compiled code, a link to the project's, is not needed)
     shutil.copytree(tiny_built.cache, root / ".cache", ignore=shutil.ignore_patterns("compiled"))
-    old = _build_copy(root, root / "old")
     model = root / MODEL_FILE
     text = model.read_text()
     assert CONSTANT[0] in text, f"update CONSTANT: {MODEL_FILE} no longer has {CONSTANT[0]!r}"
@@ -174,7 +174,7 @@ def two_builds(tmp_path_factory, tiny_built) -> tuple[Path, Path]:
     new = _build_copy(root, root / "new")
     # Editing one model's file recomputes that model's scenes only (here the one ossicles scene).
     assert (root / "new.log").read_text().count(" computed\n") == 1, (root / "new.log").read_text()
-    return old, new
+    return tiny_built.out, new
 
 
 def _build_copy(root: Path, out: Path) -> Path:

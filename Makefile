@@ -14,21 +14,19 @@ export DEBIAN_FRONTEND := noninteractive
 site: $(VENV)/.site-installed tools-node
 	$(BIN)/sitegen build
 
+# Tests run in several processes (pytest-xdist), each test file in one of them, so that a file's
+# shared pages and builds are made once; the books every file reads are built once per run. The
+# browser tests mostly wait on Chromium, so `make test` runs one process more than this machine's
+# two cores; `make check` is busy computing and runs one per core.
+TEST_WORKERS ?= 3
+CHECK_WORKERS ?= 2
 test: $(VENV)/.test-installed node_modules/.installed tools-chromium tools-java
-	$(BIN)/pytest
+	$(BIN)/pytest -n $(TEST_WORKERS) --dist loadfile
 
 # The inner loop: every test but those that drive Chromium or build the project's own book
-# (the end-to-end tests run on the tiny book in tests/book/), in two processes (one per core):
-# the test files from a to f, and the rest. Both reports are printed (without the progress dots);
-# check fails if either half fails.
-CHECK := $(BIN)/pytest -q -p no:cacheprovider -m "not browser and not slow"
+# (the end-to-end tests run on the tiny book in tests/book/).
 check: $(VENV)/.test-installed node_modules/.installed
-	@log=$$(mktemp -d); \
-	$(CHECK) $$(ls tests/test_[a-f]*.py) > $$log/first 2>&1 & first=$$!; \
-	$(CHECK) $$(ls tests/test_*.py | grep -v '^tests/test_[a-f]') > $$log/second 2>&1; second=$$?; \
-	wait $$first; first=$$?; \
-	grep -hv '^[.sxFE]*  *\[ *[0-9]*%\]$$' $$log/first $$log/second; rm -rf $$log; \
-	test $$first -eq 0 -a $$second -eq 0
+	$(BIN)/pytest -q -p no:cacheprovider -m "not browser and not slow" -n $(CHECK_WORKERS) --dist loadfile
 
 # Build, serve on 127.0.0.1 and rebuild on every change to the book; open pages reload by themselves.
 serve: $(VENV)/.site-installed tools-node

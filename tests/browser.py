@@ -102,8 +102,9 @@ class BookScene:
         return f"<scene {self.key}>"
 
 
+@functools.cache  # read once per process, by every module that parametrizes over the book
 def book() -> tuple[list[Page], list[BookScene]]:
-    """Every page of the book and every scene on it, read and resolved as the build does."""
+    """Every page of the book and every scene on it, read and resolved as the build does (do not change them)."""
     resolved = resolve_book(BuildConfig.at(ROOT))
     pages = list(resolved.pages)
     scenes = [BookScene(item.page, item.scene) for item in resolved.scenes]

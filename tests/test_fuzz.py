@@ -15,6 +15,8 @@ from pathlib import Path
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
+from examples import examples
+
 from sitegen.build import BuildConfig, build
 from sitegen.compute.scenes import resolve_scene
 from sitegen.content.pages import read_page
@@ -35,7 +37,7 @@ FUZZ = settings(
     print_blob=False,
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much],
 )
-EXAMPLES = {"parser": 500, "resolver": 500, "page": 200, "build": 30}
+EXAMPLES = {name: examples(n) for name, n in {"parser": 500, "resolver": 500, "page": 200, "build": 30}.items()}
 
 
 # --- what authors type --------------------------------------------------------------------------

@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 from scipy.special import cosdg
 
+from examples import examples as share_of
 from sitegen.registry import builtin_registry
 from sitegen.models.bubble import model as bubble_module
 from sitegen.models.acoustic_energy.model import C as C_AIR
@@ -39,7 +40,7 @@ G = 9.81
 def _settings(examples: int):
     """Deterministic hypothesis settings: the same examples on every run, no database, no deadline."""
     return settings(
-        max_examples=examples,
+        max_examples=share_of(examples),
         derandomize=True,
         database=None,
         deadline=None,

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import json
+import re
 from html.parser import HTMLParser
 
 from ..content.pages import Page
@@ -16,6 +17,8 @@ _SKIPPED = frozenset({"script", "style", "svg", "nav", "noscript", "thead", "tbo
 _SKIPPED_CLASSES = frozenset({"scene-panel", "report-data", "anchor"})
 _SECTION = frozenset({"h1", "h2", "h3"})
 _BREAKS = frozenset({"p", "li", "figcaption", "caption", "div", "summary", "br", "dd", "dt", "td", "th", "math"})
+# Scripts (a scene's inline tables) and drawings hold most of a page's bytes and no prose: cut before parsing.
+_NO_PROSE = re.compile(r"<script\b.*?</script>|<svg\b.*?</svg>", re.S)
 _VOID = frozenset({"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"})
 
 
@@ -71,7 +74,7 @@ class _Sections(HTMLParser):
 def page_sections(html: str) -> tuple[tuple[str, str, str], ...]:
     """A page's sections as (heading id, heading, text): the h1's section has no id."""
     parser = _Sections()
-    parser.feed(html)
+    parser.feed(_NO_PROSE.sub("", html))
     parser.close()
     return tuple((anchor if index else "", title, " ".join("".join(words).split()))
                  for index, (anchor, title, words) in enumerate(parser.sections))

@@ -6,13 +6,13 @@ each timed run tabulates the scene from nothing, as a first build on a fresh che
 """
 from __future__ import annotations
 
-import gzip
 import re
 import sys
 import tempfile
 from pathlib import Path
 
 from ..build import BuildConfig, build, resolve_book, tabulate_book
+from ..site.sizes import gzip_bytes
 from .timing import time_medians
 
 
@@ -67,6 +67,6 @@ def page_bytes(site: Path, page: Path) -> dict:
     for sheet in [a for a in assets if a.endswith(".css")]:
         assets |= {f"assets/{u}" for u in re.findall(r'url\("?([^")]+)"?\)', (site / sheet).read_text())}
     files = [page, *(site / a for a in sorted(assets) if (site / a).is_file())]
-    packed = [len(gzip.compress(f.read_bytes(), 9, mtime=0)) for f in files]
+    packed = [gzip_bytes(f.read_bytes()) for f in files]
     return {"html_raw": page.stat().st_size, "html_gzip": packed[0],
             "total_raw": sum(f.stat().st_size for f in files), "total_gzip": sum(packed)}

@@ -8,13 +8,13 @@ bytes are the last row of each group.
 """
 from __future__ import annotations
 
-import gzip
 import json
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..registry import builtin_registry
+from ..site.sizes import gzip_bytes
 
 FLOAT32 = 4  # bytes per stored value as float32
 
@@ -102,9 +102,9 @@ CASES = (
 
 
 def json_gzip_bytes(values: np.ndarray, decimals: int) -> int:
-    """Bytes of the values as our pages store them (integers of the last shown digit, JSON, gzip -9)."""
+    """Bytes of the values as our pages store them (integers of the last shown digit, JSON, gzip)."""
     quanta = [int(q) for q in np.round(np.asarray(values) * 10**decimals)]
-    return len(gzip.compress(json.dumps(quanta, separators=(",", ":")).encode(), 9, mtime=0))
+    return gzip_bytes(json.dumps(quanta, separators=(",", ":")).encode())
 
 
 def resolution_experiment() -> list[dict]:

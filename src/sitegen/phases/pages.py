@@ -2,7 +2,6 @@
 parts filled from the build's records, not read back from HTML), and the shared assets."""
 from __future__ import annotations
 
-import gzip
 import hashlib
 from dataclasses import replace
 
@@ -13,6 +12,7 @@ from ..content.markdown_ext import fill_slots
 from ..site import assets, search
 from ..site.assemble import page_html, scene_html, scene_payload
 from ..site.report import ReportContext, report_part
+from ..site.sizes import gzip_bytes
 from .record import Book, SceneRecord
 from .run import BuildRun
 from .scenes import scene_digest
@@ -47,7 +47,7 @@ def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> 
 def _data_bytes(payload: bytes, run: BuildRun) -> tuple[int, int]:
     """Raw and gzip bytes of a scene's inline tables (what the accuracy report lists)."""
     key = hashlib.sha256(payload).hexdigest()
-    packed = run.remember("report-gzip", key, lambda: str(len(gzip.compress(payload, 9, mtime=0))).encode())
+    packed = run.remember("report-gzip", key, lambda: str(gzip_bytes(payload)).encode())
     return len(payload), int(packed)
 
 

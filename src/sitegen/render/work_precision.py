@@ -9,8 +9,10 @@ box covers no marker, line or other label, and dropped where there is none.
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
 from dataclasses import dataclass
 
+import matplotlib.artist as martist
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.ticker import LogLocator, NullFormatter, NullLocator
@@ -76,7 +78,7 @@ def work_precision_figure(panels: list[Panel], xlabel: str, ylabel: str, note: s
             _draw_panel(ax, panel, xlabel, ylabel)
             _legend_and_title(ax, panel, columns)
         _note(fig, note)
-        fig.tight_layout(rect=(0, 0.025 * (1.6 if narrow else 1), 1, 1), h_pad=1.4)
+        _tight_layout(fig, rect=(0, 0.025 * (1.6 if narrow else 1), 1, 1), h_pad=1.4)
         for ax, panel in zip(axes[:, 0], panels):
             _annotate(ax, panel)
     return fig
@@ -99,10 +101,42 @@ def resolution_figure(panels: list[Panel], note: str, narrow: bool = False) -> p
                             frameon=False, handlelength=1.5, columnspacing=1.0)
         _note(fig, note)
         top = 1 - (legend.get_window_extent().height + 6) / (fig.get_figheight() * 72)
-        fig.tight_layout(rect=(0, 0.03 * (1.6 if narrow else 1), 1, top), h_pad=1.2, w_pad=1.2)
+        _tight_layout(fig, rect=(0, 0.03 * (1.6 if narrow else 1), 1, top), h_pad=1.2, w_pad=1.2)
         for ax, panel in zip(axes.ravel(), panels):
             _annotate(ax, panel)
     return fig
+
+
+def _tight_layout(fig, **kwargs) -> None:
+    """`fig.tight_layout(**kwargs)`, each axes measured once.
+
+    Given a `rect`, matplotlib measures every axes (ticks, labels, legend) twice, the second time to fit the
+    same boxes into the rect: nothing moves in between, so the first measurements serve again, for the same
+    layout and half the measuring.
+    """
+    with _measured_once():
+        fig.tight_layout(**kwargs)
+
+
+@contextmanager
+def _measured_once():
+    """While laying out, an artist's layout box is measured the first time it is asked for, then reused."""
+    measure = getattr(martist, "_get_tightbbox_for_layout_only", None)
+    if measure is None:  # a detail of matplotlib's; without it, measure as matplotlib does
+        yield
+        return
+    boxes = {}
+
+    def once(artist, *args, **kwargs):
+        if id(artist) not in boxes:
+            boxes[id(artist)] = (artist, measure(artist, *args, **kwargs))  # the artist kept: its id stays its own
+        return boxes[id(artist)][1]
+
+    martist._get_tightbbox_for_layout_only = once
+    try:
+        yield
+    finally:
+        martist._get_tightbbox_for_layout_only = measure
 
 
 def _note(fig, note: str) -> None:

@@ -61,6 +61,39 @@ def _share_text_sizes() -> None:
     mtext._get_text_metrics_with_cache = size_once
 
 
+def _share_text_layouts() -> None:
+    """Let a text laid out again (for the layout, then to draw it) reuse its layout, as may any other text alike.
+
+    matplotlib lays a text out (its lines, box and alignment offsets, from its font's metrics and measured sizes)
+    each time it is measured or drawn: a tick label four or five times per figure, in the same state. For an SVG
+    renderer the layout depends only on what the key below holds (the text's own offsets, not its position), so
+    sharing it changes no byte. Wrapped and TeX texts are laid out as matplotlib does.
+    """
+    layout = getattr(mtext.Text, "_get_layout", None)
+    if layout is None:  # a detail of matplotlib's; without it there is nothing to share
+        return
+    shared = {}
+
+    def layout_once(self, renderer):
+        if self.get_wrap() or self.get_usetex() or type(getattr(renderer, "_renderer", renderer)) is not RendererSVG:
+            return layout(self, renderer)
+        font = self._fontproperties
+        key = (self._text, tuple(font.get_family()), font.get_slant(), font.get_variant(), font.get_weight(),
+               font.get_stretch(), font.get_size(), font.get_file(), font.get_math_fontfamily(),
+               self.get_figure(root=True).dpi, self._linespacing, self._get_multialignment(), self.get_rotation(),
+               self.get_rotation_mode(), self._horizontalalignment, self._verticalalignment, self.get_parse_math())
+        found = shared.get(key)
+        if found is None:
+            if len(shared) >= 16384:
+                shared.clear()
+            found = shared[key] = layout(self, renderer)
+        box, lines, corner = found
+        return box.frozen(), list(lines), corner  # a box of its own: callers may move theirs
+
+    mtext.Text._get_layout = layout_once
+
+
 _SVG_MEASURER = RendererSVG(1, 1, io.StringIO())  # measures only; what it would draw is dropped
 _share_math_parses()
 _share_text_sizes()
+_share_text_layouts()

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import matplotlib.artist as martist
 import matplotlib.pyplot as plt
 import numpy as np
-from matplotlib.ticker import LogLocator, NullFormatter, NullLocator
+from matplotlib.ticker import Locator, LogLocator, NullFormatter, NullLocator
 
 from . import style as s
 
@@ -177,6 +177,7 @@ def _draw_panel(ax, panel: Panel, xlabel: str, ylabel: str) -> None:
                     textcoords="offset points", ha="right", va="bottom", fontsize=LABEL_SIZE, color=s.MUTED)
     _limits(ax, panel)
     _minor_ticks(ax)
+    _ticks_in_view(ax)
     if panel.chosen:
         ax.plot([panel.chosen.x], [_clamped(panel, panel.chosen.y)], marker="o", ms=RING_SIZE, mfc="none", mec=s.INK,
                 mew=1.8, ls="none", zorder=6)
@@ -193,6 +194,56 @@ def _minor_ticks(ax) -> None:
             axis.set_minor_locator(NullLocator())
         else:
             axis.set_minor_formatter(NullFormatter())  # "2×10²" minor labels collide on short decades
+
+
+def _ticks_in_view(ax) -> None:
+    """Every locator of the axes' log axes gives the locations in its view only (`_InView`)."""
+    for axis in (ax.xaxis, ax.yaxis):
+        if axis.get_scale() != "log":  # `_InView` keeps its slack as a ratio, for positive locations
+            continue
+        if not isinstance(axis.get_major_locator(), NullLocator):
+            axis.set_major_locator(_InView(axis.get_major_locator()))
+        if not isinstance(axis.get_minor_locator(), NullLocator):
+            axis.set_minor_locator(_InView(axis.get_minor_locator()))
+
+
+class _InView(Locator):
+    """A locator's locations, less those well outside the view.
+
+    matplotlib makes a tick (two lines, a grid line and two labels) for every location its locator gives and draws
+    those in the view; a log locator gives one decade or more beyond each end, a third of these diagrams' ticks.
+    A location dropped here is one matplotlib would not draw, so the drawing is the same, for less making.
+    """
+
+    SLACK = 1.001  # a location this close beyond an end (as a ratio) is kept; matplotlib decides whether to draw it
+
+    def __init__(self, locator: Locator):
+        self.locator = locator
+
+    def set_axis(self, axis) -> None:
+        """The axis of this locator and of the one it filters."""
+        super().set_axis(axis)
+        self.locator.set_axis(axis)
+
+    def __call__(self):
+        return self._in_view(self.locator(), *self.axis.get_view_interval())
+
+    def tick_values(self, vmin, vmax):
+        """The filtered locator's locations between vmin and vmax (and a little beyond)."""
+        return self._in_view(self.locator.tick_values(vmin, vmax), vmin, vmax)
+
+    def nonsingular(self, v0, v1):
+        """As the filtered locator."""
+        return self.locator.nonsingular(v0, v1)
+
+    def view_limits(self, vmin, vmax):
+        """As the filtered locator."""
+        return self.locator.view_limits(vmin, vmax)
+
+    def _in_view(self, locations, vmin, vmax):
+        low, high = min(vmin, vmax), max(vmin, vmax)
+        locations = np.asarray(locations)
+        return locations[(locations >= low / self.SLACK) & (locations <= high * self.SLACK)]
 
 
 def _clamped(panel: Panel, y: float) -> float:

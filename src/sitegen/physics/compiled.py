@@ -20,8 +20,8 @@ if TARGET == "generic":  # must be set before numba builds its code generator
     os.environ["NUMBA_CPU_NAME"] = "generic"
     os.environ["NUMBA_CPU_FEATURES"] = ""
 
-import numba  # noqa: E402
-from numba.core import caching, config  # noqa: E402
+from numba.core import caching, config, types  # noqa: E402
+from numba.core.registry import CPUDispatcher  # noqa: E402
 
 config.reload_config()  # in case numba was imported before the target was set
 
@@ -37,9 +37,24 @@ def kernel(function):
     error_model="numpy": a division by zero gives inf or NaN, as in numpy, instead of raising; the
     steppers reject such a step. nogil: the kernels release the GIL, so threads solve points side by side.
     """
-    dispatcher = numba.njit(error_model="numpy", nogil=True)(function)
+    dispatcher = Kernel(function, targetoptions={"nopython": True, "error_model": "numpy", "nogil": True})
     _KERNELS.append(dispatcher)
     return dispatcher
+
+
+class Kernel(CPUDispatcher):
+    """numba's dispatcher, compiled once per argument type when one kernel calls another.
+
+    numba types a constant argument (`f(x, 0)`, `g(True)`), and a counter whose loop is not yet typed
+    through, as a literal value and compiles the callee once for each value; these calls are typed by
+    the plain types instead, so each kernel compiles once per signature. The numbers do not change:
+    without fastmath the same operations run in the same order, folded or not.
+    """
+
+    def get_call_template(self, args, kws):
+        """The call's typing, with literal argument types widened to their plain types."""
+        plain = {key: types.unliteral(value) for key, value in kws.items()}
+        return super().get_call_template(tuple(types.unliteral(a) for a in args), plain)
 
 
 def versions() -> str:

@@ -17,7 +17,7 @@ from .kernel_steppers import (
     DOP853_ORDER, RADAU_ORDER, STAGES, dop853_at, dop853_dense, dop853_step, initial_step, radau_at, set_jacobian,
 )
 from .kernel_terms import rhs
-from ...physics.compiled import kernel
+from ...physics.compiled import entry, kernel
 
 DOP853_METHOD, RADAU_METHOD = 0, 1
 G_SPEED, G_ACCELERATION, G_SPEED_LEVEL, G_RADIUS_LEVEL = 0, 1, 2, 3  # g = ṙ, r̈, ṙ − level, r − level
@@ -123,13 +123,13 @@ def events_of(hits, code, column):
     return rows[:n].copy()
 
 
-@kernel
+@entry
 def split_hits(hits, max_code, min_code, speed_code):
     """The maxima and minima (τ, r) and the speed extrema (τ, ṙ) among the hits."""
     return events_of(hits, max_code, 2), events_of(hits, min_code, 2), events_of(hits, speed_code, 3)
 
 
-@kernel
+@entry
 def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
     """Step from y0 at τ = 0 to t_bound with events, samples and the evaluation cap.
 

@@ -20,8 +20,8 @@ if TARGET == "generic":  # must be set before numba builds its code generator
     os.environ["NUMBA_CPU_NAME"] = "generic"
     os.environ["NUMBA_CPU_FEATURES"] = ""
 
-import numba  # noqa: E402
-from numba.core import caching, config  # noqa: E402
+from numba.core import caching, config, types  # noqa: E402
+from numba.core.registry import CPUDispatcher  # noqa: E402
 
 config.reload_config()  # in case numba was imported before the target was set
 
@@ -31,15 +31,53 @@ _KERNELS: list = []  # every kernel, in definition order
 _state = {"root": None, "ready": False}
 
 
-def kernel(function):
-    """Compile `function` with numba (on first use, from the content-keyed cache when it is there).
+# error_model="numpy": a division by zero gives inf or NaN, as in numpy, instead of raising; the steppers
+# reject such a step. nogil: the kernels release the GIL, so threads solve points side by side.
+OPTIONS = {"nopython": True, "error_model": "numpy", "nogil": True}
 
-    error_model="numpy": a division by zero gives inf or NaN, as in numpy, instead of raising; the
-    steppers reject such a step. nogil: the kernels release the GIL, so threads solve points side by side.
-    """
-    dispatcher = numba.njit(error_model="numpy", nogil=True)(function)
+
+def kernel(function):
+    """Compile `function` with numba (on first use, from the content-keyed cache when it is there), for
+    other kernels to call (`entry` makes one that the build calls from Python)."""
+    # numba's wrapper that converts Python's arguments would be linked into every caller's code and
+    # compiled again with it; kernels that kernels call leave it out (a tenth of the first compile).
+    dispatcher = InnerKernel(function, targetoptions={**OPTIONS, "no_cpython_wrapper": True})
     _KERNELS.append(dispatcher)
     return dispatcher
+
+
+def entry(function):
+    """Compile `function` with numba as `kernel` does, as a kernel that the build calls from Python."""
+    dispatcher = Kernel(function, targetoptions=OPTIONS)
+    _KERNELS.append(dispatcher)
+    return dispatcher
+
+
+class Kernel(CPUDispatcher):
+    """numba's dispatcher, compiled once per argument type when one kernel calls another.
+
+    numba types a constant argument (`f(x, 0)`, `g(True)`), and a counter whose loop is not yet typed
+    through, as a literal value and compiles the callee once for each value; these calls are typed by
+    the plain types instead, so each kernel compiles once per signature. The numbers do not change:
+    without fastmath the same operations run in the same order, folded or not.
+    """
+
+    def get_call_template(self, args, kws):
+        """The call's typing, with literal argument types widened to their plain types."""
+        plain = {key: types.unliteral(value) for key, value in kws.items()}
+        return super().get_call_template(tuple(types.unliteral(a) for a in args), plain)
+
+
+class InnerKernel(Kernel):
+    """A kernel compiled without numba's Python wrapper, for other kernels to call."""
+
+    def __call__(self, *args, **kws):
+        """A call from Python (the tests'): through a twin compiled with the wrapper on first use, uncached.
+
+        numba itself would jump to the missing wrapper and crash the process."""
+        if "twin" not in self.__dict__:
+            self.twin = Kernel(self.py_func, targetoptions=OPTIONS)
+        return self.twin(*args, **kws)
 
 
 def versions() -> str:

@@ -17,7 +17,7 @@ from .kernel_steppers import (
     DOP853_ORDER, RADAU_ORDER, STAGES, dop853_at, dop853_dense, dop853_step, initial_step, radau_at, set_jacobian,
 )
 from .kernel_terms import rhs
-from ...physics.compiled import kernel
+from ...physics.compiled import entry, kernel
 
 DOP853_METHOD, RADAU_METHOD = 0, 1
 G_SPEED, G_ACCELERATION, G_SPEED_LEVEL, G_RADIUS_LEVEL = 0, 1, 2, 3  # g = ṙ, r̈, ṙ − level, r − level
@@ -103,7 +103,9 @@ def record(hits, count, code, t, r, v):
     """Append (code, τ, r, ṙ) to hits, doubling its rows when full; the (possibly new) array."""
     if count >= hits.shape[0]:
         bigger = np.empty((2 * hits.shape[0], 4))
-        bigger[:count] = hits[:count]
+        for i in range(count):  # element by element: see march
+            for j in range(4):
+                bigger[i, j] = hits[i, j]
         hits = bigger
     hits[count, 0], hits[count, 1], hits[count, 2], hits[count, 3] = code, t, r, v
     return hits
@@ -121,13 +123,13 @@ def events_of(hits, code, column):
     return rows[:n].copy()
 
 
-@kernel
+@entry
 def split_hits(hits, max_code, min_code, speed_code):
     """The maxima and minima (τ, r) and the speed extrema (τ, ṙ) among the hits."""
     return events_of(hits, max_code, 2), events_of(hits, min_code, 2), events_of(hits, speed_code, 3)
 
 
-@kernel
+@entry
 def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
     """Step from y0 at τ = 0 to t_bound with events, samples and the evaluation cap.
 
@@ -142,7 +144,9 @@ def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
     state, J = np.full(STATE_SIZE, math.nan), np.empty((2, 2))
     inv_real, inv_complex, sol = np.empty((2, 2)), np.empty((2, 2), np.complex128), np.empty(4)
     samples = np.full((grid.shape[0], 2), math.nan)
-    samples[0] = y0
+    # Arrays are copied element by element: an array-to-array slice assignment brings in numba's formatting of
+    # its shape-mismatch error, which takes seconds to compile into every kernel that reaches it.
+    samples[0, 0], samples[0, 1] = y0[0], y0[1]
     hits, n_hits = np.empty((64, 4)), 0
     n_events = events.shape[0]
     g_old, g_new, roots = np.empty(n_events), np.empty(n_events), np.empty(n_events)
@@ -210,4 +214,5 @@ def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
         end = (t, y[0], y[1])
         if t >= t_bound:
             return ENDED, end, samples, hits[:n_hits], count[0]
-        g_old[:] = g_new
+        for i in range(n_events):
+            g_old[i] = g_new[i]

@@ -50,7 +50,10 @@ def newton(p, t, y, h, Z, scale, tol, inv_real, inv_complex, count):
         for i in range(3):
             count[0] += 1
             F[i, 0], F[i, 1] = rhs(p, t + h * RADAU_C[i], y[0] + Z[i, 0], y[1] + Z[i, 1])
-        if not np.all(np.isfinite(F)):
+        finite = True  # np.all(np.isfinite(F)), without compiling numpy's array expressions
+        for i in range(3):
+            finite = finite and math.isfinite(F[i, 0]) and math.isfinite(F[i, 1])
+        if not finite:
             return False, k + 1, rate
         for j in range(2):
             fr[j] = F[0, j] * RADAU_TI[0, 0] + F[1, j] * RADAU_TI[0, 1] + F[2, j] * RADAU_TI[0, 2] - m_real * W[0, j]
@@ -108,7 +111,8 @@ def radau_step(p, t, y, f, state, J, inv_real, inv_complex, sol, Q, t_bound, rto
             if not state[FACTORISED]:
                 radau_inverses(h, J, inv_real, inv_complex)
                 state[FACTORISED] = 1.0
-            Z[:, :] = start
+            for i in range(3):  # element by element: see kernel_march.march
+                Z[i, 0], Z[i, 1] = start[i, 0], start[i, 1]
             converged, iterations, rate = newton(p, t, y, h, Z, scale, newton_tol, inv_real, inv_complex, count)
             if converged or state[CURRENT_JAC]:
                 break

@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from .kernel_march import CAP_CODE, CORE_CODE, FAILED_CODE, KM_CODE, MACH_CODE, UNBOUNDED_CODE
-from ...physics.compiled import kernel
+from ...physics.compiled import entry, kernel
 
 CURVE_EXTREMA = 200  # event-detected extrema merged into the drawn curve (the deepest, if more)
 CURVE_GAP = 1e-3  # the drawn curve's resolution in y (its 3 decimals): extrema closer to the chord add nothing
@@ -301,7 +301,7 @@ def gas_peaks(q, r_min):
     return q[Q_GAS] * compression ** q[Q_KAPPA] * q[Q_P0] * 1e-9, q[Q_T0] * compression ** (q[Q_KAPPA] - 1.0), ratio
 
 
-@kernel
+@entry
 def read(q, tau, r, v, end, code, maxima, minima, speeds):
     """Every dynamic output of one run as a row (the layout above; the solver's label is left to the caller)."""
     size = tau.shape[0] + CURVE_EXTREMA + 1  # the curve: samples, merged extrema and the stop

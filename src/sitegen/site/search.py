@@ -17,8 +17,9 @@ _SKIPPED = frozenset({"script", "style", "svg", "nav", "noscript", "thead", "tbo
 _SKIPPED_CLASSES = frozenset({"scene-panel", "report-data", "anchor"})
 _SECTION = frozenset({"h1", "h2", "h3"})
 _BREAKS = frozenset({"p", "li", "figcaption", "caption", "div", "summary", "br", "dd", "dt", "td", "th", "math"})
-# Scripts (a scene's inline tables) and drawings hold most of a page's bytes and no prose: cut before parsing.
-_NO_PROSE = re.compile(r"<script\b.*?</script>|<svg\b.*?</svg>", re.S)
+# Scripts (a scene's inline tables) and drawings hold most of a page's bytes and no prose: cut before parsing,
+# with comments first (one may mention a tag) and innermost drawings first (an <svg> may hold another).
+_NO_PROSE = re.compile(r"<!--.*?-->|<script\b.*?</script>|<svg\b(?:(?!<svg\b).)*?</svg>", re.S)
 _VOID = frozenset({"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"})
 
 

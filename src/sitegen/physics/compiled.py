@@ -80,9 +80,14 @@ class InnerKernel(Kernel):
         return self.twin(*args, **kws)
 
 
+# numba freezes a kernel's global constants into its code, and a kernel may read them from these (the
+# bubble's DOP853 tableau is scipy's own): a new release of one must compile anew, not load stale code.
+LIBRARIES = ("numba", "llvmlite", "numpy", "scipy")
+
+
 def versions() -> str:
-    """numba, llvmlite and the target, as they enter every cache key of compiled results."""
-    return f"numba=={metadata.version('numba')},llvmlite=={metadata.version('llvmlite')},target={target_name()}"
+    """The compiling and constant-giving libraries and the target, as they enter every cache key of compiled results."""
+    return ",".join(f"{name}=={metadata.version(name)}" for name in LIBRARIES) + f",target={target_name()}"
 
 
 def target_name() -> str:

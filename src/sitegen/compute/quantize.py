@@ -72,10 +72,11 @@ def significant(values, digits: int, special: bool = False, floor: float = 0.0) 
     if special:
         mantissas[~finite] = SPECIAL
     shown = finite & (np.abs(values) >= floor) & (values != 0.0)
-    # Only the shown values go through Python's formatting, in one pass over plain floats.
-    texts = [f"{value:.{digits - 1}e}".partition("e") for value in values[shown].tolist()]
-    mantissas[shown] = [int(text.replace(".", "")) for text, _, _ in texts]
-    exponents[shown] = [int(exponent) - (digits - 1) for _, _, exponent in texts]
+    # Only the shown values go through Python's formatting; "d.ddde±x" is read back as the integers dddd and ±x.
+    form = f"%.{digits - 1}e"
+    texts = " ".join([form % value for value in values[shown].tolist()])
+    both = np.fromstring(texts.replace(".", "").replace("e", " "), dtype=np.int64, sep=" ")
+    mantissas[shown], exponents[shown] = both[0::2], both[1::2] - (digits - 1)
     return mantissas, exponents
 
 

@@ -133,15 +133,20 @@ def _pulse_images(s, sigma, period: float, amplitude: float):
     # Reduce s first (np.mod is exact), then measure from x0: s and s ± P then round identically.
     shifted = np.mod(s, period) - CENTRE
     shifted = np.where(shifted >= period / 2, shifted - period, shifted)  # the image of x0 nearest s
-    spread, total = 2 * sigma**2, 0.0
-    for k in (-1, 0, 1):  # u0 of each image, in place: the same operations as A exp(−(s − kP)²/2σ²)
-        image = shifted - k * period
-        image *= image
-        np.negative(image, out=image)
+    spread = -2 * sigma**2  # x/(−2σ²) is −(x/2σ²) exactly: one pass fewer than negating
+    total = None
+    for k in (-1, 0, 1):  # u0 of each image, in place: the same floats as A exp(−(s − kP)²/2σ²)
+        image = shifted - k * period if k else shifted * shifted
+        if k:
+            image *= image
         image /= spread
         np.exp(image, out=image)
-        image *= amplitude
-        total = total + image
+        if amplitude != 1.0:
+            image *= amplitude
+        if total is None:  # the images add in order, −P first
+            total = image
+        else:
+            total += image
     return total
 
 

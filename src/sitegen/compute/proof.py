@@ -82,9 +82,8 @@ def require_showable(scene: ResolvedScene, output, values: np.ndarray, where) ->
     if output.is_text or output.digits:  # significant digits count no last decimal
         return
     limit = 2.0**53 / 10.0**output.decimals
-    too_large = np.isfinite(values)
-    too_large &= np.abs(values) >= limit
-    if too_large.any():
+    too_large = np.abs(values) >= limit  # ±inf too, and only then is the second pass needed to spare them
+    if too_large.any() and (too_large := too_large & np.isfinite(values)).any():
         bad = np.argwhere(too_large)
         raise AuthorError(
             scene.spec.loc,

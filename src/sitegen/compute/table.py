@@ -98,6 +98,6 @@ def drop_constant_axes(axes: tuple[int, ...], quanta: np.ndarray, *others: np.nd
 
 def _constant_along(array: np.ndarray, first: np.ndarray, position: int) -> bool:
     """Whether every slice of `array` along the axis at `position` equals `first`, its first slice."""
-    if array.shape[position] > 1 and not np.array_equal(array.take([1], axis=position), first):
+    if array.shape[position] > 1 and not np.array_equal(array[(slice(None),) * position + (slice(1, 2),)], first):
         return False  # most axes vary from their first stop to the next: no need to compare them all
     return np.array_equal(array, np.broadcast_to(first, array.shape))

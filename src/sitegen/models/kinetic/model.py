@@ -478,7 +478,17 @@ def _padded(vector: np.ndarray) -> np.ndarray:
 def _per_case(compute, trailing: tuple[int, ...], *columns) -> np.ndarray:
     """Evaluate `compute` once per distinct combination of the columns and spread the results over the grid."""
     shape = np.shape(columns[0])
-    stacked = np.stack([np.ravel(c) for c in columns], axis=-1)
-    cases, inverse = np.unique(stacked, axis=0, return_inverse=True)
+    # Each column's distinct values, then one integer per combination: the same cases, in the same
+    # (lexicographic) order, as np.unique over rows, which sorts the rows as records (far slower).
+    values, codes = zip(*(np.unique(np.ravel(c), return_inverse=True) for c in columns))
+    combined = np.zeros(np.size(columns[0]), dtype=np.int64)
+    for distinct, code in zip(values, codes):
+        combined = combined * len(distinct) + np.ravel(code)
+    used, inverse = np.unique(combined, return_inverse=True)
+    digits = []
+    for distinct in reversed(values):
+        used, digit = np.divmod(used, len(distinct))
+        digits.append(distinct[digit])
+    cases = np.stack(digits[::-1], axis=-1)
     results = np.array([compute(*case) for case in cases], dtype=float).reshape((len(cases),) + trailing)
     return results[np.ravel(inverse)].reshape(shape + trailing)

@@ -25,17 +25,20 @@ def proof_stops(scene: ResolvedScene) -> np.ndarray:
         return np.zeros((1, 0), dtype=np.int64)
     ends = [sorted({0, c - 1}) for c in counts]
     rows = [list(corner) for corner in itertools.product(*ends)]
-    edges = []
+    edges = []  # blocks of stops along one axis from each corner of the others, in that order
     for i, count in enumerate(counts):
         others = [ends[j] for j in range(len(counts)) if j != i]
         for corner in itertools.product(*others):
-            for k in range(count):
-                edges.append([*corner[:i], k, *corner[i:]])
+            block = np.empty((count, len(counts)), dtype=np.int64)
+            block[:, [j for j in range(len(counts)) if j != i]] = corner
+            block[:, i] = np.arange(count)
+            edges.append(block)
+    edges = np.concatenate(edges)
     if len(edges) > EDGE_STOPS:
-        edges = [edges[i] for i in np.linspace(0, len(edges) - 1, EDGE_STOPS).astype(int)]
+        edges = edges[np.linspace(0, len(edges) - 1, EDGE_STOPS).astype(int)]
     seed = int.from_bytes(hashlib.sha256(scene.spec.id.encode()).digest()[:8], "little")
     sample = np.random.default_rng(seed).integers(0, counts, size=(RANDOM_STOPS, len(counts)))
-    return np.unique(np.vstack([rows, edges or np.zeros((0, len(counts)), int), [scene.default_stops], sample]).astype(np.int64), axis=0)
+    return np.unique(np.vstack([rows, edges, [scene.default_stops], sample]).astype(np.int64), axis=0)
 
 
 def prove(scene: ResolvedScene, table, stops: np.ndarray) -> tuple[float, float]:
@@ -79,8 +82,9 @@ def require_showable(scene: ResolvedScene, output, values: np.ndarray, where) ->
     if output.is_text or output.digits:  # significant digits count no last decimal
         return
     limit = 2.0**53 / 10.0**output.decimals
-    bad = np.argwhere(np.isfinite(values) & (np.abs(values) >= limit))
-    if len(bad):
+    too_large = np.abs(values) >= limit  # ±inf too, and only then is the second pass needed to spare them
+    if too_large.any() and (too_large := too_large & np.isfinite(values)).any():
+        bad = np.argwhere(too_large)
         raise AuthorError(
             scene.spec.loc,
             f"output '{output.name}' is {values[tuple(bad[0])]:.6g} {where(bad[0])}, too large to show "

@@ -1,7 +1,6 @@
 """Numbers as the page shows them: integers counting units of the last displayed digit."""
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass
 
@@ -18,10 +17,11 @@ def quantize(values, decimals: int, special: bool = False) -> np.ndarray:
     non-finite values (a singularity, or a quantity that does not exist there) become the SPECIAL marker.
     """
     values = np.asarray(values, dtype=float)
-    infinite = ~np.isfinite(values) if special else np.zeros(values.shape, bool)
-    scaled = np.rint(np.where(infinite, 0.0, values) * 10.0**decimals)
-    quanta = scaled.astype(np.int64) + 0  # + 0 folds -0 into 0 (integers carry no sign of zero)
-    return np.where(infinite, SPECIAL, quanta)
+    infinite = ~np.isfinite(values) if special else None
+    source = values if infinite is None else np.where(infinite, 0.0, values)
+    scaled = np.multiply(source, 10.0**decimals, out=np.empty(values.shape))  # an array even for one value
+    quanta = np.rint(scaled, out=scaled).astype(np.int64)  # -0.0 becomes plain 0: integers carry no sign of zero
+    return quanta if infinite is None else np.where(infinite, SPECIAL, quanta)
 
 
 def format_quantum(quantum: int, decimals: int) -> str:
@@ -68,13 +68,15 @@ def significant(values, digits: int, special: bool = False, floor: float = 0.0) 
     a value smaller in magnitude than `floor` (the output's accuracy) is zero."""
     values = np.asarray(values, dtype=float)
     mantissas, exponents = np.zeros(values.shape, np.int64), np.zeros(values.shape, np.int64)
-    for index, value in np.ndenumerate(values):
-        if not math.isfinite(value):
-            mantissas[index] = SPECIAL if special else 0
-        elif abs(value) >= floor and value != 0.0:
-            digits_text, exponent = f"{value:.{digits - 1}e}".split("e")
-            mantissas[index] = int(digits_text.replace(".", ""))
-            exponents[index] = int(exponent) - (digits - 1)
+    finite = np.isfinite(values)
+    if special:
+        mantissas[~finite] = SPECIAL
+    shown = finite & (np.abs(values) >= floor) & (values != 0.0)
+    # Only the shown values go through Python's formatting; "d.ddde±x" is read back as the integers dddd and ±x.
+    form = f"%.{digits - 1}e"
+    texts = " ".join([form % value for value in values[shown].tolist()])
+    both = np.fromstring(texts.replace(".", "").replace("e", " "), dtype=np.int64, sep=" ")
+    mantissas[shown], exponents[shown] = both[0::2], both[1::2] - (digits - 1)
     return mantissas, exponents
 
 

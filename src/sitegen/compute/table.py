@@ -78,17 +78,26 @@ def grid_table(name: str, axes: tuple[int, ...], quanta: np.ndarray, decimals: i
     return Table(name, kept, quanta.shape, quanta.reshape(-1), decimals)
 
 
-def drop_constant_axes(axes: tuple[int, ...], quanta: np.ndarray) -> tuple[tuple[int, ...], np.ndarray]:
+def drop_constant_axes(axes: tuple[int, ...], quanta: np.ndarray, *others: np.ndarray) -> tuple:
     """Remove the axes along which the displayed value never changes (checked at every stop).
 
     A declared dependency can vanish at display precision, e.g. the momentum after a collision
     equals the momentum before whatever the restitution; the page then needs no table along it.
+    `others` (a ragged table's lengths, a mantissa's exponents) share the leading axes and must be
+    constant along an axis too; returns the kept axes, then each array without the dropped ones.
     """
-    kept = []
+    arrays, kept = (quanta, *others), []
     for position, axis in reversed(list(enumerate(axes))):
-        first = quanta.take([0], axis=position)
-        if np.array_equal(quanta, np.broadcast_to(first, quanta.shape)):
-            quanta = first.squeeze(axis=position)
+        firsts = [array.take([0], axis=position) for array in arrays]
+        if all(_constant_along(array, first, position) for array, first in zip(arrays, firsts)):
+            arrays = tuple(first.squeeze(axis=position) for first in firsts)
         else:
             kept.append(axis)
-    return tuple(reversed(kept)), quanta
+    return (tuple(reversed(kept)), *arrays)
+
+
+def _constant_along(array: np.ndarray, first: np.ndarray, position: int) -> bool:
+    """Whether every slice of `array` along the axis at `position` equals `first`, its first slice."""
+    if array.shape[position] > 1 and not np.array_equal(array[(slice(None),) * position + (slice(1, 2),)], first):
+        return False  # most axes vary from their first stop to the next: no need to compare them all
+    return np.array_equal(array, np.broadcast_to(first, array.shape))

@@ -119,22 +119,27 @@ def tabulate_scene(scene: ResolvedScene, names: list[str]) -> dict[str, Table]:
 def _finish_table(scene: ResolvedScene, axes: tuple[int, ...], name: str, array: np.ndarray) -> Table:
     """Check, quantise and compact one output's raw values into its table."""
     output = scene.model.output(name)
-    lengths = _ragged_lengths(scene, axes, output, array) if output.ragged else None
-    if lengths is not None:
-        array = np.nan_to_num(array, nan=0.0)  # the padding; the lengths say where rows end
+    if output.ragged:
+        padding = np.isnan(array)
+        lengths = _ragged_lengths(scene, axes, output, ~padding)
+        # The padding becomes 0 (the lengths say where rows end), as nan_to_num would make it; that
+        # also turns ±inf into the largest floats, so with any of those it is left to nan_to_num.
+        padded = np.where(padding, 0.0, array)
+        array = padded if np.isfinite(padded).all() else np.nan_to_num(array, nan=0.0)
+    else:
+        lengths = None
     _require_finite(scene, axes, output, array)
     require_showable(scene, output, array, lambda index: stop_text(scene, axes, index))
     if output.digits and not output.size:  # mantissa and exponent, kept together while axes are dropped
-        quanta = np.stack(significant(array, output.digits, special=bool(output.special), floor=output.floor), axis=-1)
-        kept, quanta = drop_constant_axes(axes, quanta)
-        return Table(name, kept, quanta.shape[: len(kept)], quanta[..., 0].reshape(-1), 0, special=output.special,
-                     exponents=quanta[..., 1].reshape(-1), digits=output.digits)
+        mantissas, exponents = significant(array, output.digits, special=bool(output.special), floor=output.floor)
+        kept, mantissas, exponents = drop_constant_axes(axes, mantissas, exponents)
+        return Table(name, kept, mantissas.shape, mantissas.reshape(-1), 0, special=output.special,
+                     exponents=exponents.reshape(-1), digits=output.digits)
     quanta = array.astype(np.int64) if output.is_text else quantize(array, output.decimals, special=bool(output.special))
     if lengths is not None:  # drop axes only where the lengths are constant too
-        quanta = np.concatenate([quanta, lengths[..., None]], axis=-1)
-    kept, quanta = drop_constant_axes(axes, quanta)
-    if lengths is not None:
-        quanta, lengths = quanta[..., :-1], quanta[..., -1]
+        kept, quanta, lengths = drop_constant_axes(axes, quanta, lengths)
+    else:
+        kept, quanta = drop_constant_axes(axes, quanta)
     grid = quanta.shape[: len(kept)]
     return Table(
         name, kept, grid, quanta.reshape(-1), output.decimals, output.labels, output.size,
@@ -142,22 +147,23 @@ def _finish_table(scene: ResolvedScene, axes: tuple[int, ...], name: str, array:
     )
 
 
-def _ragged_lengths(scene: ResolvedScene, axes, output, array: np.ndarray) -> np.ndarray:
-    """Length of each vector: its elements up to the first NaN, which must be padding to the end."""
-    finite = ~np.isnan(array)
-    lengths = finite.sum(axis=-1)
+def _ragged_lengths(scene: ResolvedScene, axes, output, present: np.ndarray) -> np.ndarray:
+    """Length of each vector: its elements before the first NaN (`present` false there), which must be padding to the end."""
+    lengths = present.sum(axis=-1)
     padded_at_end = np.arange(output.size) < lengths[..., None]
-    if not np.array_equal(finite, padded_at_end):
-        bad = np.argwhere(~np.all(finite == padded_at_end, axis=-1))[0]
+    if not np.array_equal(present, padded_at_end):
+        bad = np.argwhere(~np.all(present == padded_at_end, axis=-1))[0]
         raise AuthorError(scene.spec.loc, f"output '{output.name}' has NaN inside its values {stop_text(scene, axes, bad)}", scene.id)
     return lengths
 
 
 def _require_finite(scene: ResolvedScene, axes: tuple[int, ...], output, array: np.ndarray) -> None:
     """Fail on a non-finite value, unless the output declares how the page shows it in words."""
-    allowed = np.ones(array.shape, bool) if output.special else np.zeros(array.shape, bool)
-    bad = np.argwhere(~(np.isfinite(array) | allowed))
-    if len(bad):
+    if output.special:  # every value may be non-finite
+        return
+    finite = np.isfinite(array)
+    if not finite.all():
+        bad = np.argwhere(~finite)
         raise AuthorError(
             scene.spec.loc,
             f"output '{output.name}' is not finite ({array[tuple(bad[0])]}) {stop_text(scene, axes, bad[0])}; "

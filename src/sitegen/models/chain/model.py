@@ -85,8 +85,9 @@ def _sine_over(phase, frequency, t):
     return np.where(still, t, np.sin(phase) / np.where(still, 1.0, frequency))
 
 
-def evolve(u0: np.ndarray, v0: np.ndarray, t, terms: Terms = BARE) -> tuple[np.ndarray, np.ndarray]:
-    """The exact u(t), u̇(t) of chains (last axis: the masses) from u(0), u̇(0), at times t (one per chain)."""
+def evolve(u0: np.ndarray, v0: np.ndarray, t, terms: Terms = BARE, velocity: bool = True):
+    """The exact u(t), u̇(t) of chains (last axis: the masses) from u(0), u̇(0), at times t (one per chain);
+    u̇(t) is None unless `velocity` (it costs a transform)."""
     n = u0.shape[-1]
     t = np.asarray(t, float)[..., None]
     a, b = _forward(u0, terms.ends), _forward(v0, terms.ends)
@@ -95,15 +96,17 @@ def evolve(u0: np.ndarray, v0: np.ndarray, t, terms: Terms = BARE) -> tuple[np.n
     # Each mode obeys ä + γȧ + ω²a = 0: a C + (b + γa/2) S, and its velocity, from C' = −(γ/2)C − ω_d²S, S' = C − (γ/2)S.
     half = terms.gamma / 2
     u = a * cos + (b + half * a) * sine
+    if not velocity:
+        return _inverse(u, terms.ends), None
     v = b * cos - (omega**2 * a + half * b) * sine
     return _inverse(u, terms.ends), _inverse(v, terms.ends)
 
 
-def chain_motion(n: int, sigma, t, launch, terms: Terms = BARE, amplitude: float = AMPLITUDE):
-    """u_j(t) and u̇_j(t) of an N-mass chain released as the Gaussian pulse, for arrays of (σ, t, launch)."""
+def chain_motion(n: int, sigma, t, launch, terms: Terms = BARE, amplitude: float = AMPLITUDE, velocity: bool = True):
+    """u_j(t) and u̇_j(t) (None unless `velocity`) of an N-mass chain released as the Gaussian pulse, for arrays of (σ, t, launch)."""
     sigma, t, launch = np.broadcast_arrays(*(np.asarray(v, float) for v in (sigma, t, launch)))
     u0, v0 = initial_state(positions(n, terms.ends), sigma[..., None], launch[..., None], amplitude)
-    return evolve(u0, v0, t, terms)
+    return evolve(u0, v0, t, terms, velocity)
 
 
 def energy(u: np.ndarray, v: np.ndarray, terms: Terms = BARE) -> np.ndarray:
@@ -130,15 +133,20 @@ def _pulse_images(s, sigma, period: float, amplitude: float):
     # Reduce s first (np.mod is exact), then measure from x0: s and s ± P then round identically.
     shifted = np.mod(s, period) - CENTRE
     shifted = np.where(shifted >= period / 2, shifted - period, shifted)  # the image of x0 nearest s
-    spread, total = 2 * sigma**2, 0.0
-    for k in (-1, 0, 1):  # u0 of each image, in place: the same operations as A exp(−(s − kP)²/2σ²)
-        image = shifted - k * period
-        image *= image
-        np.negative(image, out=image)
+    spread = -2 * sigma**2  # x/(−2σ²) is −(x/2σ²) exactly: one pass fewer than negating
+    total = None
+    for k in (-1, 0, 1):  # u0 of each image, in place: the same floats as A exp(−(s − kP)²/2σ²)
+        image = shifted - k * period if k else shifted * shifted
+        if k:
+            image *= image
         image /= spread
         np.exp(image, out=image)
-        image *= amplitude
-        total = total + image
+        if amplitude != 1.0:
+            image *= amplitude
+        if total is None:  # the images add in order, −P first
+            total = image
+        else:
+            total += image
     return total
 
 
@@ -148,19 +156,23 @@ def continuum(x, t, sigma, launch, ends: str = "fixed", amplitude: float = AMPLI
     period = LENGTH if ends == "periodic" else 2 * LENGTH
     sign = {"fixed": -1.0, "free": 1.0, "periodic": 0.0}[ends]
 
-    def images(s):
-        return _pulse_images(s, sigma, period, amplitude)
+    splits = launch != RIGHT_MOVING  # only the split launch needs the images moving left
+
+    def images(s, where=...):
+        return _pulse_images(s, sigma[where], period, amplitude)
 
     # The launches share their images: x − ct, and −x − ct = −(x + ct) exactly (rounding is symmetric).
     behind, ahead = x - SPEED * t, x + SPEED * t
     moving = images(behind)
     if not sign:  # a ring needs no reflections
-        right, split = moving, 0.5 * (moving + images(ahead))
+        right, split = moving, 0.5 * (moving[splits] + images(ahead[splits], splits))
     else:  # the extension of u0 beyond [0, L] that the ends impose, for each travelling half
         mirrored = images(-ahead)
         right = moving + sign * mirrored
-        split = 0.5 * ((moving + sign * images(-behind)) + (images(ahead) + sign * mirrored))
-    return np.where(launch == RIGHT_MOVING, right, split)
+        split = 0.5 * ((moving[splits] + sign * images(-behind[splits], splits))
+                       + (images(ahead[splits], splits) + sign * mirrored[splits]))
+    right[splits] = split
+    return right
 
 
 def continuum_energy(sigma, launch):
@@ -171,7 +183,7 @@ def continuum_energy(sigma, launch):
 
 def deviation(n: int, sigma, t, launch, terms: Terms = BARE):
     """max_j |u_j − u_c(x_j)| / A: how far the chain is from the continuum string (the physics error)."""
-    return _deviation(chain_motion(n, sigma, t, launch, terms, amplitude=1.0)[0], n, sigma, t, launch, terms)
+    return _deviation(chain_motion(n, sigma, t, launch, terms, amplitude=1.0, velocity=False)[0], n, sigma, t, launch, terms)
 
 
 def _deviation(u: np.ndarray, n: int, sigma, t, launch, terms: Terms):
@@ -263,7 +275,7 @@ class Chain(Model):
         x = {k: np.asarray(v, float) for k, v in {**self.defaults(), **values}.items()}
         (n,), terms_of, _ = _groups({k: v[None] for k, v in x.items()}, frozenset(effects))
         terms = Terms(ENDS[int(terms_of[0, 0])], float(terms_of[0, 1]), float(terms_of[0, 2]))
-        u, _ = chain_motion(int(n), x["sigma"], x["t"], x["launch"], terms, amplitude=1.0)
+        u, _ = chain_motion(int(n), x["sigma"], x["t"], x["launch"], terms, amplitude=1.0, velocity=False)
         u0, v0 = initial_state(positions(int(n), terms.ends), x["sigma"], x["launch"], amplitude=1.0)
         reference, _ = dense_motion(u0, v0, float(x["t"]), terms)
         name = "the dense chain's eigenmodes (numpy eigh)" if not terms.gamma else "the dense chain's matrix exponential (scipy expm)"
@@ -276,10 +288,11 @@ class Chain(Model):
         a = np.where(ends == ENDS.index("fixed"), spacing(np.rint(N), "fixed"), spacing(np.rint(N), "free"))
 
         motions = {}  # the deviation and the drawn dots read the same motion of each chain: solved once
+        velocity = "E_now" in wanted  # the only output that reads u̇(t)
 
         def motion(n, terms, w):
             if (n, terms) not in motions:
-                motions[n, terms] = chain_motion(n, sigma[w], t[w], launch[w], terms, 1.0)
+                motions[n, terms] = chain_motion(n, sigma[w], t[w], launch[w], terms, 1.0, velocity)
             return motions[n, terms]
 
         def modes(pick):

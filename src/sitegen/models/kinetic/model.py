@@ -234,25 +234,38 @@ def cumulative_impulse(z: np.ndarray, s: np.ndarray, times: np.ndarray) -> np.nd
     """Σ_i 2|z_i| n_i(t) at each time t: the impulse delivered to the wall by then, in units m v_th."""
     weight = 2.0 * np.abs(z)
     inside = bool(np.all((s >= 0.0) & (s < 1.0)))  # as molecules() draws them
+    if inside:
+        halves = (0.5 * s, 0.5 * z)  # exact, and once rather than at every time
+        signed = np.where(z < 0.0, -weight, weight)  # the sign of each molecule's index + 1 (see _index_after)
     impulse = np.empty(len(times))
     step = max(1, CHUNK_VALUES // max(len(z), 1))
     for k in range(0, len(times), step):
         tau = times[k : k + step, None]
-        hits = _hits_from_inside(s, z, tau) if inside else wall_hits(s, z, tau)
-        hits *= weight
-        impulse[k : k + step] = np.sum(hits, axis=1)  # float64 sums: the terms are ~1e-23 N·s in SI
+        if inside:  # (index + 1)·(±weight) is |index + 1|·weight, bar the sign of a zero
+            terms = _index_after(*halves, tau)
+            terms *= signed
+        else:
+            terms = wall_hits(s, z, tau)
+            terms *= weight
+        impulse[k : k + step] = np.sum(terms, axis=1)  # float64 sums: the terms are ~1e-23 N·s in SI
+    # A sum of zeros that were all −0.0 is −0.0, where |index + 1|·weight sums to +0.0: adding +0.0 restores
+    # that sign and changes no other sum (any other term or partial sum is the same float).
+    impulse += 0.0
     return impulse
 
 
-def _hits_from_inside(s, z, tau) -> np.ndarray:
-    """wall_hits for starts inside the box (0 ≤ s < 1), in fewer passes: there the start's image index is −1,
-    so the count is the end's index + 1 moving out (the end at or above the start) and −1 − that index moving
-    in (the end below 1): |index + 1| either way, the same floats, +0.0 included."""
-    end = np.multiply(z, tau, out=np.empty(np.broadcast_shapes(np.shape(s), np.shape(z), np.shape(tau))))
-    end += s
-    hits = _image_index(end)
-    hits += 1.0
-    return np.abs(hits, out=hits)
+def _index_after(half_s, half_z, tau) -> np.ndarray:
+    """The end's image index + 1 for starts inside the box (0 ≤ s < 1), from s/2 and z/2: ± the hits of wall_hits.
+
+    There the start's image index is −1, so the count is the end's index + 1 moving out (z ≥ 0: the end at
+    or above the start) and −1 − that index moving in (z < 0: the end below 1). Halving is exact and commutes
+    with rounding, so (z/2)τ + s/2 − 1/2 is the image index's (zτ + s − 1)/2 to the bit, in two passes fewer."""
+    half_end = np.multiply(half_z, tau, out=np.empty(np.broadcast_shapes(np.shape(half_s), np.shape(half_z), np.shape(tau))))
+    half_end += half_s
+    half_end -= 0.5
+    index = np.floor(half_end, out=half_end)
+    index += 1.0
+    return index
 
 
 @dataclass(frozen=True)
@@ -465,7 +478,17 @@ def _padded(vector: np.ndarray) -> np.ndarray:
 def _per_case(compute, trailing: tuple[int, ...], *columns) -> np.ndarray:
     """Evaluate `compute` once per distinct combination of the columns and spread the results over the grid."""
     shape = np.shape(columns[0])
-    stacked = np.stack([np.ravel(c) for c in columns], axis=-1)
-    cases, inverse = np.unique(stacked, axis=0, return_inverse=True)
+    # Each column's distinct values, then one integer per combination: the same cases, in the same
+    # (lexicographic) order, as np.unique over rows, which sorts the rows as records (far slower).
+    values, codes = zip(*(np.unique(np.ravel(c), return_inverse=True) for c in columns))
+    combined = np.zeros(np.size(columns[0]), dtype=np.int64)
+    for distinct, code in zip(values, codes):
+        combined = combined * len(distinct) + np.ravel(code)
+    used, inverse = np.unique(combined, return_inverse=True)
+    digits = []
+    for distinct in reversed(values):
+        used, digit = np.divmod(used, len(distinct))
+        digits.append(distinct[digit])
+    cases = np.stack(digits[::-1], axis=-1)
     results = np.array([compute(*case) for case in cases], dtype=float).reshape((len(cases),) + trailing)
     return results[np.ravel(inverse)].reshape(shape + trailing)

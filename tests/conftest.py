@@ -12,14 +12,17 @@ import fcntl
 import os
 import shutil
 from pathlib import Path
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 import pytest
 
-import sitegen.build
-from sitegen.build import BuildConfig, build
 from sitegen.physics.compiled import CACHE_ENV
-from sitegen.registry import builtin_registry
+
+if TYPE_CHECKING:
+    from sitegen.build import BuildConfig
+
+# sitegen.build (matplotlib, the models) is imported where it is used, not here: the process that hands
+# tests to pytest-xdist's workers imports this file too, and runs no test.
 
 ROOT = Path(__file__).resolve().parents[1]
 BOOK = Path(__file__).resolve().parent / "book"  # the tiny book: a few pages, one scene per model family
@@ -81,6 +84,8 @@ def share_compiled(root: Path) -> None:
 def copy_book(root: Path, cache: Path | None = None) -> BuildConfig:
     """A copy of the tiny book at `root` (its book.toml, content and goldens), with a copy of `cache`
     when given; its compiled code is the project's."""
+    from sitegen.build import BuildConfig
+
     shutil.copytree(BOOK / "content", root / "content")
     shutil.copytree(BOOK / "goldens", root / "goldens")
     shutil.copy(BOOK / "book.toml", root / "book.toml")
@@ -94,6 +99,8 @@ def copy_book(root: Path, cache: Path | None = None) -> BuildConfig:
 def register(monkeypatch):
     """register(models, figures): models and figure views defined by a test, added to the registry that
     every build of the test loads (as if a plugin declared them)."""
+    import sitegen.build
+
     added = {"models": {}, "figures": {}}
     load = sitegen.build.load_registry
     monkeypatch.setattr(sitegen.build, "load_registry",
@@ -110,9 +117,6 @@ def register(monkeypatch):
 def collected_ids(request) -> list[str]:
     """The node ids of every test this run collected, selected or not."""
     return request.config.stash[COLLECTED]
-
-
-BUILTIN = builtin_registry()  # the built-in models and figures, for tests that use them directly
 
 
 def made_once(tmp_path_factory, name: str, make: Callable[[Path], object]) -> Path:
@@ -135,6 +139,8 @@ def made_once(tmp_path_factory, name: str, make: Callable[[Path], object]) -> Pa
 @pytest.fixture(scope="session")
 def tiny_built(tmp_path_factory) -> BuildConfig:
     """The tiny book built once from nothing (its own cache, filled by this build)."""
+    from sitegen.build import BuildConfig, build
+
     return BuildConfig.at(made_once(tmp_path_factory, "tiny", lambda folder: build(copy_book(folder), progress=None)))
 
 
@@ -158,6 +164,8 @@ def built_site(tmp_path_factory) -> Path:
     build of the book that computes everything, and the other builds of the book in the suite
     reuse its tables.
     """
+    from sitegen.build import BuildConfig, build
+
     folder = made_once(tmp_path_factory, "site", lambda folder: build(BuildConfig.at(ROOT, folder / "build"), progress=None))
     return folder / "build"
 

@@ -6,6 +6,7 @@ two modules import each other, however far round."""
 from __future__ import annotations
 
 import ast
+import functools
 from pathlib import Path
 
 import pytest
@@ -66,20 +67,26 @@ def layer_of(name: str) -> int:
     return next(i for i, layer in enumerate(LAYERS) for top in layer if name == top or name.startswith(top + "."))
 
 
-GRAPH = {name: imports_of(name) for name in MODULES if name != "sitegen"}
+NAMES = sorted(name for name in MODULES if name != "sitegen")
 
 
-@pytest.mark.parametrize("name", sorted(GRAPH))
+@functools.cache  # read when a test needs it, not while every process collects the tests
+def graph() -> dict[str, set[str]]:
+    """Each module's sitegen imports."""
+    return {name: imports_of(name) for name in NAMES}
+
+
+@pytest.mark.parametrize("name", NAMES)
 def test_imports_point_down_the_layers(name):
     """Every import of the module goes to its own layer or one below."""
-    upward = sorted(t for t in GRAPH[name] if layer_of(t) > layer_of(name))
+    upward = sorted(t for t in graph()[name] if layer_of(t) > layer_of(name))
     assert not upward, f"{name} imports {', '.join(upward)}, which sit above it"
 
 
-@pytest.mark.parametrize("name", sorted(GRAPH))
+@pytest.mark.parametrize("name", NAMES)
 def test_only_the_registry_imports_the_built_in_models(name):
     """No phase, no framework module reaches a model by importing it: the build is handed the registry."""
-    models = sorted(t for t in GRAPH[name] if t.startswith("sitegen.models."))
+    models = sorted(t for t in graph()[name] if t.startswith("sitegen.models."))
     assert not models or name.startswith(MODEL_USERS), f"{name} imports {', '.join(models)}"
 
 
@@ -89,14 +96,14 @@ def test_no_circles():
 
     def visit(name: str, trail: list[str]) -> None:
         state[name] = "open"
-        for target in sorted(GRAPH.get(name, ())):
+        for target in sorted(graph().get(name, ())):
             if state.get(target) == "open":
                 circles.append(trail[trail.index(target):] + [target])
             elif target not in state:
                 visit(target, trail + [target])
         state[name] = "done"
 
-    for name in sorted(GRAPH):
+    for name in NAMES:
         if name not in state:
             visit(name, [name])
     assert not circles, "\n".join(" -> ".join(c) for c in circles)
@@ -105,5 +112,5 @@ def test_no_circles():
 def test_the_walk_sees_backward_imports():
     """The walk itself: a module of the site layer importing the build would be found."""
     assert layer_of("sitegen.site.assemble") < layer_of("sitegen.build")
-    assert "sitegen.compute.cache" in GRAPH["sitegen.build"] | GRAPH["sitegen.phases.run"]
-    assert "sitegen.review.command" in GRAPH["sitegen.cli"]  # imports inside functions count too
+    assert "sitegen.compute.cache" in graph()["sitegen.build"] | graph()["sitegen.phases.run"]
+    assert "sitegen.review.command" in graph()["sitegen.cli"]  # imports inside functions count too

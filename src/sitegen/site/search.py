@@ -2,7 +2,7 @@
 code that searches it as one classic script (assets/search.js), so that search works from disk."""
 from __future__ import annotations
 
-import functools
+import hashlib
 import json
 import re
 from html.parser import HTMLParser
@@ -71,9 +71,24 @@ class _Sections(HTMLParser):
             self.sections[-1][2].append(text)
 
 
-@functools.lru_cache(maxsize=64)  # a rebuild in a long-lived process (serve --watch) parses only the pages that changed
+# A rebuild in a long-lived process (serve --watch) parses only the pages that changed. Keyed by a digest, not
+# by the page: a page's HTML is megabytes, and a shelf's pages held as keys would grow the build's memory with
+# every chapter.
+_PARSED: dict[bytes, tuple] = {}
+PARSED_PAGES = 64
+
+
 def page_sections(html: str) -> tuple[tuple[str, str, str], ...]:
     """A page's sections as (heading id, heading, text): the h1's section has no id."""
+    key = hashlib.sha256(html.encode()).digest()
+    if key not in _PARSED:
+        if len(_PARSED) >= PARSED_PAGES:
+            _PARSED.clear()
+        _PARSED[key] = _sections(html)
+    return _PARSED[key]
+
+
+def _sections(html: str) -> tuple[tuple[str, str, str], ...]:
     parser = _Sections()
     parser.feed(_NO_PROSE.sub("", html))
     parser.close()

@@ -290,3 +290,17 @@ def test_accuracy_page_quotes_the_machine_and_date_of_the_bench_run(built_site):
     machine = load_results(ROOT / "content" / BENCH_NAME)["machine"]
     html = (built_site / "accuracy.html").read_text()
     assert machine["date"] in html and machine["cpu"] in html
+
+
+def test_a_cold_timing_forgets_every_model_memo():
+    """The per-scene cold times start from nothing: the bubble's memo of solved points (in its model
+    folder, not in physics/) is emptied too, or every repeat after the first would time a lookup."""
+    from sitegen.accuracy.build_costs import clear_model_caches
+    from sitegen.models.bubble import solve
+    from sitegen.models.bubble.model import preset_problem
+
+    pb, _ = preset_problem("A")
+    solve.solve(pb)
+    assert solve.solve.cache_info().currsize > 0
+    clear_model_caches()
+    assert solve.solve.cache_info().currsize == 0

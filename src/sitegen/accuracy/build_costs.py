@@ -19,7 +19,7 @@ from .timing import time_medians
 def clear_model_caches() -> None:
     """Forget every memo of the physics modules (e.g. the bubble's solved points), so a run starts cold."""
     for name, module in list(sys.modules.items()):
-        if name.startswith("sitegen.physics") and module is not None:
+        if name.startswith(("sitegen.physics", "sitegen.models")) and module is not None:
             for value in list(vars(module).values()):
                 if callable(getattr(value, "cache_clear", None)):
                     value.cache_clear()

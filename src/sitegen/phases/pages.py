@@ -12,7 +12,7 @@ from ..content.markdown_ext import fill_slots
 from ..site import assets, search
 from ..site.assemble import page_html, scene_html, scene_payload
 from ..site.report import ReportContext, report_part
-from ..site.sizes import gzip_bytes
+from ..site.sizes import GZIP_LEVEL, gzip_bytes
 from .record import Book, SceneRecord
 from .run import BuildRun
 from .scenes import scene_digest
@@ -46,7 +46,7 @@ def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> 
 
 def _data_bytes(payload: bytes, run: BuildRun) -> tuple[int, int]:
     """Raw and gzip bytes of a scene's inline tables (what the accuracy report lists)."""
-    key = hashlib.sha256(payload).hexdigest()
+    key = f"{hashlib.sha256(payload).hexdigest()}-level{GZIP_LEVEL}"  # a size at another level is another size
     packed = run.remember("report-gzip", key, lambda: str(gzip_bytes(payload)).encode())
     return len(payload), int(packed)
 

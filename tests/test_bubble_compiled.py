@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import ast
 import dataclasses
+import functools
 import importlib.util
 import sys
 from pathlib import Path
@@ -79,10 +80,14 @@ def test_compiled_stepper_follows_scipys(preset, scipy_method, compiled_method, 
     assert len(mine.maxima) == len(theirs.maxima) or preset == "C"  # C's quasi-static hold has spurious extrema
 
 
+@functools.cache  # the book is read once for every scene's test
+def _book_scenes() -> dict:
+    return {record.scene.id: record.scene for record in resolve_book(BuildConfig.at(ROOT, cache=None)).scenes}
+
+
 def _scene_stops(scene_id: str, count: int = 5):
     """`count` stops of a book scene (its defaults, corners and seeded random ones) as model points."""
-    book = resolve_book(BuildConfig.at(ROOT, cache=None))
-    scene = next(record.scene for record in book.scenes if record.scene.id == scene_id)
+    scene = _book_scenes()[scene_id]
     rng = np.random.default_rng(15)
     stops = [scene.default_stops, tuple(0 for _ in scene.axes), tuple(a.count - 1 for a in scene.axes)]
     stops += [tuple(int(rng.integers(a.count)) for a in scene.axes) for _ in range(count - 3)]

@@ -12,12 +12,13 @@ from ..content.markdown_ext import fill_slots
 from ..site import assets, search
 from ..site.assemble import page_html, scene_html, scene_payload
 from ..site.report import ReportContext, report_part
-from ..site.sizes import GZIP_LEVEL, gzip_bytes
+from ..site.sizes import gzip_bytes
 from .record import Book, SceneRecord
 from .run import BuildRun
 from .scenes import scene_digest
 
 PAYLOAD_CODE = frozenset({scene_payload.__module__})
+SIZE_CODE = frozenset({gzip_bytes.__module__})
 
 
 def assemble_scenes(book: Book, run: BuildRun) -> Book:
@@ -46,7 +47,7 @@ def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> 
 
 def _data_bytes(payload: bytes, run: BuildRun) -> tuple[int, int]:
     """Raw and gzip bytes of a scene's inline tables (what the accuracy report lists)."""
-    key = f"{hashlib.sha256(payload).hexdigest()}-level{GZIP_LEVEL}"  # a size at another level is another size
+    key = digest(hashlib.sha256(payload).hexdigest(), source_digest(SIZE_CODE))  # how sizes are measured is part of one
     packed = run.remember("report-gzip", key, lambda: str(gzip_bytes(payload)).encode())
     return len(payload), int(packed)
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 import functools
 import json
 import re
-import zlib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -19,6 +18,7 @@ from ..config import BookConfig
 from ..content.pages import Page
 from ..render.layers import Layer
 from . import navigation
+from .sizes import gzip_bytes
 
 TEMPLATES = Path(__file__).with_name("templates")
 
@@ -232,7 +232,7 @@ def _table_json(table: Table, unit: str, encoded: list[str]) -> dict:
         out["raw"] = 1
     rows_json = _json(rows)
     deltas = None if table.special or table.labels or table.raw else _json(_deltas(rows))
-    if deltas is not None and _packed_size(deltas) < _packed_size(rows_json):
+    if deltas is not None and gzip_bytes(deltas.encode()) < gzip_bytes(rows_json.encode()):  # the smaller as sent
         out.update(q=_placeholder(deltas, encoded), enc="delta")
     else:
         out["q"] = _placeholder(rows_json, encoded)
@@ -273,10 +273,6 @@ def _deltas(rows: list) -> list:
 
 def _json(rows: list) -> str:
     return json.dumps(rows, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
-
-
-def _packed_size(text: str) -> int:
-    return len(zlib.compress(text.encode(), 6))
 
 
 def _layer_json(layer: Layer, scene: ResolvedScene) -> dict:

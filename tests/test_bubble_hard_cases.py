@@ -5,7 +5,6 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
-import time
 
 import numpy as np
 import pytest
@@ -51,12 +50,12 @@ def test_every_solver_returns_within_10_s_at_every_preset_A_stop(method):
     ids=["LSODA:cap", "RK45:failed", "DOP853:failed", "Radau:failed", "BDF:failed"],
 )
 def test_collapse_without_terminal_events_is_stopped_by_the_guards(method, status):
-    """No events at all: LSODA (which never returns on its own) hits the evaluation cap; the others fail past t_c; all within 10 s."""
+    """No events at all: LSODA (which never returns on its own) hits the evaluation cap; the others fail past t_c;
+    none spends more evaluations than the cap allows (a count, not seconds: the test means the same on any machine)."""
     pb, _ = preset_problem("A")
-    start = time.perf_counter()
     run = integrate(pb, (1.0, 0.0), method, 1e-3, Caps(max_nfev=50_000), events=[])
     assert run.status == status
-    assert time.perf_counter() - start < 10.0
+    assert run.nfev <= 50_001  # the cap stops the solve at the first evaluation past it
     assert run.end[0] == pytest.approx(rayleigh_tau(pb.p_inf - pb.vapour), rel=0.01)
 
 
@@ -81,12 +80,10 @@ def test_keller_miksis_empty_collapse_stops_at_0_9_c(method):
 
 
 def test_preset_A_grid_evaluates_with_caps_respected():
-    """The model over preset A's 210 stops: no cap or failure flag, no NaN readout, within 20 s."""
+    """The model over preset A's 210 stops: no cap or failure flag, no NaN readout."""
     r0, p_inf, content = (np.array(v, float) for v in zip(*A_STOPS))
-    start = time.perf_counter()
     out = Bubble().evaluate({"R0": r0, "p_inf": p_inf, "gas_content": content, "kappa": 1.4},
                             wanted=["collapse_flag", "collapse_R_min", "collapse_mach", "t_c", "collapse_curve_y"], effects=A_EFFECTS)
-    assert time.perf_counter() - start < 20.0
     assert set(np.unique(out["collapse_flag"])) <= {0, 1, 2}
     assert not any(np.isnan(out[name]).any() for name in ("collapse_flag", "collapse_R_min", "collapse_mach", "t_c"))
 

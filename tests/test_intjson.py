@@ -50,3 +50,75 @@ def test_what_numpy_does_not_write_goes_through_json():
     assert intjson.dumps(np.array([], np.int64)) == "[]"
     assert intjson.dumps(np.array([SPECIAL, 1])) == f"[{SPECIAL},1]"  # the marker, where it is not null, is a number
     assert intjson.dumps(np.array([2**70, -3], dtype=object)) == f"[{2**70},-3]"
+
+
+# --- a table's JSON, against the plain list-based encoding ---------------------------------------
+
+
+def _plain_table_json(table, unit):
+    """What the page's JSON held before it was written from arrays: lists, written() per entry, json.dumps."""
+    from sitegen.compute.quantize import written
+    from sitegen.site.sizes import gzip_bytes
+
+    rows = table.rows()
+    if table.special:
+        rows = [None if q == SPECIAL else q for q in rows]
+    out = {"axes": list(table.axes), "shape": list(table.shape), "d": table.decimals, "q": rows}
+    if table.digits:
+        forms, indices, shown = {}, [], []
+        for q, exponent in zip(rows, table.exponents.tolist()):
+            form = written(0 if q is None else q, exponent, table.digits, unit)
+            indices.append(forms.setdefault((form.decimals, form.suffix, form.power), len(forms)))
+            shown.append(None if q is None else form.shown)
+        out.update(q=shown, f=indices, forms=[list(key) for key in forms])
+        rows = shown
+    dump = lambda value: json.dumps(value, separators=(",", ":"), ensure_ascii=False)  # noqa: E731
+    if not (table.special or table.labels or table.raw):
+        if rows and isinstance(rows[0], list):
+            deltas = [[b - a for a, b in zip([0, *row[:-1]], row)] for row in rows]
+        else:
+            deltas = [b - a for a, b in zip([0, *rows[:-1]], rows)]
+        if gzip_bytes(dump(deltas).encode()) < gzip_bytes(dump(rows).encode()):
+            out.update(q=deltas, enc="delta")
+    if table.labels:
+        out["labels"] = list(table.labels)
+    if table.special:
+        out["special"] = table.special
+    return dump(out)
+
+
+def _table_text(table, unit):
+    from sitegen.site.assemble import _spliced, _table_json
+
+    encoded = []
+    return _spliced(json.dumps(_table_json(table, unit, encoded), separators=(",", ":"), ensure_ascii=False), encoded)
+
+
+@pytest.mark.parametrize("unit", ["", "m", "J/m³", "Pa", "s", "× 10⁻⁶", "K"])
+def test_significant_digit_tables_as_before(unit):
+    from sitegen.compute.quantize import significant
+    from sitegen.compute.table import Table
+
+    rng = np.random.default_rng(len(unit))
+    values = np.concatenate([10.0 ** rng.uniform(-16, 12, 300) * rng.choice([-1, 1], 300), [0.0, np.inf, -np.inf]])
+    rng.shuffle(values)
+    for special in ("", "∞"):
+        mantissas, exponents = significant(values, 4, special=bool(special))
+        table = Table("x", (0,), (len(values),), mantissas, 0, special=special, exponents=exponents, digits=4)
+        assert _table_text(table, unit) == _plain_table_json(table, unit)
+
+
+def test_vector_and_scalar_tables_as_before():
+    from sitegen.compute.table import Table
+
+    rng = np.random.default_rng(3)
+    for _ in range(30):
+        rows, width = (int(n) for n in rng.integers(1, 40, size=2))
+        quanta = np.cumsum(rng.integers(-9, 10, size=(rows, width)), axis=1) * int(10 ** rng.integers(0, 16))
+        lengths = rng.integers(0, width + 1, rows) if rng.random() < 0.5 else None
+        vector = Table("v", (0,), (rows,), quanta.reshape(-1), 2, width=width, lengths=lengths)
+        assert _table_text(vector, "") == _plain_table_json(vector, "")
+        scalar = Table("s", (0,), (quanta.size,), quanta.reshape(-1), 2)
+        assert _table_text(scalar, "") == _plain_table_json(scalar, "")
+    huge = Table("h", (0,), (3,), np.array([2**62, -2**62, 5], np.int64), 0)  # differences beyond int64
+    assert _table_text(huge, "") == _plain_table_json(huge, "")

@@ -2,12 +2,14 @@
 from __future__ import annotations
 
 import functools
+import itertools
 import json
 import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import jinja2
+import numpy as np
 
 from ..compute.grid import CHOICE, RANGE
 from ..compute.quantize import MINUS, SPECIAL, format_quantum, with_unit, written
@@ -17,7 +19,7 @@ from ..compute.table import Table
 from ..config import BookConfig
 from ..content.pages import Page
 from ..render.layers import Layer
-from . import navigation
+from . import intjson, navigation
 from .sizes import gzip_bytes
 
 TEMPLATES = Path(__file__).with_name("templates")
@@ -219,19 +221,19 @@ def _tables_json(tables: dict[str, Table], units: dict[str, str], encoded: list[
 
 
 def _table_json(table: Table, unit: str, encoded: list[str]) -> dict:
-    rows = table.rows()
-    if table.special:  # the marker becomes null, shown as the output's phrase
-        rows = [None if q == SPECIAL else q for q in rows]
-    out = {"axes": list(table.axes), "shape": list(table.shape), "d": table.decimals, "q": rows}
+    values = table.quanta.reshape(-1, table.width) if table.width else table.quanta
+    # The marker becomes null, shown as the output's phrase (within a vector it stays a number).
+    nulls = values == SPECIAL if table.special and not table.width else None
+    out = {"axes": list(table.axes), "shape": list(table.shape), "d": table.decimals, "q": None}
     if table.digits:  # each entry written to significant digits: its shown digits and how it is written
-        out.update(_written_json(table, rows, unit))
-        rows = out["q"]
+        values, forms = _written_json(table, unit, nulls)
+        out.update(forms)
     if table.summed_axes:  # indexed by the sum of the axes' stops
         out["sum"] = 1
     if table.raw:  # the values themselves (a coordinate of an expression), not counts of a digit
         out["raw"] = 1
-    rows_json = _json(rows)
-    deltas = None if table.special or table.labels or table.raw else _json(_deltas(rows))
+    rows_json = intjson.dumps(values, table.lengths, nulls)
+    deltas = None if table.special or table.labels or table.raw else intjson.dumps(_deltas(values), table.lengths)
     if deltas is not None and gzip_bytes(deltas.encode()) < gzip_bytes(rows_json.encode()):  # the smaller as sent
         out.update(q=_placeholder(deltas, encoded), enc="delta")
     else:
@@ -243,15 +245,25 @@ def _table_json(table: Table, unit: str, encoded: list[str]) -> dict:
     return out
 
 
-def _written_json(table: Table, rows: list, unit: str) -> dict:
-    """A table shown to significant digits: the integer shown at each entry ("q"), and ("f") the index of
-    how it is written in a short list ("forms": [decimals, suffix, power]; the value is q × 10**power)."""
-    forms, indices, shown = {}, [], []
-    for q, exponent in zip(rows, table.exponents.tolist()):
-        form = written(0 if q is None else q, exponent, table.digits, unit)
-        indices.append(forms.setdefault((form.decimals, form.suffix, form.power), len(forms)))
-        shown.append(None if q is None else form.shown)
-    return {"q": shown, "f": indices, "forms": [list(key) for key in forms]}
+def _written_json(table: Table, unit: str, nulls: np.ndarray | None) -> tuple[np.ndarray, dict]:
+    """A table shown to significant digits: the integer shown at each entry (the table's "q"), and ("f") the
+    index of how it is written in a short list ("forms": [decimals, suffix, power]; the value is q × 10**power)."""
+    zero = written(0, 0, table.digits, unit)  # zero, and a null entry, are written alike whatever the exponent
+    forms, indices, shown, by_exponent = {}, [], [], {None: (0, (zero.decimals, zero.suffix, zero.power))}
+    blanks = itertools.repeat(False) if nulls is None else nulls.tolist()
+    for q, exponent, blank in zip(table.quanta.tolist(), table.exponents.tolist(), blanks):
+        # A nonzero mantissa's form depends on its exponent alone, and the number shown is the mantissa scaled.
+        found = by_exponent.get(None if blank or not q else exponent)
+        if found is None:
+            one = written(1, exponent, table.digits, unit)
+            found = by_exponent[exponent] = (one.shown, (one.decimals, one.suffix, one.power))
+        indices.append(forms.setdefault(found[1], len(forms)))
+        shown.append(q * found[0])
+    try:
+        values = np.array(shown, dtype=np.int64)
+    except OverflowError:  # beyond int64: kept as Python's integers
+        values = np.array(shown, dtype=object)
+    return values, {"f": indices, "forms": [list(key) for key in forms]}
 
 
 def _structured_json(table: Structured) -> dict:
@@ -264,15 +276,13 @@ def _structured_json(table: Structured) -> dict:
     return out
 
 
-def _deltas(rows: list) -> list:
-    """Differences between neighbours (within each vector), which compress better when smooth."""
-    if rows and isinstance(rows[0], list):
-        return [_deltas(row) for row in rows]
-    return [b - a for a, b in zip([0, *rows[:-1]], rows)]
-
-
-def _json(rows: list) -> str:
-    return json.dumps(rows, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
+def _deltas(values: np.ndarray) -> np.ndarray:
+    """Differences between neighbours (within each vector, the first against 0), which compress better when smooth."""
+    if values.dtype == np.int64 and values.size and not -2**62 < values.min() <= values.max() < 2**62:
+        values = values.astype(object)  # a difference could leave int64: as Python's integers
+    out = values.copy()
+    out[..., 1:] -= values[..., :-1]
+    return out
 
 
 def _layer_json(layer: Layer, scene: ResolvedScene) -> dict:

@@ -16,7 +16,7 @@ from .kernel_radau import CURRENT_JAC, FACTORISED, H_ABS, HAS_SOL, STATE_SIZE, r
 from .kernel_steppers import (
     DOP853_ORDER, RADAU_ORDER, STAGES, dop853_at, dop853_dense, dop853_step, initial_step, radau_at, set_jacobian,
 )
-from .kernel_terms import rhs
+from .kernel_terms import rhs, unpacked
 from ...physics.compiled import entry, kernel
 
 DOP853_METHOD, RADAU_METHOD = 0, 1
@@ -130,12 +130,13 @@ def split_hits(hits, max_code, min_code, speed_code):
 
 
 @entry
-def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
+def march(method, packed, y0, rtol, atol, t_bound, grid, events, max_nfev):
     """Step from y0 at τ = 0 to t_bound with events, samples and the evaluation cap.
 
     Returns (end code, (τ, r, ṙ) at the end, samples (len(grid) × 2, NaN past the end), hits (rows of
     record code, τ, r, ṙ), right-hand-side evaluations, the events' included).
     """
+    p = unpacked(packed)
     count = np.zeros(1, np.int64)  # right-hand-side evaluations: the steppers' and the events'
     y, y_new, f = y0.copy(), np.empty(2), np.empty(2)
     K = np.empty((16, 2))

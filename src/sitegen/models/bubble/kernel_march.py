@@ -144,6 +144,7 @@ def march(method, packed, y0, rtol, atol, t_bound, grid, events, max_nfev):
     dense = np.empty((7, 2)) if method == DOP853_METHOD else np.empty((2, 3))
     state, J = np.full(STATE_SIZE, math.nan), np.empty((2, 2))
     inv_real, inv_complex, sol = np.empty((2, 2)), np.empty((2, 2), np.complex128), np.empty(4)
+    work, fc = np.empty((6, 3, 2)), np.empty(2, np.complex128)  # Radau's scratch space
     samples = np.full((grid.shape[0], 2), math.nan)
     # Arrays are copied element by element: an array-to-array slice assignment brings in numba's formatting of
     # its shape-mismatch error, which takes seconds to compile into every kernel that reaches it.
@@ -172,7 +173,7 @@ def march(method, packed, y0, rtol, atol, t_bound, grid, events, max_nfev):
             ok, t, h_abs = dop853_step(p, t_old, y, f, h_abs, t_bound, rtol, atol, K, y_new, count)
         else:
             ok, t = radau_step(p, t_old, y, f, state, J, inv_real, inv_complex, sol, dense, t_bound, rtol, atol,
-                               newton_tol, y_new, count)
+                               newton_tol, y_new, work, fc, count)
         if not ok or not (math.isfinite(y_new[0]) and math.isfinite(y_new[1])):
             return FAILED_CODE, end, samples, hits[:n_hits], count[0]
         h = t - t_old

@@ -25,13 +25,9 @@ def pack(pb: Problem) -> np.ndarray:
     """The parameter vector of a problem (the floors as make_rhs sets them)."""
     e3 = pb.eta**3
     form = {KELLER_MIKSIS: KM_FORM, RADIATION: RADIATION_FORM}.get(pb.compressible, PLAIN_FORM)
-    values = np.zeros(SIZE)
-    values[[P_INF, GAS, KAPPA, E3, VAPOUR, SIGMA2, VISC4, SOUND, COMPRESSIBLE, DRIVE, OMEGA, RAMP_TO, RAMP_TIME]] = (
-        pb.p_inf, pb.gas, pb.kappa, e3, pb.vapour, 2.0 * pb.sigma, 4.0 * pb.visc, pb.sound, form, pb.drive, pb.omega,
-        pb.ramp_to, pb.ramp_time)
-    values[VOLUME_FLOOR] = max(e3 * 3.0 * CORE_MARGIN, R_FLOOR**3)
-    values[RADIUS_FLOOR], values[DENOMINATOR_FLOOR] = R_FLOOR, KM_FLOOR
-    return values
+    # in the order of the indices above
+    return np.array((pb.p_inf, pb.gas, pb.kappa, e3, pb.vapour, 2.0 * pb.sigma, 4.0 * pb.visc, pb.sound, form, pb.drive,
+                     pb.omega, pb.ramp_to, pb.ramp_time, max(e3 * 3.0 * CORE_MARGIN, R_FLOOR**3), R_FLOOR, KM_FLOOR), float)
 
 
 @kernel

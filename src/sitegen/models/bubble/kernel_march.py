@@ -16,7 +16,7 @@ from .kernel_radau import CURRENT_JAC, FACTORISED, H_ABS, HAS_SOL, STATE_SIZE, r
 from .kernel_steppers import (
     DOP853_ORDER, RADAU_ORDER, STAGES, dop853_at, dop853_dense, dop853_step, initial_step, radau_at, set_jacobian,
 )
-from .kernel_terms import rhs
+from .kernel_terms import rhs, unpacked
 from ...physics.compiled import entry, kernel
 
 DOP853_METHOD, RADAU_METHOD = 0, 1
@@ -130,12 +130,13 @@ def split_hits(hits, max_code, min_code, speed_code):
 
 
 @entry
-def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
+def march(method, packed, y0, rtol, atol, t_bound, grid, events, max_nfev):
     """Step from y0 at τ = 0 to t_bound with events, samples and the evaluation cap.
 
     Returns (end code, (τ, r, ṙ) at the end, samples (len(grid) × 2, NaN past the end), hits (rows of
     record code, τ, r, ṙ), right-hand-side evaluations, the events' included).
     """
+    p = unpacked(packed)
     count = np.zeros(1, np.int64)  # right-hand-side evaluations: the steppers' and the events'
     y, y_new, f = y0.copy(), np.empty(2), np.empty(2)
     K = np.empty((16, 2))
@@ -143,6 +144,7 @@ def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
     dense = np.empty((7, 2)) if method == DOP853_METHOD else np.empty((2, 3))
     state, J = np.full(STATE_SIZE, math.nan), np.empty((2, 2))
     inv_real, inv_complex, sol = np.empty((2, 2)), np.empty((2, 2), np.complex128), np.empty(4)
+    work, fc = np.empty((6, 3, 2)), np.empty(2, np.complex128)  # Radau's scratch space
     samples = np.full((grid.shape[0], 2), math.nan)
     # Arrays are copied element by element: an array-to-array slice assignment brings in numba's formatting of
     # its shape-mismatch error, which takes seconds to compile into every kernel that reaches it.
@@ -171,7 +173,7 @@ def march(method, p, y0, rtol, atol, t_bound, grid, events, max_nfev):
             ok, t, h_abs = dop853_step(p, t_old, y, f, h_abs, t_bound, rtol, atol, K, y_new, count)
         else:
             ok, t = radau_step(p, t_old, y, f, state, J, inv_real, inv_complex, sol, dense, t_bound, rtol, atol,
-                               newton_tol, y_new, count)
+                               newton_tol, y_new, work, fc, count)
         if not ok or not (math.isfinite(y_new[0]) and math.isfinite(y_new[1])):
             return FAILED_CODE, end, samples, hits[:n_hits], count[0]
         h = t - t_old

@@ -33,17 +33,14 @@ def predict_factor(h_abs, h_abs_old, error_norm, error_norm_old):
 
 
 @kernel
-def newton(p, t, y, h, Z, scale, tol, inv_real, inv_complex, count):
+def newton(p, t, y, h, Z, scale, tol, inv_real, inv_complex, work, fc, count):
     """The simplified Newton iteration of the collocation system; Z holds the start and the result.
 
+    `work` (rows 3 to 5 and row 2's second pair) and the complex pair `fc` are its scratch space.
     Returns (converged, iterations, rate of convergence or NaN).
     """
-    W = np.empty((3, 2))
+    W, F, dW, fr = work[3], work[4], work[5], work[2, 1]
     times(RADAU_TI, Z, W)
-    F = np.empty((3, 2))
-    dW = np.empty((3, 2))
-    fr = np.empty(2)
-    fc = np.empty(2, np.complex128)
     m_real, m_complex = MU_REAL / h, MU_COMPLEX / h
     norm_old, rate = math.nan, math.nan
     for k in range(NEWTON_MAXITER):
@@ -82,16 +79,18 @@ def newton(p, t, y, h, Z, scale, tol, inv_real, inv_complex, count):
 
 
 @kernel
-def radau_step(p, t, y, f, state, J, inv_real, inv_complex, sol, Q, t_bound, rtol, atol, newton_tol, y_new, count):
+def radau_step(p, t, y, f, state, J, inv_real, inv_complex, sol, Q, t_bound, rtol, atol, newton_tol, y_new, work, fc,
+               count):
     """One accepted Radau step from (t, y) into y_new; updates the stepper's memory and the interpolant.
 
-    Returns (accepted, t_new); not accepted means the step size underflowed.
+    `work` (6 × 3 × 2) and `fc` (2, complex) are scratch space, made once per run rather than at every step
+    (every entry is written before it is read). Returns (accepted, t_new); not accepted means the step size
+    underflowed.
     """
     h_abs, h_abs_old, error_old = state[H_ABS], state[H_ABS_OLD], state[ERROR_OLD]
     if h_abs < min_step(t):
         h_abs, h_abs_old, error_old = min_step(t), math.nan, math.nan
-    Z = np.zeros((3, 2))
-    scale = np.empty(2)
+    Z, start, scale = work[0], work[1], work[2, 0]
     rejected = False
     while True:
         if h_abs < min_step(t):
@@ -105,7 +104,8 @@ def radau_step(p, t, y, f, state, J, inv_real, inv_complex, sol, Q, t_bound, rto
                 Z[i, 0], Z[i, 1] = Z[i, 0] - y[0], Z[i, 1] - y[1]
             else:
                 Z[i, 0], Z[i, 1] = 0.0, 0.0
-        start = Z.copy()
+        for i in range(3):
+            start[i, 0], start[i, 1] = Z[i, 0], Z[i, 1]
         scale[0], scale[1] = atol + abs(y[0]) * rtol, atol + abs(y[1]) * rtol
         while True:
             if not state[FACTORISED]:
@@ -113,7 +113,7 @@ def radau_step(p, t, y, f, state, J, inv_real, inv_complex, sol, Q, t_bound, rto
                 state[FACTORISED] = 1.0
             for i in range(3):  # element by element: see kernel_march.march
                 Z[i, 0], Z[i, 1] = start[i, 0], start[i, 1]
-            converged, iterations, rate = newton(p, t, y, h, Z, scale, newton_tol, inv_real, inv_complex, count)
+            converged, iterations, rate = newton(p, t, y, h, Z, scale, newton_tol, inv_real, inv_complex, work, fc, count)
             if converged or state[CURRENT_JAC]:
                 break
             set_jacobian(p, t, y, J)

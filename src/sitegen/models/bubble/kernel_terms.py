@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from .terms import CORE_MARGIN, KELLER_MIKSIS, KM_FLOOR, R_FLOOR, RADIATION, Problem
-from ...physics.compiled import kernel
+from ...physics.compiled import inline_kernel, kernel
 
 # Indices into the packed parameter vector. The floors travel in it too: a kernel reads no constant of terms.py,
 # whose edits the compiled code's cache key (the kernel files' digest) would not see.
@@ -25,16 +25,20 @@ def pack(pb: Problem) -> np.ndarray:
     """The parameter vector of a problem (the floors as make_rhs sets them)."""
     e3 = pb.eta**3
     form = {KELLER_MIKSIS: KM_FORM, RADIATION: RADIATION_FORM}.get(pb.compressible, PLAIN_FORM)
-    values = np.zeros(SIZE)
-    values[[P_INF, GAS, KAPPA, E3, VAPOUR, SIGMA2, VISC4, SOUND, COMPRESSIBLE, DRIVE, OMEGA, RAMP_TO, RAMP_TIME]] = (
-        pb.p_inf, pb.gas, pb.kappa, e3, pb.vapour, 2.0 * pb.sigma, 4.0 * pb.visc, pb.sound, form, pb.drive, pb.omega,
-        pb.ramp_to, pb.ramp_time)
-    values[VOLUME_FLOOR] = max(e3 * 3.0 * CORE_MARGIN, R_FLOOR**3)
-    values[RADIUS_FLOOR], values[DENOMINATOR_FLOOR] = R_FLOOR, KM_FLOOR
-    return values
+    # in the order of the indices above
+    return np.array((pb.p_inf, pb.gas, pb.kappa, e3, pb.vapour, 2.0 * pb.sigma, 4.0 * pb.visc, pb.sound, form, pb.drive,
+                     pb.omega, pb.ramp_to, pb.ramp_time, max(e3 * 3.0 * CORE_MARGIN, R_FLOOR**3), R_FLOOR, KM_FLOOR), float)
 
 
 @kernel
+def unpacked(values):
+    """The parameter vector as a tuple (SIZE floats), which kernels pass to kernels by value: an array
+    would take and drop a reference count, two atomic operations, at every call of `rhs`."""
+    return (values[0], values[1], values[2], values[3], values[4], values[5], values[6], values[7], values[8],
+            values[9], values[10], values[11], values[12], values[13], values[14], values[15])
+
+
+@inline_kernel
 def far_field(p, t):
     """p∞(τ): the ambient or stepped value, the ramp and the drive (make_rhs's far_field)."""
     value = p[P_INF]
@@ -82,7 +86,7 @@ def wall(p, r, v):
     return pw, pw_r, pw_v, q, q_r, q_v, g, g_r, g_v
 
 
-@kernel
+@inline_kernel
 def rhs(p, t, y0, y1):
     """(ṙ, r̈) at (τ, r, ṙ): make_rhs's right-hand side (the terms again, without `wall`'s derivatives)."""
     r, v = max(y0, p[RADIUS_FLOOR]), y1

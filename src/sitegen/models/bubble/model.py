@@ -243,11 +243,11 @@ def _solve_points(x, names, effects, settings: Numerics) -> dict[str, np.ndarray
     point's result depends on that point alone, so the tables do not depend on the number of threads.
     """
     shape = np.shape(x["R0"])
-    flat = {name: np.ravel(x[name]) for name in ALL}
+    flat = {name: np.ravel(x[name]).astype(float).tolist() for name in ALL}  # Python floats, read faster
     count = int(np.prod(shape, dtype=int))
 
     def one(i: int) -> np.ndarray:
-        pb, scales = compose({name: float(flat[name][i]) for name in ALL}, effects)
+        pb, scales = compose({name: flat[name][i] for name in ALL}, effects)
         method, rtol, atol = method_for(pb, settings)
         return read_row(solve(pb, method, rtol, atol=atol), pb, scales, effects)
 

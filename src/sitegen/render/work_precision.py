@@ -289,11 +289,12 @@ def _annotate(ax, panel: Panel) -> None:
         obstacles.append(_square(to_pt((panel.chosen.x, _clamped(panel, panel.chosen.y))), RING_SIZE / 2 + 1))
     if panel.exact:
         obstacles.append(_square(to_pt((panel.exact.x, panel.floor)), 7))
+    boxes = np.array(obstacles, dtype=float).reshape(-1, 4)  # one row (x0, y0, x1, y1) per obstacle
     for point, colour in sorted(points, key=lambda item: not item[0].major):
         if point.text:
-            box = _label(ax, panel, point, colour, bounds, obstacles, renderer)
+            box = _label(ax, panel, point, colour, bounds, boxes, renderer)
             if box:
-                obstacles.append(box)
+                boxes = np.vstack([boxes, box])
 
 
 def _square(centre, half: float) -> tuple:
@@ -309,22 +310,33 @@ def _line_boxes(vertices) -> list[tuple]:
     return boxes
 
 
-def _overlaps(a: tuple, b: tuple) -> bool:
-    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+def _well_inside(xy, bounds: tuple, margin: float = 2.0) -> bool:
+    """Whether a point (in display points) lies inside `bounds` by more than `margin` on every side."""
+    return bounds[0] + margin < xy[0] < bounds[2] - margin and bounds[1] + margin < xy[1] < bounds[3] - margin
 
 
 def _inside(box: tuple, bounds: tuple) -> bool:
     return box[0] >= bounds[0] and box[1] >= bounds[1] and box[2] <= bounds[2] and box[3] <= bounds[3]
 
 
-def _free(box: tuple, bounds: tuple, obstacles: list[tuple]) -> bool:
-    return _inside(box, bounds) and not any(_overlaps(box, o) for o in obstacles)
+def _free(box: tuple, bounds: tuple, obstacles: np.ndarray) -> bool:
+    """Whether `box` lies within `bounds` and overlaps no obstacle (a row x0, y0, x1, y1; edges may touch)."""
+    if not _inside(box, bounds):
+        return False
+    x0, y0, x1, y1 = box
+    return not np.any((x0 < obstacles[:, 2]) & (obstacles[:, 0] < x1) & (y0 < obstacles[:, 3]) & (obstacles[:, 1] < y1))
 
 
 def _label(ax, panel: Panel, point: Point, colour: str, bounds, obstacles, renderer) -> tuple | None:
     """A point's label at the first free spot around it, measured as drawn; None (and no label) if none is free."""
-    label = ax.annotate(point.text, (point.x, _clamped(panel, point.y)), xytext=(0, 0), textcoords="offset points",
-                        ha="left", va="bottom", fontsize=LABEL_SIZE, color=colour, zorder=4)
+    xy = (point.x, _clamped(panel, point.y))
+    label = ax.annotate(point.text, xy, xytext=(0, 0), textcoords="offset points", ha="left", va="bottom",
+                        fontsize=LABEL_SIZE, color=colour, zorder=4)
+    if _well_inside(ax.transData.transform(xy), bounds):
+        # matplotlib draws a label only while its point is in the axes, and checks that (through the data
+        # transform and the axes' outline) each time the label is measured or drawn; a point this far inside
+        # stays in, so the label is drawn as it would be, unchecked.
+        label.set_annotation_clip(False)
     # Measured once, with the figure's own renderer; at 72 dpi an offset in points moves it as many pixels.
     x0, y0, x1, y1 = label.get_window_extent(renderer).extents
     width, height = x1 - x0, y1 - y0

@@ -2,7 +2,7 @@
 
 - a scene's state is a link ("#collision:m1=2,e=0.5"): moving a control writes it in place of the
   address, opening it sets the controls and shows the scene, a bad value falls back to the default;
-  each scene's Reset puts it back (every scene, round trip through a fresh page);
+  each scene's Reset puts it back (every scene, round trip through a newly loaded page);
 - the book's contents beside the text or behind a button, anchors on headings, previous and next;
 - search, which loads its index as a classic script, from disk as over http;
 - without JavaScript, the controls are hidden and a line says that the figures show their defaults.
@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import re
 from decimal import Decimal
+from typing import Callable
 from urllib.parse import unquote
 
 import pytest
@@ -24,26 +25,59 @@ PAGES, SCENES = book()
 ORDER = [p.output_name for p in reading_order(PAGES)]
 
 
-def _open(chromium, built_site, contexts: list, target: str, javascript: bool = True, width: int = 1280):
-    """(page, errors): `target` (a URL or a page's name) opened in a new context, fonts settled."""
+def _new_tab(chromium, contexts: list, javascript: bool = True, width: int = 1280):
+    """A blank page in a new context with these options."""
     context = chromium.new_context(java_script_enabled=javascript, viewport={"width": width, "height": 844})
     contexts.append(context)
-    page = context.new_page()
+    return context.new_page()
+
+
+def _load(page, built_site, target: str) -> tuple[list[str], Callable[[], None]]:
+    """Load `target` (a URL or a page's name) in `page` as a new document, fonts settled: (the errors it
+    logs, a function that stops logging them)."""
     errors = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.on("console", lambda m: errors.append(f"{m.type}: {m.text}") if m.type in ("error", "warning") else None)
+    listeners = {
+        "pageerror": lambda e: errors.append(str(e)),
+        "console": lambda m: errors.append(f"{m.type}: {m.text}") if m.type in ("error", "warning") else None,
+    }
+    for event, listener in listeners.items():
+        page.on(event, listener)
+    page.goto("about:blank")  # leave the document open before: the target loads afresh, even if only its fragment differs
     page.goto(target if ":" in target else (built_site / target).as_uri(), wait_until="load")
     page.evaluate("document.fonts.ready.then(() => true)")
-    return page, errors
+    return errors, lambda: [page.remove_listener(event, listener) for event, listener in listeners.items()]
+
+
+@pytest.fixture(scope="module")
+def idle_tabs(chromium):
+    """(idle pages by their options {(javascript, width): [page]}, their contexts): pages of the module
+    for `fresh` to load documents in. A new page costs a renderer process; a new document in a page
+    that is already open costs far less."""
+    idle, contexts = {}, []
+    yield idle, contexts
+    for context in contexts:
+        context.close()
 
 
 @pytest.fixture
-def fresh(chromium, built_site):
-    """fresh(url or page name, javascript=True, width=1280) -> (page, errors): a new page in its own context."""
-    contexts = []
-    yield lambda target, **options: _open(chromium, built_site, contexts, target, **options)
-    for context in contexts:
-        context.close()
+def fresh(chromium, built_site, idle_tabs):
+    """fresh(url or page name, javascript=True, width=1280) -> (page, errors): the target loaded as a new
+    document in a page that no other part of the test uses (nothing of the site's script outlives its
+    document: it keeps no storage)."""
+    idle, contexts = idle_tabs
+    taken = []
+
+    def _fresh(target: str, javascript: bool = True, width: int = 1280):
+        pool = idle.setdefault((javascript, width), [])
+        page = pool.pop() if pool else _new_tab(chromium, contexts, javascript, width)
+        errors, stop = _load(page, built_site, target)
+        taken.append((pool, page, stop))
+        return page, errors
+
+    yield _fresh
+    for pool, page, stop in taken:
+        stop()
+        pool.append(page)
 
 
 @pytest.fixture(scope="module")
@@ -55,7 +89,8 @@ def shared(chromium, built_site):
     def _get(name: str, **options):
         key = (name, *sorted(options.items()))
         if key not in pages:
-            pages[key] = _open(chromium, built_site, contexts, name, **options)
+            page = _new_tab(chromium, contexts, **options)
+            pages[key] = page, _load(page, built_site, name)[0]
         return pages[key]
 
     yield _get
@@ -83,7 +118,7 @@ def _elsewhere(scene) -> dict[str, int]:
 @pytest.mark.parametrize("scene", SCENES, ids=[s.key for s in SCENES])
 def test_scene_state_round_trips_through_its_link(fresh, shared, scene):
     """Move every control; the address becomes "#<scene>:<param>=<value>,..." naming each moved
-    control; that link opened in a fresh page sets the same stops, shows the same readouts (the
+    control; that link opened in a new document sets the same stops, shows the same readouts (the
     model's) and scrolls to the scene; Reset then brings back the defaults and the plain link."""
     page, page_errors = shared(scene.page.output_name)
     seen = len(page_errors)

@@ -12,12 +12,11 @@ from __future__ import annotations
 import json
 import re
 from decimal import Decimal
-from typing import Callable
 from urllib.parse import unquote
 
 import pytest
 
-from browser import SiteServer, book, move, read_state, scene_problems
+from browser import SiteServer, book, load, move, read_state, scene_problems
 from sitegen.compute.grid import CHOICE
 from sitegen.site.navigation import reading_order
 
@@ -25,59 +24,31 @@ PAGES, SCENES = book()
 ORDER = [p.output_name for p in reading_order(PAGES)]
 
 
-def _new_tab(chromium, contexts: list, javascript: bool = True, width: int = 1280):
-    """A blank page in a new context with these options."""
+def _open(chromium, built_site, contexts: list, target: str, javascript: bool = True, width: int = 1280):
+    """(page, errors): `target` (a URL or a page's name) opened in a new context, fonts settled."""
     context = chromium.new_context(java_script_enabled=javascript, viewport={"width": width, "height": 844})
     contexts.append(context)
-    return context.new_page()
-
-
-def _load(page, built_site, target: str) -> tuple[list[str], Callable[[], None]]:
-    """Load `target` (a URL or a page's name) in `page` as a new document, fonts settled: (the errors it
-    logs, a function that stops logging them)."""
+    page = context.new_page()
     errors = []
-    listeners = {
-        "pageerror": lambda e: errors.append(str(e)),
-        "console": lambda m: errors.append(f"{m.type}: {m.text}") if m.type in ("error", "warning") else None,
-    }
-    for event, listener in listeners.items():
-        page.on(event, listener)
-    page.goto("about:blank")  # leave the document open before: the target loads afresh, even if only its fragment differs
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.on("console", lambda m: errors.append(f"{m.type}: {m.text}") if m.type in ("error", "warning") else None)
     page.goto(target if ":" in target else (built_site / target).as_uri(), wait_until="load")
     page.evaluate("document.fonts.ready.then(() => true)")
-    return errors, lambda: [page.remove_listener(event, listener) for event, listener in listeners.items()]
-
-
-@pytest.fixture(scope="module")
-def idle_tabs(chromium):
-    """(idle pages by their options {(javascript, width): [page]}, their contexts): pages of the module
-    for `fresh` to load documents in. A new page costs a renderer process; a new document in a page
-    that is already open costs far less."""
-    idle, contexts = {}, []
-    yield idle, contexts
-    for context in contexts:
-        context.close()
+    return page, errors
 
 
 @pytest.fixture
-def fresh(chromium, built_site, idle_tabs):
+def fresh(tabs, built_site):
     """fresh(url or page name, javascript=True, width=1280) -> (page, errors): the target loaded as a new
-    document in a page that no other part of the test uses (nothing of the site's script outlives its
-    document: it keeps no storage)."""
-    idle, contexts = idle_tabs
-    taken = []
+    document in a page that no other part of the test uses."""
+    with tabs.lending() as borrow:
 
-    def _fresh(target: str, javascript: bool = True, width: int = 1280):
-        pool = idle.setdefault((javascript, width), [])
-        page = pool.pop() if pool else _new_tab(chromium, contexts, javascript, width)
-        errors, stop = _load(page, built_site, target)
-        taken.append((pool, page, stop))
-        return page, errors
+        def _fresh(target: str, javascript: bool = True, width: int = 1280):
+            page, errors = borrow(java_script_enabled=javascript, viewport={"width": width, "height": 844})
+            load(page, target if ":" in target else (built_site / target).as_uri())
+            return page, errors
 
-    yield _fresh
-    for pool, page, stop in taken:
-        stop()
-        pool.append(page)
+        yield _fresh
 
 
 @pytest.fixture(scope="module")
@@ -89,8 +60,7 @@ def shared(chromium, built_site):
     def _get(name: str, **options):
         key = (name, *sorted(options.items()))
         if key not in pages:
-            page = _new_tab(chromium, contexts, **options)
-            pages[key] = page, _load(page, built_site, name)[0]
+            pages[key] = _open(chromium, built_site, contexts, name, **options)
         return pages[key]
 
     yield _get

@@ -20,6 +20,7 @@ import json
 import math
 import re
 import threading
+from contextlib import contextmanager
 from dataclasses import dataclass
 from decimal import Decimal
 from fractions import Fraction
@@ -50,6 +51,63 @@ BROKEN_TEXT = re.compile(r"NaN|Infinity|undefined|\bnull\b|\[object")
 def launch(playwright, **options):
     """Debian's Chromium, headless (Playwright cannot download its own browsers here)."""
     return playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS, **options)
+
+
+class Tabs:
+    """Pages kept open for a test module, by the options of their contexts, to load documents in.
+
+    A new page costs a renderer process, and a new context one more page: together more than a
+    second of CPU. A new document loaded in a page that is already open costs far less, and the
+    site's script keeps nothing beyond its document (no storage), so a test that needs a page as it
+    loads borrows one and loads its document afresh (`load`).
+    """
+
+    def __init__(self, browser):
+        self.browser = browser
+        self.idle: dict[str, list] = {}
+        self.contexts: list = []
+        self.logs: dict = {}  # page -> the list its errors go to while it is lent
+
+    def _open(self, options: dict):
+        context = self.browser.new_context(**options)
+        self.contexts.append(context)
+        page = context.new_page()
+        self.logs[page] = []
+        page.on("pageerror", lambda e: self.logs[page].append(str(e)))
+        page.on("console", lambda m: self.logs[page].append(f"{m.type}: {m.text}") if m.type in ("error", "warning") else None)
+        return page
+
+    @contextmanager
+    def lending(self):
+        """borrow(**context options) -> (page, errors): a page no one else holds, for the `with` block,
+        and the page errors and console errors or warnings it logs from then on. Returned afterwards
+        with print emulation off."""
+        taken = []
+
+        def borrow(**options):
+            pool = self.idle.setdefault(json.dumps(options, sort_keys=True), [])
+            page = pool.pop() if pool else self._open(options)
+            taken.append((pool, page))
+            self.logs[page] = errors = []
+            return page, errors
+
+        try:
+            yield borrow
+        finally:
+            for pool, page in taken:
+                page.emulate_media(media="null")
+                pool.append(page)
+
+    def close(self) -> None:
+        for context in self.contexts:
+            context.close()
+
+
+def load(page, url: str) -> None:
+    """Load `url` in `page` as a new document (even if only its fragment differs from the one open), fonts settled."""
+    page.goto("about:blank")
+    page.goto(url, wait_until="load")
+    page.evaluate("document.fonts.ready.then(() => true)")
 
 
 # --- the book, as the build parses it (used to parametrize at collection time) -------------------

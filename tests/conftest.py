@@ -183,3 +183,13 @@ def chromium():
         browser = launch(playwright)
         yield browser
         browser.close()
+
+
+@pytest.fixture(scope="module")
+def tabs(chromium):
+    """Pages of the module's browser kept open to load documents in, by their options (see browser.Tabs)."""
+    from browser import Tabs
+
+    tabs = Tabs(chromium)
+    yield tabs
+    tabs.close()

@@ -28,7 +28,7 @@ from a11y import (
     target_size_problems,
     text_contrast_problems,
 )
-from browser import ROOT
+from browser import ROOT, load
 from sitegen.content.pages import discover_pages
 
 PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
@@ -55,12 +55,19 @@ def _load(chromium, site, name: str, contexts: list, **options):
 
 
 @pytest.fixture
-def open_page(chromium, built_site):
-    """open_page(name, **context options) -> a fresh page, for a test that changes it."""
-    contexts = []
-    yield lambda name, **options: _load(chromium, built_site, name, contexts, **options)
-    for context in contexts:
-        context.close()
+def open_page(tabs, built_site):
+    """open_page(name, **context options) -> the page loaded afresh, in a page no other part of the
+    test uses, for a test that changes it."""
+    with tabs.lending() as borrow:
+
+        def _open(name: str, **options):
+            options.setdefault("viewport", {"width": WIDTHS["desktop"], "height": 900})
+            page, errors = borrow(**options)
+            load(page, (site := built_site / name).as_uri())
+            assert not errors, f"{site.name}: {errors}"
+            return page
+
+        yield _open
 
 
 @pytest.fixture(scope="module")

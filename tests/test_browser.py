@@ -38,6 +38,7 @@ from browser import (
     expected_control_text,
     expected_readouts,
     launch,
+    load,
     layer_deps,
     layer_problems,
     move,
@@ -148,19 +149,18 @@ def loaded(chromium, site_url):
 
 
 @pytest.fixture
-def open_page(chromium, site_url):
-    """open_page(name, transport, javascript=True, **context options) -> (page, log): a fresh
-    page in its own context, closed after the test (for tests that navigate or emulate)."""
-    contexts = []
+def open_page(tabs, site_url):
+    """open_page(name, transport, javascript=True, **context options) -> (page, errors): the page
+    loaded afresh, in a page no other part of the test uses (for tests that navigate or emulate),
+    and the page and console errors logged since."""
+    with tabs.lending() as borrow:
 
-    def _open(name: str, transport: str, javascript: bool = True, **options):
-        context, page, log = _new_page(chromium, site_url(name, transport), javascript, **options)
-        contexts.append(context)
-        return page, log
+        def _open(name: str, transport: str, javascript: bool = True, **options):
+            page, errors = borrow(java_script_enabled=javascript, **options)
+            load(page, site_url(name, transport))
+            return page, errors
 
-    yield _open
-    for context in contexts:
-        context.close()
+        yield _open
 
 
 @pytest.fixture
@@ -512,7 +512,7 @@ def test_scenes_after_history_navigation(open_page, site_url, name, transport):
     page from the back/forward cache, or just the controls' values into a fresh page, before the
     script runs), the readouts agree with the controls."""
     scenes = [s for s in SCENES if s.page.output_name == name]
-    page, log = open_page(name, transport)
+    page, errors = open_page(name, transport)
     moved = {}
     for scene in scenes:  # every control to its far end from the default
         moved[scene.key] = tuple(0 if d else a.count - 1 for a, d in zip(scene.axes, scene.defaults))
@@ -528,7 +528,7 @@ def test_scenes_after_history_navigation(open_page, site_url, name, transport):
         state = read_state(page, scene)
         assert all(k in (m, d) for k, m, d in zip(state.stops, moved[scene.key], scene.defaults)), (scene, state.stops)
         assert scene_problems(scene, state) == [], scene
-    assert not log.errors
+    assert not errors
 
 
 # --- g) the figure's moving layers ---------------------------------------------------------------
@@ -748,40 +748,56 @@ new MutationObserver(records => records.forEach(r => window.__motion.push(
 """
 
 
+@pytest.fixture(scope="module")
+def watched(chromium):
+    """watched(motion) -> (page, errors): a page, one per reduced-motion setting, that records in
+    every document it loads the changes _WATCH_MOTION_JS watches for, from before any page script
+    runs; and the page errors logged from this call on."""
+    contexts, pages, logs = [], {}, {}
+
+    def _get(motion: str):
+        if motion not in pages:
+            context = chromium.new_context(reduced_motion=motion)
+            contexts.append(context)
+            context.add_init_script(_WATCH_MOTION_JS)
+            pages[motion] = context.new_page()
+            pages[motion].on("pageerror", lambda e: logs[motion].append(str(e)))
+        logs[motion] = []
+        return pages[motion], logs[motion]
+
+    yield _get
+    for context in contexts:
+        context.close()
+
+
 @pytest.mark.parametrize(
     "scene,motion,transport",
     [pytest.param(s, m, "file", id=f"{s.key}-{m}-file") for s in ANIMATED for m in ("reduce", "no-preference")],
 )
-def test_animation_never_autoplays(chromium, site_url, scene, motion, transport):
+def test_animation_never_autoplays(watched, site_url, scene, motion, transport):
     """The page loads still (with reduced motion asked for, and without): the play button is never
     pressed and the animated slider never leaves its default, in view or not, until the reader
     presses Play."""
-    context = chromium.new_context(reduced_motion=motion)
-    try:
-        context.add_init_script(_WATCH_MOTION_JS)
-        page = context.new_page()
-        errors = []
-        page.on("pageerror", lambda e: errors.append(str(e)))
-        page.goto(site_url(scene.page.output_name, transport), wait_until="load")
-        assert page.evaluate("matchMedia('(prefers-reduced-motion: reduce)').matches") == (motion == "reduce")
-        page.wait_for_timeout(300)
-        page.locator(f"#{scene.dom_id}").scroll_into_view_if_needed()
-        page.wait_for_timeout(600)  # more than ten frames of an animation
-        state = read_state(page, scene)
-        assert state.button["pressed"] == "false" and state.button["text"] == "Play"
-        assert state.stops == scene.defaults, "the animation started by itself"
-        assert scene_problems(scene, state) == []
-        i = scene.params.index(scene.animate)
-        default_text = expected_control_text(scene, scene.animate, scene.defaults[i])
-        changes = page.evaluate("window.__motion")
-        changes = [c for c in changes if c[3] == scene.dom_id]  # another scene on the page may animate a slider of the same name
-        pressed = [c for c in changes if c[0] == "aria-pressed" and c[1] != "false"]
-        assert not pressed, f"the play button was pressed by the page itself: {pressed}"
-        moved = [c[1] for c in changes if c[0] == "aria-valuetext" and c[2] == scene.animate and c[1] != default_text]
-        assert not moved, f"the animated slider moved by itself: {moved[:5]}"
-        assert not errors
-    finally:
-        context.close()
+    page, errors = watched(motion)
+    page.goto("about:blank")  # the document below loads afresh
+    page.goto(site_url(scene.page.output_name, transport), wait_until="load")
+    assert page.evaluate("matchMedia('(prefers-reduced-motion: reduce)').matches") == (motion == "reduce")
+    page.wait_for_timeout(300)
+    page.locator(f"#{scene.dom_id}").scroll_into_view_if_needed()
+    page.wait_for_timeout(600)  # more than ten frames of an animation
+    state = read_state(page, scene)
+    assert state.button["pressed"] == "false" and state.button["text"] == "Play"
+    assert state.stops == scene.defaults, "the animation started by itself"
+    assert scene_problems(scene, state) == []
+    i = scene.params.index(scene.animate)
+    default_text = expected_control_text(scene, scene.animate, scene.defaults[i])
+    changes = page.evaluate("window.__motion")
+    changes = [c for c in changes if c[3] == scene.dom_id]  # another scene on the page may animate a slider of the same name
+    pressed = [c for c in changes if c[0] == "aria-pressed" and c[1] != "false"]
+    assert not pressed, f"the play button was pressed by the page itself: {pressed}"
+    moved = [c[1] for c in changes if c[0] == "aria-valuetext" and c[2] == scene.animate and c[1] != default_text]
+    assert not moved, f"the animated slider moved by itself: {moved[:5]}"
+    assert not errors
 
 
 def _visible_fraction(page, scene) -> float:
@@ -856,6 +872,7 @@ def test_links_resolve_to_files(built_site, loaded, name, transport):
     page, _ = loaded(name, transport, javascript=False)
     links = page.eval_on_selector_all("a[href]", "els => els.map(e => [e.getAttribute('href'), e.href])")
     assert links
+    targets = {}  # over http: the file each link reaches -> a link to it
     for href, absolute in links:
         assert href and not href.endswith("/"), f"link to a directory: {href!r}"
         if href.startswith("#"):
@@ -867,5 +884,7 @@ def test_links_resolve_to_files(built_site, loaded, name, transport):
             path = Path(unquote(target.path))
             assert path.is_file() and path.resolve().is_relative_to(built_site.resolve()), href
         else:
-            response = page.request.get(absolute)
-            assert response.status == 200, (href, response.status)
+            targets.setdefault(absolute.partition("#")[0], href)  # each file once, however many of its anchors are linked
+    for absolute, href in targets.items():
+        response = page.request.get(absolute)
+        assert response.status == 200, (href, response.status)

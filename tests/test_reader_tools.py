@@ -2,7 +2,7 @@
 
 - a scene's state is a link ("#collision:m1=2,e=0.5"): moving a control writes it in place of the
   address, opening it sets the controls and shows the scene, a bad value falls back to the default;
-  each scene's Reset puts it back (every scene, round trip through a fresh page);
+  each scene's Reset puts it back (every scene, round trip through a newly loaded page);
 - the book's contents beside the text or behind a button, anchors on headings, previous and next;
 - search, which loads its index as a classic script, from disk as over http;
 - without JavaScript, the controls are hidden and a line says that the figures show their defaults.
@@ -16,7 +16,7 @@ from urllib.parse import unquote
 
 import pytest
 
-from browser import SiteServer, book, move, read_state, scene_problems
+from browser import SiteServer, book, load, move, read_state, scene_problems
 from sitegen.compute.grid import CHOICE
 from sitegen.site.navigation import reading_order
 
@@ -38,12 +38,17 @@ def _open(chromium, built_site, contexts: list, target: str, javascript: bool = 
 
 
 @pytest.fixture
-def fresh(chromium, built_site):
-    """fresh(url or page name, javascript=True, width=1280) -> (page, errors): a new page in its own context."""
-    contexts = []
-    yield lambda target, **options: _open(chromium, built_site, contexts, target, **options)
-    for context in contexts:
-        context.close()
+def fresh(tabs, built_site):
+    """fresh(url or page name, javascript=True, width=1280) -> (page, errors): the target loaded as a new
+    document in a page that no other part of the test uses."""
+    with tabs.lending() as borrow:
+
+        def _fresh(target: str, javascript: bool = True, width: int = 1280):
+            page, errors = borrow(java_script_enabled=javascript, viewport={"width": width, "height": 844})
+            load(page, target if ":" in target else (built_site / target).as_uri())
+            return page, errors
+
+        yield _fresh
 
 
 @pytest.fixture(scope="module")
@@ -83,7 +88,7 @@ def _elsewhere(scene) -> dict[str, int]:
 @pytest.mark.parametrize("scene", SCENES, ids=[s.key for s in SCENES])
 def test_scene_state_round_trips_through_its_link(fresh, shared, scene):
     """Move every control; the address becomes "#<scene>:<param>=<value>,..." naming each moved
-    control; that link opened in a fresh page sets the same stops, shows the same readouts (the
+    control; that link opened in a new document sets the same stops, shows the same readouts (the
     model's) and scrolls to the scene; Reset then brings back the defaults and the plain link."""
     page, page_errors = shared(scene.page.output_name)
     seen = len(page_errors)

@@ -46,18 +46,6 @@ def kernel(function):
     return dispatcher
 
 
-def inline_kernel(function):
-    """A `kernel` that numba copies into each kernel calling it, for small functions called per step.
-
-    A call between kernels is a real call that cannot be optimised across; copied in, it costs nothing
-    (measured: the bubble's solves take a tenth less time with its right-hand side copied in). The numbers
-    do not change: without fastmath the same operations run in the same order.
-    """
-    dispatcher = InnerKernel(function, targetoptions={**OPTIONS, "no_cpython_wrapper": True, "inline": "always"})
-    _KERNELS.append(dispatcher)
-    return dispatcher
-
-
 def entry(function):
     """Compile `function` with numba as `kernel` does, as a kernel that the build calls from Python."""
     dispatcher = Kernel(function, targetoptions=OPTIONS)

@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from .terms import CORE_MARGIN, KELLER_MIKSIS, KM_FLOOR, R_FLOOR, RADIATION, Problem
-from ...physics.compiled import inline_kernel, kernel
+from ...physics.compiled import kernel
 
 # Indices into the packed parameter vector. The floors travel in it too: a kernel reads no constant of terms.py,
 # whose edits the compiled code's cache key (the kernel files' digest) would not see.
@@ -38,7 +38,7 @@ def unpacked(values):
             values[9], values[10], values[11], values[12], values[13], values[14], values[15])
 
 
-@inline_kernel
+@kernel
 def far_field(p, t):
     """p∞(τ): the ambient or stepped value, the ramp and the drive (make_rhs's far_field)."""
     value = p[P_INF]
@@ -86,7 +86,7 @@ def wall(p, r, v):
     return pw, pw_r, pw_v, q, q_r, q_v, g, g_r, g_v
 
 
-@inline_kernel
+@kernel
 def rhs(p, t, y0, y1):
     """(ṙ, r̈) at (τ, r, ṙ): make_rhs's right-hand side (the terms again, without `wall`'s derivatives)."""
     r, v = max(y0, p[RADIUS_FLOOR]), y1

@@ -28,7 +28,10 @@ def test_lists_and_rows_as_json_writes_them(entries):
     assert intjson.dumps(values[None, :]) == _reference(values[None, :])
 
 
-def test_random_tables_with_ragged_and_empty_rows_and_nulls():
+@pytest.mark.parametrize("block", [intjson.BLOCK_ENTRIES, 1, 5], ids=["one-block", "a-row-a-block", "blocks-of-rows"])
+def test_random_tables_with_ragged_and_empty_rows_and_nulls(block, monkeypatch):
+    """Also when a table is written a few entries at a time (as a big one is)."""
+    monkeypatch.setattr(intjson, "BLOCK_ENTRIES", block)
     rng = np.random.default_rng(7)
     for _ in range(400):
         rows, width = rng.integers(1, 7, size=2)

@@ -10,6 +10,7 @@ _POWERS = 10 ** np.arange(1, 19, dtype=np.int64)  # a magnitude's digit count is
 _FOUR_DIGITS = np.frombuffer(b"".join(b"%04d" % i for i in range(10000)), dtype=np.uint32)  # "0000" … "9999"
 _NULL = np.frombuffer(b"null", dtype=np.uint32)[0]
 _COMMA, _OPEN, _CLOSE, _MINUS = b",[]-"
+BLOCK_ENTRIES = 1 << 18  # entries written at a time
 
 
 def dumps(values: np.ndarray, lengths: np.ndarray | None = None, nulls: np.ndarray | None = None) -> str:
@@ -17,6 +18,14 @@ def dumps(values: np.ndarray, lengths: np.ndarray | None = None, nulls: np.ndarr
     to its length in `lengths` if given; an entry where `nulls` (same shape as `values`) is true is null."""
     if values.dtype != np.int64 or not values.size or not _representable(values, nulls):
         return json.dumps(listed(values, lengths, nulls), separators=(",", ":"), ensure_ascii=False, allow_nan=False)
+    # A block of rows at a time: the scratch arrays (several times the table's own size) stay small.
+    step = max(1, BLOCK_ENTRIES // (values.shape[1] if values.ndim == 2 else 1))
+    return "[" + ",".join(_entries(values[i:i + step], None if lengths is None else lengths[i:i + step],
+                                   None if nulls is None else nulls[i:i + step]) for i in range(0, len(values), step)) + "]"
+
+
+def _entries(values: np.ndarray, lengths: np.ndarray | None, nulls: np.ndarray | None) -> str:
+    """`dumps` of `values` without its outer brackets."""
     nested = values.ndim == 2
     empty = None  # an empty row is written as one entry of no digits between its brackets
     if nested and lengths is not None:
@@ -67,7 +76,7 @@ def dumps(values: np.ndarray, lengths: np.ndarray | None = None, nulls: np.ndarr
     column = np.arange(width)
     masks = (column >= np.arange(width)[:, None, None]) & (column < stop + np.arange(3)[:, None])
     keep = np.take(masks.view(np.uint32).reshape(width * 3, width // 4), start * 3 + after, axis=0).view(bool)
-    return "[" + _kept(text, keep.reshape(-1)).tobytes().decode("ascii") + "]"
+    return _kept(text, keep.reshape(-1)).tobytes().decode("ascii")
 
 
 def listed(values: np.ndarray, lengths: np.ndarray | None = None, nulls: np.ndarray | None = None) -> list:

@@ -36,8 +36,8 @@ def assemble_scenes(book: Book, run: BuildRun) -> Book:
 def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> SceneRecord:
     scene, tables, figure, page = record.scene, record.tables, record.figure, record.page
     # The figure's layers go into the payload: a change to the view's layers is a new payload.
-    payload = run.remember_keyed("payloads", lambda: digest(scene_digest(record), source_digest(PAYLOAD_CODE), repr(figure.layers)),
-                                 lambda: scene_payload(scene, tables, figure.layers).encode())
+    key = digest(scene_digest(record), source_digest(PAYLOAD_CODE), repr(figure.layers))
+    payload = run.remember("payloads", key, lambda: scene_payload(scene, tables, figure.layers).encode())
     caption = fill_slots(record.caption, page.found, book.mathml[page.slug], [])
     if record.accuracy is not None:
         caption = f"{caption} {caption_sentence(record.accuracy, linked)}".strip()
@@ -47,9 +47,8 @@ def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> 
 
 def _data_bytes(payload: bytes, run: BuildRun) -> tuple[int, int]:
     """Raw and gzip bytes of a scene's inline tables (what the accuracy report lists)."""
-    # How sizes are measured is part of the key.
-    packed = run.remember_keyed("report-gzip", lambda: digest(hashlib.sha256(payload).hexdigest(), source_digest(SIZE_CODE)),
-                                lambda: str(gzip_bytes(payload)).encode())
+    key = digest(hashlib.sha256(payload).hexdigest(), source_digest(SIZE_CODE))  # how sizes are measured is part of one
+    packed = run.remember("report-gzip", key, lambda: str(gzip_bytes(payload)).encode())
     return len(payload), int(packed)
 
 

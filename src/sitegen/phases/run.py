@@ -68,10 +68,6 @@ class BuildRun:
         self.math_characters: set[str] = set()  # what the pages' formulas show: the math font's subset
         self.searchable: dict[str, list] = {}  # each written page's sections: the search index
 
-    def remember_keyed(self, kind: str, key, compute) -> bytes:
-        """`remember` with the key made by `key()` only when there is a cache to look in (a key hashes sources)."""
-        return self.cache.remember(kind, key(), compute) if self.cache else compute()
-
     def phase(self, name: str, function, book):
         """Run one phase over the book, adding its seconds to the phase's total."""
         start = time.perf_counter()

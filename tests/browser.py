@@ -66,15 +66,12 @@ class Tabs:
         self.browser = browser
         self.idle: dict[str, list] = {}
         self.contexts: list = []
-        self.logs: dict = {}  # page -> the list its errors go to while it is lent
+        self.logs: dict = {}  # page -> the list its errors go to
 
     def _open(self, options: dict):
-        context = self.browser.new_context(**options)
+        context, page, errors = logged_page(self.browser, **options)
         self.contexts.append(context)
-        page = context.new_page()
-        self.logs[page] = []
-        page.on("pageerror", lambda e: self.logs[page].append(str(e)))
-        page.on("console", lambda m: self.logs[page].append(f"{m.type}: {m.text}") if m.type in ("error", "warning") else None)
+        self.logs[page] = errors
         return page
 
     @contextmanager
@@ -88,8 +85,8 @@ class Tabs:
             pool = self.idle.setdefault(json.dumps(options, sort_keys=True), [])
             page = pool.pop() if pool else self._open(options)
             taken.append((pool, page))
-            self.logs[page] = errors = []
-            return page, errors
+            self.logs[page].clear()  # what it logged for an earlier test
+            return page, self.logs[page]
 
         try:
             yield borrow
@@ -101,6 +98,17 @@ class Tabs:
     def close(self) -> None:
         for context in self.contexts:
             context.close()
+
+
+def logged_page(browser, **options):
+    """(context, page, errors): a new context with `options`, a page in it, and the list that collects the
+    page's errors and its console errors and warnings."""
+    context = browser.new_context(**options)
+    page = context.new_page()
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.on("console", lambda m: errors.append(f"{m.type}: {m.text}") if m.type in ("error", "warning") else None)
+    return context, page, errors
 
 
 def load(page, url: str) -> None:

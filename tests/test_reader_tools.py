@@ -16,7 +16,7 @@ from urllib.parse import unquote
 
 import pytest
 
-from browser import SiteServer, book, load, move, read_state, scene_problems
+from browser import SiteServer, book, load, logged_page, move, read_state, scene_problems
 from sitegen.compute.grid import CHOICE
 from sitegen.site.navigation import reading_order
 
@@ -26,14 +26,9 @@ ORDER = [p.output_name for p in reading_order(PAGES)]
 
 def _open(chromium, built_site, contexts: list, target: str, javascript: bool = True, width: int = 1280):
     """(page, errors): `target` (a URL or a page's name) opened in a new context, fonts settled."""
-    context = chromium.new_context(java_script_enabled=javascript, viewport={"width": width, "height": 844})
+    context, page, errors = logged_page(chromium, java_script_enabled=javascript, viewport={"width": width, "height": 844})
     contexts.append(context)
-    page = context.new_page()
-    errors = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.on("console", lambda m: errors.append(f"{m.type}: {m.text}") if m.type in ("error", "warning") else None)
-    page.goto(target if ":" in target else (built_site / target).as_uri(), wait_until="load")
-    page.evaluate("document.fonts.ready.then(() => true)")
+    load(page, target if ":" in target else (built_site / target).as_uri())
     return page, errors
 
 

@@ -36,12 +36,15 @@ def build(config: BuildConfig, progress=print, registry: Registry | None = None)
         book = _timed(run, name, phase, book)
     run.log.raise_if_any()
     run.report.pages, run.report.scenes = len(book.pages), len(book.scenes)
-    with staged_tree(config.out) as run.tree:
-        for page in book.writing_order():
-            for name, phase in PAGE_PHASES:
-                book = run.phase(name, phase, book.at(page))
-        book = run.phase("write", write_assets, book.at(None))
-        run.log.raise_if_any()
+    try:
+        with staged_tree(config.out) as run.tree:
+            for page in book.writing_order(late=run.compiling):
+                for name, phase in PAGE_PHASES:
+                    book = run.phase(name, phase, book.at(page))
+            book = run.phase("write", write_assets, book.at(None))
+            run.log.raise_if_any()
+    finally:
+        run.stop_background()
     for name in (n for n, _ in PAGE_PHASES):
         run.say(f"{name:<9} {run.report.phases[name]:6.2f} s")
     return _finish(run, book)

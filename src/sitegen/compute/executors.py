@@ -5,6 +5,7 @@ results in plan order, so the output is the same byte for byte whichever runs it
 """
 from __future__ import annotations
 
+import multiprocessing
 import os
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from contextlib import contextmanager
@@ -55,3 +56,48 @@ def results_in_order(executor: Executor, function, units: Iterable) -> Iterator:
         return (function(unit) for unit in units)
     futures = [executor.submit(function, unit) for unit in units]
     return (future.result() for future in futures)
+
+
+class Background:
+    """One call running in a process of its own while this one goes on; `result()` waits for it.
+
+    The process is spawned, not forked (a fork would copy the locks of this process's threads), and
+    is a daemon: a build that stops early does not wait for it.
+    """
+
+    def __init__(self, function, *args):
+        context = multiprocessing.get_context("spawn")
+        self._answer, answer = context.Pipe(duplex=False)
+        self._process = context.Process(target=_answer_with, args=(answer, function, args), daemon=True)
+        self._process.start()
+        answer.close()
+
+    def result(self):
+        """What the call returned; raises BackgroundFailed if it raised or its process ended without answering."""
+        try:
+            done, value = self._answer.recv()
+        except EOFError:
+            done, value = False, f"its process ended with code {self._process.exitcode}"
+        self._process.join()
+        if not done:
+            raise BackgroundFailed(value)
+        return value
+
+    def stop(self) -> None:
+        """End the call if it still runs (its result is no longer wanted)."""
+        if self._process.is_alive():
+            self._process.terminate()
+        self._process.join()
+
+
+class BackgroundFailed(Exception):
+    """A call in the background raised (its type and message) or its process died."""
+
+
+def _answer_with(answer, function, args) -> None:
+    try:
+        value = (True, function(*args))
+    except BaseException as error:  # reported to the waiting process, which decides what to do
+        value = (False, f"{type(error).__name__}: {error}")
+    answer.send(value)
+    answer.close()

@@ -6,7 +6,7 @@ goes through its build the same way); nothing travels in dicts keyed by "page#sc
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import Mapping
+from typing import Collection, Mapping
 
 from ..compute.accuracy import SceneAccuracy
 from ..compute.cache import CacheKey
@@ -82,9 +82,11 @@ class Book:
         """The book with the scene phases pointed at `page`."""
         return replace(self, page=page)
 
-    def writing_order(self) -> list[Page]:
-        """Pages in the order they are finished: pages with accuracy reports last, as they read every scene."""
-        return sorted(self.pages, key=lambda p: bool(p.found.reports))
+    def writing_order(self, late: Collection[str] = ()) -> list[Page]:
+        """Pages in the order they are finished: pages with accuracy reports last, as they read every scene,
+        and before them the pages with scenes of the models named in `late` (their kernels still compiling)."""
+        waiting = {r.page.slug for r in self.scenes if r.scene.model.name in late}
+        return sorted(self.pages, key=lambda p: (bool(p.found.reports), p.slug in waiting))
 
     @property
     def has_reports(self) -> bool:

@@ -9,6 +9,7 @@ from pathlib import Path
 from ..compute.accuracy import SceneAccuracy
 from ..config import BookConfig, read_book
 from ..compute.cache import TableCache, compute_now
+from ..compute.executors import Background, BackgroundFailed
 from ..errors import AuthorError, ErrorLog, SceneCrashed
 from ..registry import Registry, raising_line
 
@@ -67,14 +68,47 @@ class BuildRun:
         self.tree = None  # the staging folder the pages are written into (site.writer.StagedTree)
         self.math_characters: set[str] = set()  # what the pages' formulas show: the math font's subset
         self.searchable: dict[str, list] = {}  # each written page's sections: the search index
+        self.compiling: dict[str, list[Background]] = {}  # models whose kernels compile beside the build, by name
+        self._phase = ""  # the phase running now
 
     def phase(self, name: str, function, book):
         """Run one phase over the book, adding its seconds to the phase's total."""
-        start = time.perf_counter()
+        start, self._phase = time.perf_counter(), name
         try:
             return function(book, self)
         finally:
             self.report.phases[name] = self.report.phases.get(name, 0.0) + time.perf_counter() - start
+
+    @property
+    def compiled_cache(self) -> Path:
+        """The folder of compiled code (kept even when the build keeps no tables)."""
+        return self.config.root / ".cache" / "compiled"
+
+    def await_kernels(self, model) -> None:
+        """If `model`'s kernels are compiling beside the build, wait for them and load them into this process
+        (or compile them here if that failed). The seconds spent are booked to the compile phase."""
+        parts = self.compiling.pop(model.name, None)
+        if parts is None:
+            return
+        start = time.perf_counter()
+        try:
+            seconds = max(part.result()[0] for part in parts)
+            beside = f"compiled in {seconds:.2f} s beside the build"
+        except BackgroundFailed as failure:  # compiled again here, where an error names the scene that needs it
+            beside = f"compiling beside the build failed ({failure})"
+        prepared = model.prepare_kernels(self.compiled_cache)
+        waited = time.perf_counter() - start
+        self.report.phases["compile"] = self.report.phases.get("compile", 0.0) + waited
+        self.report.phases[self._phase] = self.report.phases.get(self._phase, 0.0) - waited  # the phase adds them too
+        loaded = f"then {'compiled' if prepared[1] else 'loaded'} in {prepared[0]:.2f} s" if prepared else ""
+        self.say(f"compile   {model.name}: {beside}, waited for {waited:.2f} s; {loaded}".rstrip("; "))
+
+    def stop_background(self) -> None:
+        """End work still running beside the build (a build that stopped early)."""
+        for parts in self.compiling.values():
+            for part in parts:
+                part.stop()
+        self.compiling.clear()
 
     def say(self, line: str) -> None:
         """One line of the build's log (nothing when the run is quiet)."""

@@ -8,7 +8,7 @@ from functools import partial
 
 from ..compute.cache import digest, library_version, source_digest
 from ..compute.check import check_scenes as check_accuracy
-from ..compute.executors import executor_for, results_in_order
+from ..compute.executors import Background, executor_for, results_in_order
 from ..compute.tabulate import assemble_tables, evaluate_unit, plan_scene
 from ..render.figures.base import scene_figures
 from ..render.layers import layer_points
@@ -30,11 +30,25 @@ def compile_kernels(book: Book, run: BuildRun) -> Book:
         return book
     pending = {r.scene.model.name: r.scene.model for r in book.scenes if not run.cache or not run.cache.has(r.key)}
     for name, model in sorted(pending.items()):
-        prepared = model.prepare_kernels(run.config.root / ".cache" / "compiled")
+        if not model.kernels_cached(run.compiled_cache) and _other_pages(book, name):
+            # Compiling takes many seconds of one core: it runs beside the pages that need no compiled code,
+            # which are built first (the machine's other core does the compiling).
+            run.compiling[name] = [Background(model.prepare_kernels, run.compiled_cache, part)
+                                   for part in model.kernel_parts or (None,)]
+            run.say(f"compile   {name}: compiling in {len(run.compiling[name])} processes beside the build; "
+                    f"pages with its scenes are built last")
+            continue
+        prepared = model.prepare_kernels(run.compiled_cache)
         if prepared:
             seconds, fresh = prepared
             run.say(f"compile   {name}: {'compiled' if fresh else 'loaded from the cache'} in {seconds:.2f} s")
     return book
+
+
+def _other_pages(book: Book, model: str) -> bool:
+    """Whether some page has no scene of `model` (and so could be built while its kernels compile)."""
+    using = {r.page.slug for r in book.scenes if r.scene.model.name == model}
+    return any(page.slug not in using for page in book.pages)
 
 
 def tabulate_scenes(book: Book, run: BuildRun) -> Book:
@@ -51,6 +65,7 @@ def _tabulated(record: SceneRecord, run: BuildRun, executor) -> SceneRecord:
     found = run.cache.load(record.key) if run.cache else None
     if found is not None:
         return _noted(replace(record, tables=found), run, cached=True, seconds=0.0)
+    run.await_kernels(record.scene.model)
     units = plan_scene(record.scene, list(record.outputs), record.scene.model.chunk_stops)
     results, seconds = [], 0.0
     pace = _Pace(record, sum(unit.stops() for unit in units), run)
@@ -107,6 +122,7 @@ def check_scenes(book: Book, run: BuildRun) -> Book:
         if record.tables is None:
             continue
         with run.scene(record, "checking its numerics"):
+            run.await_kernels(record.scene.model)
             found, errors = check_accuracy([record], run.remember, run.progress, shown=lambda _: record.outputs)
             for error in errors:
                 run.error(error)

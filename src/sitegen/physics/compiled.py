@@ -9,9 +9,11 @@ to compile for the host CPU instead (used to test that the shown numbers do not 
 """
 from __future__ import annotations
 
+import fcntl
 import hashlib
 import os
 import time
+from contextlib import ExitStack, contextmanager
 from importlib import metadata
 from pathlib import Path
 
@@ -29,6 +31,7 @@ CACHE_ENV = "SITEGEN_COMPILED_CACHE"  # where compiled code is kept; the build s
 DEFAULT_CACHE = Path.home() / ".cache" / "sitegen" / "compiled"
 _KERNELS: list = []  # every kernel, in definition order
 _state = {"root": None, "ready": False}
+READY = "ready"  # written into a cache folder once every kernel in it is compiled and warmed up
 
 
 # error_model="numpy": a division by zero gives inf or NaN, as in numpy, instead of raising; the steppers
@@ -106,30 +109,59 @@ def source_key() -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:24]
 
 
+def cache_folder() -> Path:
+    """Where this process keeps and finds the compiled code of the current kernels."""
+    return Path(os.environ.get(CACHE_ENV) or DEFAULT_CACHE) / source_key()
+
+
+def is_cached(root: Path) -> bool:
+    """Whether preparing the kernels from `root` compiles nothing: this process has them already, or their
+    compiled code is complete under `root`."""
+    return _state["ready"] or (root / source_key() / READY).exists()
+
+
 def use_cache(root: Path) -> None:
     """Keep compiled code under `root` (before the first kernel runs); children of this process inherit it."""
     os.environ[CACHE_ENV] = str(root)
 
 
-def prepare(warm_up) -> tuple[float, bool]:
+def prepare(warm_up, part: str | None = None, parts: tuple[str, ...] = ()) -> tuple[float, bool]:
     """Compile every kernel or load it from the cache, then run `warm_up` (which calls the entry points).
 
     Returns (seconds, whether anything was compiled rather than loaded). Idempotent within a process.
+    `part` (one of `parts`, the names of sets of entry points that processes may compile side by side):
+    `warm_up` calls only that part's entry points; the cache is marked complete only by a call without one.
+    A process that would compile what another is compiling into the same folder waits for it, then loads.
     """
     start = time.perf_counter()
     if _state["ready"]:
         return 0.0, False
-    root = Path(os.environ.get(CACHE_ENV) or DEFAULT_CACHE) / source_key()
+    root = cache_folder()
     _state["root"] = root
     if ContentLocator not in caching.CacheImpl._locator_classes:
         caching.CacheImpl._locator_classes.insert(0, ContentLocator)
     for dispatcher in _KERNELS:
         dispatcher.enable_caching()
     before = {id(d): len(d.stats.cache_misses) for d in _KERNELS}
-    warm_up()
-    _state["ready"] = True
+    with ExitStack() as held:
+        for name in [part] if part else parts or ["all"]:
+            held.enter_context(_compiling(root, name))
+        warm_up()
+    if part is None:
+        _state["ready"] = True
+        root.mkdir(parents=True, exist_ok=True)
+        (root / READY).touch()
     compiled = any(len(d.stats.cache_misses) > before[id(d)] for d in _KERNELS)
     return time.perf_counter() - start, compiled
+
+
+@contextmanager
+def _compiling(root: Path, part: str):
+    """Hold the lock of one part of the kernels in cache folder `root` (processes take turns compiling it)."""
+    root.parent.mkdir(parents=True, exist_ok=True)
+    with open(root.parent / f"{root.name}.{part}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+        yield
 
 
 class ContentLocator(caching._CacheLocator):

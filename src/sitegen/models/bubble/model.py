@@ -24,7 +24,7 @@ from .point import (
     BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, MISSING, SOLVER_LABELS, ROW_OF, Scales, check_effects, compose,
     read_row, read_run,
 )
-from .solve import AUTO, COMPILED, CURVE_POINTS, REFERENCE_CAPS, SOLVERS, STIFF, Run, ensure_compiled, method_for, reference_for, solve
+from .solve import AUTO, COMPILED, CURVE_POINTS, KERNEL_PARTS, REFERENCE_CAPS, SOLVERS, STIFF, Run, ensure_compiled, method_for, reference_for, solve
 from .terms import P0, WATER, Problem
 from ...physics.numerics import Measurement, Numerics
 
@@ -154,10 +154,16 @@ class Bubble(Model):
             results.update(_solve_points(x, dynamic, effects, self.settings))
         return results
 
-    def prepare_kernels(self, cache: Path) -> tuple[float, bool]:
-        """The compiled solver, compiled or loaded from `cache` once per process."""
+    kernel_parts = KERNEL_PARTS
+
+    def prepare_kernels(self, cache: Path, part: str | None = None) -> tuple[float, bool]:
+        """The compiled solver, compiled or loaded from `cache` once per process (or one part of it, into `cache`)."""
         compiled.use_cache(cache)
-        return ensure_compiled()
+        return ensure_compiled(part)
+
+    def kernels_cached(self, cache: Path) -> bool:
+        """Whether the compiled solver is complete in `cache` (so preparing it loads, not compiles)."""
+        return compiled.is_cached(cache)
 
     def is_numerical(self, effects) -> bool:
         """Only a pressure history is solved: the closed forms alone need no check."""

@@ -246,24 +246,44 @@ def _marched(pb: Problem, y0, method: str, rtol: float, caps: Caps, atol: float 
     atol = default_atol(rtol) if atol is None else atol
     if pb.compressible == KELLER_MIKSIS and abs(y0[1]) >= pb.speed_limit:
         return _make_run(KM_STOP, method, rtol, _Stepper([], grid, y0), 0, time.perf_counter() - start)
-    code, end, samples, hits, nfev = march(COMPILED[method], pack(pb), np.array(y0, float), rtol, atol, pb.tau_end,
-                                              grid, event_table(pb), caps.max_nfev)
+    marched = march(COMPILED[method], pack(pb), np.array(y0, float), rtol, atol, pb.tau_end, grid, event_table(pb),
+                    caps.max_nfev)
+    return _run_of(marched, method, rtol, grid, start)
+
+
+def _run_of(marched, method: str, rtol: float, grid: np.ndarray, start: float) -> Run:
+    """The Run of what `march` returned."""
+    code, end, samples, hits, nfev = marched
     maxima, minima, speeds = (_frozen(rows, copy=False) for rows in split_hits(hits, *_RECORDS.values()))
     return Run(_STATUS_OF[code], method, rtol, grid, _frozen(samples[:, 0]), _frozen(samples[:, 1]),
                (float(end[0]), float(end[1]), float(end[2])), maxima, minima, speeds, int(nfev), time.perf_counter() - start)
 
 
-def ensure_compiled() -> tuple[float, bool]:
-    """Compile the bubble's kernels, or load them from the cache (once per process): (seconds, compiled)."""
-    def warm_up():  # each entry point once, with the types of the build's calls
-        pb = Problem(gas=1.0, kappa=1.4, visc=0.01, drive=0.5, omega=1.0, tau_end=0.5)
-        for method in COMPILED:
-            run = _marched(pb, (1.0, 0.0), method, 1e-6, Caps(10_000), 1e-9)
-        q = np.ones(kernel_read.READING_SIZE)  # a reading of any point whose window is the run's
-        q[kernel_read.Q_TAU_END] = q[kernel_read.Q_PART] = pb.tau_end
-        kernel_read.read(q, run.tau, run.r, run.v, run.end, STATUS_CODES[run.status], run.maxima, run.minima, run.speeds)
+# The kernels in two parts of about 15 and 5 s of compiling, which processes can compile side by side:
+# the stepping (`march`) and the reading of a run (`read`).
+KERNEL_PARTS = ("march", "read")
 
-    return compiled.prepare(warm_up)
+
+def ensure_compiled(part: str | None = None) -> tuple[float, bool]:
+    """Compile the bubble's kernels, or load them from the cache (once per process): (seconds, compiled).
+
+    `part` (one of KERNEL_PARTS): only those kernels, into the cache, for a process compiling beside others."""
+    pb = Problem(gas=1.0, kappa=1.4, visc=0.01, drive=0.5, omega=1.0, tau_end=0.5)
+
+    def warm_up():  # each entry point once, with the types of the build's calls
+        if part in (None, "march"):
+            for method in COMPILED:
+                _marched(pb, (1.0, 0.0), method, 1e-6, Caps(10_000), 1e-9)
+        if part in (None, "read"):
+            grid = sample_grid(pb.tau_end)  # a run as `march` returns one, made up: reading it compiles no stepping
+            made_up = (ENDED, (pb.tau_end, 1.0, 0.0), np.ones((grid.shape[0], 2)), np.zeros((0, 4)), 0)
+            run = _run_of(made_up, EXPLICIT, 1e-6, grid, 0.0)
+            q = np.ones(kernel_read.READING_SIZE)  # a reading of any point whose window is the run's
+            q[kernel_read.Q_TAU_END] = q[kernel_read.Q_PART] = pb.tau_end
+            kernel_read.read(q, run.tau, run.r, run.v, run.end, STATUS_CODES[run.status], run.maxima, run.minima,
+                             run.speeds)
+
+    return compiled.prepare(warm_up, part, KERNEL_PARTS)
 
 
 def integrate(pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), events=None, atol: float | None = None) -> Run:

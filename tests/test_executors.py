@@ -1,13 +1,20 @@
-"""Tabulation through an Executor: serial, local processes, a Dask cluster — the same bytes from each."""
+"""Tabulation through an Executor: serial, local processes, a Dask cluster — the same bytes from each; and
+one call run beside the build in a process of its own (how a first build compiles the bubble's kernels)."""
 from __future__ import annotations
 
+import math
+import os
 import shutil
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from sitegen.build import BuildConfig, build
+from sitegen.compute.executors import Background, BackgroundFailed
 from sitegen.compute.tabulate import plan_scene
 from sitegen.errors import BuildFailed
 from sitegen.physics import Model, Output, Param
@@ -156,3 +163,30 @@ def test_a_long_scene_says_how_far_it_got_before_its_own_line(tmp_path, monkeypa
     done = [int(line.split()[1].replace(",", "")) for line in updates]
     totals = {line.split(" of ")[1].split()[0] for line in updates}
     assert done == sorted(done) and len(totals) == 1 and done[-1] < int(totals.pop().replace(",", ""))
+
+
+def test_a_call_beside_returns_its_value_or_says_why_it_failed():
+    """Background(f, *args).result() is f(*args) from another process; a raise or a dead process is BackgroundFailed."""
+    beside = Background(math.hypot, 3.0, 4.0)
+    assert beside.result() == 5.0
+    with pytest.raises(BackgroundFailed, match="ValueError: math domain error"):
+        Background(math.sqrt, -1.0).result()
+    with pytest.raises(BackgroundFailed, match="ended with code 3"):
+        Background(os._exit, 3).result()
+
+
+def test_a_call_beside_can_be_stopped():
+    """stop() ends a call that is still running, at once."""
+    start = time.perf_counter()
+    beside = Background(time.sleep, 60)
+    beside.stop()
+    assert time.perf_counter() - start < 30
+
+
+def test_a_call_beside_does_not_run_the_callers_script_again(tmp_path):
+    """The process beside is a fresh interpreter given the call: a script without a __main__ guard runs once."""
+    script = tmp_path / "script.py"
+    script.write_text("import math\nfrom sitegen.compute.executors import Background\n"
+                      "print('script ran', flush=True)\nprint(Background(math.factorial, 5).result())\n")
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, check=True, timeout=60)
+    assert done.stdout.splitlines() == ["script ran", "120"]

@@ -5,8 +5,10 @@ results in plan order, so the output is the same byte for byte whichever runs it
 """
 from __future__ import annotations
 
-import multiprocessing
 import os
+import pickle
+import subprocess
+import sys
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from contextlib import contextmanager
 from typing import Iterable, Iterator
@@ -59,45 +61,61 @@ def results_in_order(executor: Executor, function, units: Iterable) -> Iterator:
 
 
 class Background:
-    """One call running in a process of its own while this one goes on; `result()` waits for it.
+    """One call running in a new Python process while this one goes on; `result()` waits for it.
 
-    The process is spawned, not forked (a fork would copy the locks of this process's threads), and
-    is a daemon: a build that stops early does not wait for it.
+    The process is a fresh interpreter: not a fork (which would copy the locks of this process's threads)
+    and not multiprocessing's spawn (which runs the caller's main script again). It is handed this
+    process's import path and the call, pickled, and answers on a pipe of its own.
     """
 
     def __init__(self, function, *args):
-        context = multiprocessing.get_context("spawn")
-        self._answer, answer = context.Pipe(duplex=False)
-        self._process = context.Process(target=_answer_with, args=(answer, function, args), daemon=True)
-        self._process.start()
-        answer.close()
+        read, write = os.pipe()
+        self._answer = os.fdopen(read, "rb")
+        self._process = subprocess.Popen([sys.executable, "-c", _CHILD, str(write)], stdin=subprocess.PIPE,
+                                         pass_fds=(write,))
+        os.close(write)
+        with self._process.stdin as call:
+            pickle.dump(sys.path, call)  # first: the call's function is found through it
+            pickle.dump((function, args), call)
 
     def result(self):
         """What the call returned; raises BackgroundFailed if it raised or its process ended without answering."""
         try:
-            done, value = self._answer.recv()
+            done, value = pickle.load(self._answer)
         except EOFError:
-            done, value = False, f"its process ended with code {self._process.exitcode}"
-        self._process.join()
+            done, value = False, f"its process ended with code {self._process.wait()}"
+        finally:
+            self._answer.close()
+        self._process.wait()
         if not done:
             raise BackgroundFailed(value)
         return value
 
     def stop(self) -> None:
         """End the call if it still runs (its result is no longer wanted)."""
-        if self._process.is_alive():
+        if self._process.poll() is None:
             self._process.terminate()
-        self._process.join()
+        self._process.wait()
+        self._answer.close()
 
 
 class BackgroundFailed(Exception):
     """A call in the background raised (its type and message) or its process died."""
 
 
-def _answer_with(answer, function, args) -> None:
+_CHILD = """import pickle, sys
+sys.path[:] = pickle.load(sys.stdin.buffer)
+from sitegen.compute.executors import answer_call
+answer_call(sys.stdin.buffer, int(sys.argv[1]))
+"""
+
+
+def answer_call(calls, answer_fd: int) -> None:
+    """In a Background's process: read the call from `calls`, make it, and write its outcome to `answer_fd`."""
+    function, args = pickle.load(calls)
     try:
-        value = (True, function(*args))
+        outcome = (True, function(*args))
     except BaseException as error:  # reported to the waiting process, which decides what to do
-        value = (False, f"{type(error).__name__}: {error}")
-    answer.send(value)
-    answer.close()
+        outcome = (False, f"{type(error).__name__}: {error}")
+    with os.fdopen(answer_fd, "wb") as answer:
+        pickle.dump(outcome, answer)

@@ -103,4 +103,5 @@ def test_kernels_compiled_for_the_host_cpu_show_the_same_bytes_as_the_portable_o
     assert "compile   bubble" in generic
     assert "compile   bubble: compiling in 2 processes beside the build" in host, host
     assert "compile   bubble: compiled in" in host and "then loaded" in host, host
+    assert "  bubble's kernels still compiling beside the build, " in host, host  # the wait is reported as it goes
     assert _tree(tmp_path / "host") == _tree(root.parent / "site")

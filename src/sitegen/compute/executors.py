@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import os
 import pickle
+import select
 import subprocess
 import sys
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
@@ -77,6 +78,10 @@ class Background:
         with self._process.stdin as call:
             pickle.dump(sys.path, call)  # first: the call's function is found through it
             pickle.dump((function, args), call)
+
+    def finished(self, timeout: float) -> bool:
+        """Whether the call has answered (or its process ended), after waiting at most `timeout` seconds."""
+        return bool(select.select([self._answer], [], [], timeout)[0])
 
     def result(self):
         """What the call returned; raises BackgroundFailed if it raised or its process ended without answering."""

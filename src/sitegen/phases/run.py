@@ -13,6 +13,8 @@ from ..compute.executors import Background, BackgroundFailed
 from ..errors import AuthorError, ErrorLog, SceneCrashed
 from ..registry import Registry, raising_line
 
+PROGRESS_EVERY = 2.0  # seconds: long work (a heavy scene, compiling) says how far it got at least this often
+
 
 @dataclass(frozen=True)
 class BuildConfig:
@@ -91,6 +93,9 @@ class BuildRun:
         if parts is None:
             return
         start = time.perf_counter()
+        for part in parts:
+            while not part.finished(PROGRESS_EVERY):  # a log that says nothing for many seconds looks stuck
+                self.say(f"  {model.name}'s kernels still compiling beside the build, {time.perf_counter() - start:.0f} s waited")
         try:
             seconds = max(part.result()[0] for part in parts)
             beside = f"compiled in {seconds:.2f} s beside the build"

@@ -16,9 +16,8 @@ from ..render.style import laid_out
 from ..render.svg import figure_svg
 from ..site.assemble import RenderedScene, dom_id
 from .record import Book, SceneRecord
-from .run import BuildRun
+from .run import PROGRESS_EVERY, BuildRun
 
-PROGRESS_EVERY = 2.0  # seconds: a scene still computing says how far it got at least this often
 # The code that turns a view's drawing into the page's SVG (followed through its imports, with the view's module).
 DRAWING = frozenset(f.__module__ for f in (figure_svg, laid_out, layer_points, scene_figures))
 

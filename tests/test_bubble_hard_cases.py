@@ -33,15 +33,20 @@ def _flag(preset: str, run, pb, scales, effects=None) -> str:
 # --- R → 0: the finite-time singularity of the empty collapse ----------------------------------------------
 
 
+A_EVALUATION_BUDGET = 20_000
+
+
 @pytest.mark.parametrize("method", list(SOLVERS))
-def test_every_solver_returns_under_its_evaluation_cap_at_every_preset_A_stop(method):
-    """All 210 stops of preset A (rtol 1e-6): each solve ends at |Ṙ| = c or the window end, never past t_c, with
-    fewer evaluations than the cap. The hard case asks for an answer within 10 s; the cap (200,000 evaluations,
-    a few seconds even through scipy's step machinery) bounds that on any machine, as a count, not a clock."""
+def test_every_solver_returns_within_an_evaluation_budget_at_every_preset_A_stop(method):
+    """All 210 stops of preset A (rtol 1e-6): each solve ends at |Ṙ| = c or the window end, never past t_c, within
+    an evaluation budget. The hard case asks for an answer within 10 s; as a count that means the same on any
+    machine: at scipy's costliest (BDF, about 150 µs per evaluation with its Jacobians and factorisations) 10 s is
+    about 66,000 evaluations. The budget is 20,000, a margin for slower machines and about nine times today's
+    worst stop (about 2,250, Radau), so a solver that starts to struggle fails here long before it would hang."""
     for r0, p_inf, content in A_STOPS:
         pb, _ = compose(_point("A", R0=r0, p_inf=p_inf, gas_content=content, kappa=1.4), A_EFFECTS)
         run = solve(pb, method, 1e-6)
-        assert run.status in (MACH, OK) and run.nfev < Caps().max_nfev, (r0, p_inf, content, run.status, run.nfev)
+        assert run.status in (MACH, OK) and run.nfev <= A_EVALUATION_BUDGET, (r0, p_inf, content, run.status, run.nfev)
         if content == 0:
             assert run.end[0] < rayleigh_tau(pb.p_inf - pb.vapour) and run.end[1] > EPSILON
 

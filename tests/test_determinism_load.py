@@ -17,6 +17,13 @@ title = "Bubbles"
 
 # Bubbles
 
+A chain first: with worker processes, its scene is handed to them before the bubble's kernels are ready.
+
+```scene
+model: chain
+slider N: 4, 8 default 8
+```
+
 ```scene
 model: bubble
 id: driven
@@ -62,9 +69,9 @@ def _book(folder: Path, compiled: Path = ROOT / ".cache" / "compiled") -> Path:
     return folder
 
 
-def _build(root: Path, out: Path, **env: str) -> str:
-    done = subprocess.run([sys.executable, "-m", "sitegen.cli", "build", "--root", str(root), "--out", str(out), "--no-cache"],
-                          capture_output=True, text=True, env={**os.environ, **env}, check=False)
+def _build(root: Path, out: Path, *options: str, **env: str) -> str:
+    done = subprocess.run([sys.executable, "-m", "sitegen.cli", "build", "--root", str(root), "--out", str(out), "--no-cache",
+                           *options], capture_output=True, text=True, env={**os.environ, **env}, check=False)
     assert done.returncode == 0, done.stderr
     return done.stdout
 
@@ -96,12 +103,16 @@ def test_a_build_beside_a_busy_cpu_is_byte_identical_to_a_quiet_one(quiet, tmp_p
 def test_kernels_compiled_for_the_host_cpu_show_the_same_bytes_as_the_portable_ones(quiet, tmp_path):
     """The same book with the kernels compiled for this machine's CPU (its FMA and vector units allowed)
     gives the same site as with the portable target the build uses. The host's kernels are compiled afresh,
-    in processes beside the build (while it writes the page of text), and loaded to compute the scenes."""
+    in processes beside the build (while it writes the page of text), and loaded to compute the scenes; with
+    worker processes, the workers start with them loaded (they compile nothing, into no other folder)."""
     root, generic = quiet
     fresh = _book(tmp_path / "book", compiled=tmp_path / "compiled")
-    host = _build(fresh, tmp_path / "host", SITEGEN_COMPILE_TARGET="host")
+    home = tmp_path / "home"  # where compiled code would go if a process were not told the book's folder
+    host = _build(fresh, tmp_path / "host", "--jobs", "2", SITEGEN_COMPILE_TARGET="host", SITEGEN_COMPILED_CACHE="",
+                  HOME=str(home))
     assert "compile   bubble" in generic
     assert "compile   bubble: compiling in 2 processes beside the build" in host, host
     assert "compile   bubble: compiled in" in host and "then loaded" in host, host
     assert "  bubble's kernels still compiling beside the build, " in host, host  # the wait is reported as it goes
+    assert not (home / ".cache" / "sitegen").exists(), sorted(str(p) for p in home.rglob("*"))
     assert _tree(tmp_path / "host") == _tree(root.parent / "site")

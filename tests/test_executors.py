@@ -179,14 +179,17 @@ def test_a_call_beside_can_be_stopped():
     """stop() ends a call that is still running: its process is ended, and it never answers."""
     beside = Background(time.sleep, 3600)
     beside.stop()
-    with pytest.raises(BackgroundFailed, match="ended with code -15"):  # SIGTERM
+    with pytest.raises(BackgroundFailed, match="stopped .*ended with code -15"):  # SIGTERM
         beside.result()
 
 
 def test_a_call_beside_does_not_run_the_callers_script_again(tmp_path):
-    """The process beside is a fresh interpreter given the call: a script without a __main__ guard runs once."""
+    """The process beside is a fresh interpreter given the call: a script without a __main__ guard runs once,
+    and a file in the current folder named like a module it needs does not shadow that module."""
     script = tmp_path / "script.py"
     script.write_text("import math\nfrom sitegen.compute.executors import Background\n"
                       "print('script ran', flush=True)\nprint(Background(math.factorial, 5).result())\n")
-    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, check=True, timeout=60)
+    (work := tmp_path / "work").mkdir()
+    (work / "pickle.py").write_text("raise ImportError('the folder the build was started from shadows pickle')\n")
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, check=True, timeout=60, cwd=work)
     assert done.stdout.splitlines() == ["script ran", "120"]

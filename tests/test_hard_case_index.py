@@ -79,7 +79,7 @@ INDEX: dict[str, list[str]] = {
         LEVER + "test_pivot_at_the_end",  # MA = ∞ sentinel, null in strict JSON, "∞" phrase; MA(0) = 0.00
     ],
     "Singularities: K4 R → 0 (event + guards; LSODA hang)": [
-        BUBBLE_HARD + "test_every_solver_returns_under_its_evaluation_cap_at_every_preset_A_stop",
+        BUBBLE_HARD + "test_every_solver_returns_within_an_evaluation_budget_at_every_preset_A_stop",
         BUBBLE_HARD + "test_collapse_without_terminal_events_is_stopped_by_the_guards",
         BUBBLE_HARD + "test_the_cap_counts_evaluations_so_a_capped_solve_ends_the_same_way_every_time",
     ],

@@ -32,11 +32,11 @@ def build(config: BuildConfig, progress=print, registry: Registry | None = None)
     forget_sources()  # a long-lived process (tests, a watcher) must see edited model code
     run = BuildRun(config, progress, registry or load_registry(config.book))
     book = Book()
-    for name, phase in BOOK_PHASES:
-        book = _timed(run, name, phase, book)
-    run.log.raise_if_any()
-    run.report.pages, run.report.scenes = len(book.pages), len(book.scenes)
     try:
+        for name, phase in BOOK_PHASES:
+            book = _timed(run, name, phase, book)
+        run.log.raise_if_any()
+        run.report.pages, run.report.scenes = len(book.pages), len(book.scenes)
         with staged_tree(config.out) as run.tree:
             for page in book.writing_order(late=run.compiling):
                 for name, phase in PAGE_PHASES:
@@ -44,7 +44,7 @@ def build(config: BuildConfig, progress=print, registry: Registry | None = None)
             book = run.phase("write", write_assets, book.at(None))
             run.log.raise_if_any()
     finally:
-        run.stop_background()
+        run.stop_background()  # a build that stopped early leaves nothing running
     for name in (n for n, _ in PAGE_PHASES):
         run.say(f"{name:<9} {run.report.phases[name]:6.2f} s")
     return _finish(run, book)

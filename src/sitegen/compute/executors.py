@@ -66,25 +66,32 @@ class Background:
 
     The process is a fresh interpreter: not a fork (which would copy the locks of this process's threads)
     and not multiprocessing's spawn (which runs the caller's main script again). It is handed this
-    process's import path and the call, pickled, and answers on a pipe of its own.
+    process's import path and the call, pickled, and answers on a pipe of its own. A call that cannot be
+    pickled raises here, before any process starts.
     """
 
     def __init__(self, function, *args):
+        call = pickle.dumps(sys.path) + pickle.dumps((function, args))  # the path first: the call is found through it
         read, write = os.pipe()
         self._answer = os.fdopen(read, "rb")
-        self._process = subprocess.Popen([sys.executable, "-c", _CHILD, str(write)], stdin=subprocess.PIPE,
+        # -P: the current folder does not come first on the path, where a file of its could shadow a module
+        self._process = subprocess.Popen([sys.executable, "-P", "-c", _CHILD, str(write)], stdin=subprocess.PIPE,
                                          pass_fds=(write,))
         os.close(write)
-        with self._process.stdin as call:
-            pickle.dump(sys.path, call)  # first: the call's function is found through it
-            pickle.dump((function, args), call)
+        with self._process.stdin as calls:
+            calls.write(call)
 
     def finished(self, timeout: float) -> bool:
         """Whether the call has answered (or its process ended), after waiting at most `timeout` seconds."""
-        return bool(select.select([self._answer], [], [], timeout)[0])
+        poller = select.poll()
+        poller.register(self._answer, select.POLLIN)
+        return bool(poller.poll(timeout * 1000))
 
     def result(self):
-        """What the call returned; raises BackgroundFailed if it raised or its process ended without answering."""
+        """What the call returned; raises BackgroundFailed if it raised, its process ended without answering,
+        or it was stopped."""
+        if self._answer.closed:
+            raise BackgroundFailed(f"it was stopped (its process ended with code {self._process.returncode})")
         try:
             done, value = pickle.load(self._answer)
         except EOFError:
@@ -101,6 +108,7 @@ class Background:
         if self._process.poll() is None:
             self._process.terminate()
         self._process.wait()
+        self._answer.close()
 
 
 class BackgroundFailed(Exception):
@@ -116,10 +124,13 @@ answer_call(sys.stdin.buffer, int(sys.argv[1]))
 
 def answer_call(calls, answer_fd: int) -> None:
     """In a Background's process: read the call from `calls`, make it, and write its outcome to `answer_fd`."""
-    function, args = pickle.load(calls)
     try:
+        function, args = pickle.load(calls)
         outcome = (True, function(*args))
     except BaseException as error:  # reported to the waiting process, which decides what to do
         outcome = (False, f"{type(error).__name__}: {error}")
-    with os.fdopen(answer_fd, "wb") as answer:
-        pickle.dump(outcome, answer)
+    try:
+        with os.fdopen(answer_fd, "wb") as answer:
+            pickle.dump(outcome, answer)
+    except BrokenPipeError:  # the waiting process has gone; what the call left behind (a cache) still serves
+        pass

@@ -89,18 +89,21 @@ class BuildRun:
     def await_kernels(self, model) -> None:
         """If `model`'s kernels are compiling beside the build, wait for them and load them into this process
         (or compile them here if that failed). The seconds spent are booked to the compile phase."""
-        parts = self.compiling.pop(model.name, None)
+        parts = self.compiling.get(model.name)
         if parts is None:
             return
         start = time.perf_counter()
         for part in parts:
             while not part.finished(PROGRESS_EVERY):  # a log that says nothing for many seconds looks stuck
                 self.say(f"  {model.name}'s kernels still compiling beside the build, {time.perf_counter() - start:.0f} s waited")
-        try:
-            seconds = max(part.result()[0] for part in parts)
-            beside = f"compiled in {seconds:.2f} s beside the build"
-        except BackgroundFailed as failure:  # compiled again here, where an error names the scene that needs it
-            beside = f"compiling beside the build failed ({failure})"
+        outcomes = [_outcome(part) for part in parts]
+        del self.compiling[model.name]  # only now: until every part has answered, a stopped build ends them
+        failed = [o for o in outcomes if isinstance(o, BackgroundFailed)]
+        if failed:  # compiled again here, where an error names the scene that needs it
+            beside = f"compiling beside the build failed ({failed[0]})"
+        else:
+            fresh = any(compiled for _, compiled in outcomes)
+            beside = f"{'compiled' if fresh else 'loaded'} in {max(s for s, _ in outcomes):.2f} s beside the build"
         prepared = model.prepare_kernels(self.compiled_cache)
         waited = time.perf_counter() - start
         self.report.phases["compile"] = self.report.phases.get("compile", 0.0) + waited
@@ -143,3 +146,11 @@ class BuildRun:
         except Exception as error:
             code = raising_line(error, [type(record.scene.model), type(record.view)] if record.scene else [], self.config.book)
             raise SceneCrashed(record.spec.loc, record.spec.id, doing, error, code) from error
+
+
+def _outcome(part: Background):
+    """A part's answer, or the BackgroundFailed that says why there is none."""
+    try:
+        return part.result()
+    except BackgroundFailed as failure:
+        return failure

@@ -2,6 +2,7 @@
 check the numerics against each model's reference, and render each figure."""
 from __future__ import annotations
 
+import pickle
 import time
 from dataclasses import replace
 from functools import partial
@@ -29,11 +30,7 @@ def compile_kernels(book: Book, run: BuildRun) -> Book:
         return book
     pending = {r.scene.model.name: r.scene.model for r in book.scenes if not run.cache or not run.cache.has(r.key)}
     for name, model in sorted(pending.items()):
-        if not model.kernels_cached(run.compiled_cache) and _other_pages(book, name):
-            # Compiling takes many seconds of one core: it runs beside the pages that need no compiled code,
-            # which are built first (the machine's other core does the compiling).
-            run.compiling[name] = [Background(model.prepare_kernels, run.compiled_cache, part)
-                                   for part in model.kernel_parts or (None,)]
+        if not model.kernels_cached(run.compiled_cache) and _other_pages(book, name) and _compiling_beside(model, run):
             run.say(f"compile   {name}: compiling in {len(run.compiling[name])} processes beside the build; "
                     f"pages with its scenes are built last")
             continue
@@ -44,6 +41,21 @@ def compile_kernels(book: Book, run: BuildRun) -> Book:
     return book
 
 
+def _compiling_beside(model, run: BuildRun) -> bool:
+    """Start compiling `model`'s kernels beside the build, a process per part; False (nothing started) for a
+    model that cannot be handed to another process, which compiles here instead.
+
+    Compiling takes many seconds of one core: it runs beside the pages that need no compiled code, which
+    are built first (the machine's other core does the compiling)."""
+    try:
+        pickle.dumps(model.prepare_kernels)
+    except (pickle.PicklingError, TypeError, AttributeError):
+        return False
+    run.compiling[model.name] = [Background(model.prepare_kernels, run.compiled_cache, part)
+                                 for part in model.kernel_parts or (None,)]
+    return True
+
+
 def _other_pages(book: Book, model: str) -> bool:
     """Whether some page has no scene of `model` (and so could be built while its kernels compile)."""
     using = {r.page.slug for r in book.scenes if r.scene.model.name == model}
@@ -52,6 +64,9 @@ def _other_pages(book: Book, model: str) -> bool:
 
 def tabulate_scenes(book: Book, run: BuildRun) -> Book:
     """Each scene's tables: from the cache when its key matches, else computed by the executor."""
+    if run.config.jobs > 1 or run.config.scheduler:  # worker processes start with the kernels this one has loaded
+        for record in book.current():
+            run.await_kernels(record.scene.model)
     records = []
     with executor_for(run.config.jobs, run.config.scheduler) as executor:
         for record in book.current():

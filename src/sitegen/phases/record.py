@@ -85,8 +85,12 @@ class Book:
     def writing_order(self, late: Collection[str] = ()) -> list[Page]:
         """Pages in the order they are finished: pages with accuracy reports last, as they read every scene,
         and before them the pages with scenes of the models named in `late` (their kernels still compiling)."""
-        waiting = {r.page.slug for r in self.scenes if r.scene.model.name in late}
+        waiting = self.pages_with(late)
         return sorted(self.pages, key=lambda p: (bool(p.found.reports), p.slug in waiting))
+
+    def pages_with(self, models: Collection[str]) -> set[str]:
+        """The slugs of the pages with a scene of one of `models` (by name)."""
+        return {r.page.slug for r in self.scenes if r.scene.model.name in models}
 
     @property
     def has_reports(self) -> bool:

@@ -102,14 +102,14 @@ class BuildRun:
         if failed:  # compiled again here, where an error names the scene that needs it
             beside = f"compiling beside the build failed ({failed[0]})"
         else:
-            fresh = any(compiled for _, compiled in outcomes)
-            beside = f"{'compiled' if fresh else 'loaded'} in {max(s for s, _ in outcomes):.2f} s beside the build"
-        prepared = model.prepare_kernels(self.compiled_cache)
+            any_fresh = any(compiled for _, compiled in outcomes)
+            beside = f"{'compiled' if any_fresh else 'loaded'} in {max(s for s, _ in outcomes):.2f} s beside the build"
+        seconds, fresh = model.prepare_kernels(self.compiled_cache)  # a model compiling beside the build has compiled code
         waited = time.perf_counter() - start
         self.report.phases["compile"] = self.report.phases.get("compile", 0.0) + waited
         self.report.phases[self._phase] = self.report.phases.get(self._phase, 0.0) - waited  # the phase adds them too
-        loaded = f"then {'compiled' if prepared[1] else 'loaded'} in {prepared[0]:.2f} s" if prepared else ""
-        self.say(f"compile   {model.name}: {beside}, waited for {waited:.2f} s; {loaded}".rstrip("; "))
+        self.say(f"compile   {model.name}: {beside}, waited for {waited:.2f} s; "
+                 f"then {'compiled' if fresh else 'loaded'} in {seconds:.2f} s")
 
     def stop_background(self) -> None:
         """End work still running beside the build (a build that stopped early)."""

@@ -47,19 +47,17 @@ def _compiling_beside(model, run: BuildRun) -> bool:
 
     Compiling takes many seconds of one core: it runs beside the pages that need no compiled code, which
     are built first (the machine's other core does the compiling)."""
-    try:
-        pickle.dumps(model.prepare_kernels)
+    try:  # every part hands over the same call, so one that cannot be pickled fails at the first, before any starts
+        run.compiling[model.name] = [Background(model.prepare_kernels, run.compiled_cache, part)
+                                     for part in model.kernel_parts or (None,)]
     except (pickle.PicklingError, TypeError, AttributeError):
         return False
-    run.compiling[model.name] = [Background(model.prepare_kernels, run.compiled_cache, part)
-                                 for part in model.kernel_parts or (None,)]
     return True
 
 
 def _other_pages(book: Book, model: str) -> bool:
     """Whether some page has no scene of `model` (and so could be built while its kernels compile)."""
-    using = {r.page.slug for r in book.scenes if r.scene.model.name == model}
-    return any(page.slug not in using for page in book.pages)
+    return len(book.pages_with({model})) < len(book.pages)
 
 
 def tabulate_scenes(book: Book, run: BuildRun) -> Book:

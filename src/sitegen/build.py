@@ -2,13 +2,14 @@
 
 read, resolve and math run over the whole book, and every author error they find is reported
 before anything is computed. Then, a page at a time, its scenes are tabulated, checked and drawn,
-and the page is assembled and written into a staging folder, which replaces build/ only when every
-page is written: the build holds one page's tables at a time, and the previous build/ stays intact
-on any failure. Pages that show accuracy-report parts come last, as those list every scene.
+the page is assembled and written into a staging folder, and the garbage its work left is collected.
+The staging folder replaces build/ only when every page is written: the build holds one page's tables
+at a time, and the previous build/ stays intact on any failure. Pages that show accuracy-report parts come last, as those list every scene.
 """
 from __future__ import annotations
 
 from .compute.cache import forget_sources
+from .phases.collect import collect_garbage, collecting_per_page
 from .phases.pages import assemble_scenes, write_assets, write_page
 from .phases.read import convert_math, figure_name, read_pages, resolve_scenes
 from .phases.read import needed_outputs as _needed_outputs
@@ -22,7 +23,7 @@ __all__ = ["BuildConfig", "BuildReport", "build", "needed_outputs", "resolve_boo
 
 BOOK_PHASES = (("read", read_pages), ("resolve", resolve_scenes), ("math", convert_math), ("compile", compile_kernels))
 PAGE_PHASES = (("tabulate", tabulate_scenes), ("check", check_scenes), ("render", render_figures),
-               ("assemble", assemble_scenes), ("write", write_page))
+               ("assemble", assemble_scenes), ("write", write_page), ("collect", collect_garbage))
 
 
 def build(config: BuildConfig, progress=print, registry: Registry | None = None) -> BuildReport:
@@ -32,19 +33,20 @@ def build(config: BuildConfig, progress=print, registry: Registry | None = None)
     forget_sources()  # a long-lived process (tests, a watcher) must see edited model code
     run = BuildRun(config, progress, registry or load_registry(config.book))
     book = Book()
-    try:
-        for name, phase in BOOK_PHASES:
-            book = _timed(run, name, phase, book)
-        run.log.raise_if_any()
-        run.report.pages, run.report.scenes = len(book.pages), len(book.scenes)
-        with staged_tree(config.out) as run.tree:
-            for page in book.writing_order(late=run.compiling):
-                for name, phase in PAGE_PHASES:
-                    book = run.phase(name, phase, book.at(page))
-            book = run.phase("write", write_assets, book.at(None))
+    with collecting_per_page():
+        try:
+            for name, phase in BOOK_PHASES:
+                book = _timed(run, name, phase, book)
             run.log.raise_if_any()
-    finally:
-        run.stop_background()  # a build that stopped early leaves nothing running
+            run.report.pages, run.report.scenes = len(book.pages), len(book.scenes)
+            with staged_tree(config.out) as run.tree:
+                for page in book.writing_order(late=run.compiling):
+                    for name, phase in PAGE_PHASES:
+                        book = run.phase(name, phase, book.at(page))
+                book = run.phase("write", write_assets, book.at(None))
+                run.log.raise_if_any()
+        finally:
+            run.stop_background()  # a build that stopped early leaves nothing running
     for name in (n for n, _ in PAGE_PHASES):
         run.say(f"{name:<9} {run.report.phases[name]:6.2f} s")
     return _finish(run, book)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import matplotlib.artist as martist
 import matplotlib.pyplot as plt
 import numpy as np
-from matplotlib.ticker import Locator, LogLocator, NullFormatter, NullLocator
+from matplotlib.ticker import FuncFormatter, Locator, LogLocator, NullFormatter, NullLocator
 
 from . import style as s
 
@@ -30,6 +30,7 @@ LINE_HALF = 1.5  # pt: half the width of a line, an obstacle for labels
 LABEL_MARGIN = 1.0  # pt kept clear round a label: a browser draws a text's box a little taller than matplotlib measures it
 RING_SIZE = 15  # pt: the ring round the chosen setting
 MINOR_DECADES = 3  # an axis spanning more decades than this has no minor ticks
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
 @dataclass(frozen=True)
@@ -167,6 +168,8 @@ def _draw_panel(ax, panel: Panel, xlabel: str, ylabel: str) -> None:
     ax.set_ylabel(ylabel, fontsize=9)
     ax.tick_params(labelsize=8)
     ax.yaxis.set_major_locator(LogLocator(base=10.0, numticks=8))
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_formatter(_DECADE)
     for index, series in enumerate(panel.series):
         _draw_series(ax, panel, series, COLOURS[index % len(COLOURS)], MARKERS[index % len(MARKERS)])
     if panel.exact:
@@ -181,6 +184,18 @@ def _draw_panel(ax, panel: Panel, xlabel: str, ylabel: str) -> None:
     if panel.chosen:
         ax.plot([panel.chosen.x], [_clamped(panel, panel.chosen.y)], marker="o", ms=RING_SIZE, mfc="none", mec=s.INK,
                 mew=1.8, ls="none", zorder=6)
+
+
+def _decade_text(value: float, _position=None) -> str:
+    """A decade as 10 with its exponent in superscript digits ("10⁻³"): plain text, where matplotlib's log labels
+    are math ($10^{-3}$), typeset by its math parser, the slowest part of drawing these diagrams."""
+    exponent = round(math.log10(value))
+    if not math.isclose(value, 10.0**exponent):  # not a decade (a log axis of these diagrams labels none)
+        return f"{value:g}"
+    return "10" + str(exponent).translate(_SUPERSCRIPT)
+
+
+_DECADE = FuncFormatter(_decade_text)
 
 
 def _minor_ticks(ax) -> None:

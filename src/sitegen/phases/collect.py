@@ -19,8 +19,7 @@ def collecting_per_page():
     ends, and a full collection after each page keeps the build's garbage bounded by a page, as its memory is.
     """
     thresholds = gc.get_threshold()
-    gc.collect()
-    gc.freeze()
+    gc.freeze()  # no collection first: in a long-lived process (tests, a watcher) that would rescan its whole heap
     gc.set_threshold(_YOUNG, thresholds[1], _NEVER)
     try:
         yield

@@ -9,6 +9,7 @@ new test cannot forget them.
 from __future__ import annotations
 
 import fcntl
+import gc
 import os
 import shutil
 from pathlib import Path
@@ -193,3 +194,12 @@ def tabs(chromium):
     tabs = Tabs(chromium)
     yield tabs
     tabs.close()
+
+
+def pytest_collection_finish(session) -> None:
+    """Garbage collection as a build does it (phases/collect.py): what every test of this process shares (the
+    libraries, the collected tests: hundreds of thousands of objects) is set aside, not rescanned by every full
+    collection, and young objects are collected every 10,000 allocations, not 700 (make check: 58 s -> 51 s)."""
+    gc.collect()
+    gc.freeze()
+    gc.set_threshold(10_000, 10, 10)

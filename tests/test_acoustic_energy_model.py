@@ -25,7 +25,8 @@ from sitegen.models.acoustic_energy.model import (
     incident_energy_density,
     standing_factor,
 )
-from sitegen.site.assemble import readout_text, scene_payload
+from sitegen.site.assemble import readout_text
+from sitegen.site.payload import scene_payload
 
 MODELS = builtin_registry().models
 

@@ -91,7 +91,7 @@ def _plain_table_json(table, unit):
 
 
 def _table_text(table, unit):
-    from sitegen.site.assemble import _spliced, _table_json
+    from sitegen.site.payload import _spliced, _table_json
 
     encoded = []
     return _spliced(json.dumps(_table_json(table, unit, encoded), separators=(",", ":"), ensure_ascii=False), encoded)

@@ -20,7 +20,8 @@ from sitegen.models.lever.model import (
     BALANCED, BLOCK_SIDE_PER_CUBE_ROOT_KG, DRAWN_SLOPE, LENGTH, TIPS_LEFT, TIPS_RIGHT, Lever, _tipping_integral,
 )
 from sitegen.render.layers import layer_points
-from sitegen.site.assemble import readout_text, scene_payload
+from sitegen.site.assemble import readout_text
+from sitegen.site.payload import scene_payload
 from sitegen.site.sizes import gzip_bytes
 
 MODELS = builtin_registry().models

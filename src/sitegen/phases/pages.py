@@ -10,7 +10,8 @@ from ..compute.check import caption_sentence
 from ..content.bench_results import BENCH_NAME, load_results
 from ..content.markdown_ext import fill_slots
 from ..site import assets, search
-from ..site.assemble import page_html, scene_html, scene_payload
+from ..site.assemble import page_html, scene_html
+from ..site.payload import scene_payload
 from ..site.report import ReportContext, report_part
 from ..site.sizes import gzip_bytes
 from .record import Book, SceneRecord

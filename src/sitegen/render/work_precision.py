@@ -9,15 +9,14 @@ box covers no marker, line or other label, and dropped where there is none.
 from __future__ import annotations
 
 import math
-from contextlib import contextmanager
 from dataclasses import dataclass
 
-import matplotlib.artist as martist
 import matplotlib.pyplot as plt
 import numpy as np
-from matplotlib.ticker import FuncFormatter, Locator, LogLocator, NullFormatter, NullLocator
+from matplotlib.ticker import LogLocator
 
 from . import style as s
+from .log_axes import DECADE, minor_ticks, ticks_in_view, tight_layout_measured_once
 
 GREEN, PURPLE, TEAL, BROWN = "#2a7a3b", "#7b3fa0", "#0f7a82", "#8a5a14"
 # Eight series told apart by colour and marker (the bubble diagrams have seven solvers).
@@ -29,8 +28,6 @@ MARKER_HALF = 3.5  # pt: half the size of a marker, an obstacle for labels
 LINE_HALF = 1.5  # pt: half the width of a line, an obstacle for labels
 LABEL_MARGIN = 1.0  # pt kept clear round a label: a browser draws a text's box a little taller than matplotlib measures it
 RING_SIZE = 15  # pt: the ring round the chosen setting
-MINOR_DECADES = 3  # an axis spanning more decades than this has no minor ticks
-_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
 @dataclass(frozen=True)
@@ -79,7 +76,7 @@ def work_precision_figure(panels: list[Panel], xlabel: str, ylabel: str, note: s
             _draw_panel(ax, panel, xlabel, ylabel)
             _legend_and_title(ax, panel, columns)
         _note(fig, note)
-        _tight_layout(fig, rect=(0, 0.025 * (1.6 if narrow else 1), 1, 1), h_pad=1.4)
+        tight_layout_measured_once(fig, rect=(0, 0.025 * (1.6 if narrow else 1), 1, 1), h_pad=1.4)
         for ax, panel in zip(axes[:, 0], panels):
             _annotate(ax, panel)
     return fig
@@ -102,42 +99,10 @@ def resolution_figure(panels: list[Panel], note: str, narrow: bool = False) -> p
                             frameon=False, handlelength=1.5, columnspacing=1.0)
         _note(fig, note)
         top = 1 - (legend.get_window_extent().height + 6) / (fig.get_figheight() * 72)
-        _tight_layout(fig, rect=(0, 0.03 * (1.6 if narrow else 1), 1, top), h_pad=1.2, w_pad=1.2)
+        tight_layout_measured_once(fig, rect=(0, 0.03 * (1.6 if narrow else 1), 1, top), h_pad=1.2, w_pad=1.2)
         for ax, panel in zip(axes.ravel(), panels):
             _annotate(ax, panel)
     return fig
-
-
-def _tight_layout(fig, **kwargs) -> None:
-    """`fig.tight_layout(**kwargs)`, each axes measured once.
-
-    Given a `rect`, matplotlib measures every axes (ticks, labels, legend) twice, the second time to fit the
-    same boxes into the rect: nothing moves in between, so the first measurements serve again, for the same
-    layout and half the measuring.
-    """
-    with _measured_once():
-        fig.tight_layout(**kwargs)
-
-
-@contextmanager
-def _measured_once():
-    """While laying out, an artist's layout box is measured the first time it is asked for, then reused."""
-    measure = getattr(martist, "_get_tightbbox_for_layout_only", None)
-    if measure is None:  # a detail of matplotlib's; without it, measure as matplotlib does
-        yield
-        return
-    boxes = {}
-
-    def once(artist, *args, **kwargs):
-        if id(artist) not in boxes:
-            boxes[id(artist)] = (artist, measure(artist, *args, **kwargs))  # the artist kept: its id stays its own
-        return boxes[id(artist)][1]
-
-    martist._get_tightbbox_for_layout_only = once
-    try:
-        yield
-    finally:
-        martist._get_tightbbox_for_layout_only = measure
 
 
 def _note(fig, note: str) -> None:
@@ -169,7 +134,7 @@ def _draw_panel(ax, panel: Panel, xlabel: str, ylabel: str) -> None:
     ax.tick_params(labelsize=8)
     ax.yaxis.set_major_locator(LogLocator(base=10.0, numticks=8))
     for axis in (ax.xaxis, ax.yaxis):
-        axis.set_major_formatter(_DECADE)
+        axis.set_major_formatter(DECADE)
     for index, series in enumerate(panel.series):
         _draw_series(ax, panel, series, COLOURS[index % len(COLOURS)], MARKERS[index % len(MARKERS)])
     if panel.exact:
@@ -179,86 +144,11 @@ def _draw_panel(ax, panel: Panel, xlabel: str, ylabel: str) -> None:
         ax.annotate(panel.line[1], (0.99, panel.line[0]), xycoords=("axes fraction", "data"), xytext=(0, 3),
                     textcoords="offset points", ha="right", va="bottom", fontsize=LABEL_SIZE, color=s.MUTED)
     _limits(ax, panel)
-    _minor_ticks(ax)
-    _ticks_in_view(ax)
+    minor_ticks(ax)
+    ticks_in_view(ax)
     if panel.chosen:
         ax.plot([panel.chosen.x], [_clamped(panel, panel.chosen.y)], marker="o", ms=RING_SIZE, mfc="none", mec=s.INK,
                 mew=1.8, ls="none", zorder=6)
-
-
-def _decade_text(value: float, _position=None) -> str:
-    """A decade as 10 with its exponent in superscript digits ("10⁻³"): plain text, where matplotlib's log labels
-    are math ($10^{-3}$), typeset by its math parser, the slowest part of drawing these diagrams."""
-    exponent = round(math.log10(value))
-    if not math.isclose(value, 10.0**exponent):  # not a decade (a log axis of these diagrams labels none)
-        return f"{value:g}"
-    return "10" + str(exponent).translate(_SUPERSCRIPT)
-
-
-_DECADE = FuncFormatter(_decade_text)
-
-
-def _minor_ticks(ax) -> None:
-    """Unlabelled minor ticks on an axis of a few decades; an axis of more marks its decades only.
-
-    Minor ticks help to read a value between two decades; over many decades they are clutter (matplotlib draws
-    none beyond ten) and they were half the cost of drawing these diagrams.
-    """
-    for axis, (low, high) in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
-        if math.log10(high / low) > MINOR_DECADES:
-            axis.set_minor_locator(NullLocator())
-        else:
-            axis.set_minor_formatter(NullFormatter())  # "2×10²" minor labels collide on short decades
-
-
-def _ticks_in_view(ax) -> None:
-    """Every locator of the axes' log axes gives the locations in its view only (`_InView`)."""
-    for axis in (ax.xaxis, ax.yaxis):
-        if axis.get_scale() != "log":  # `_InView` keeps its slack as a ratio, for positive locations
-            continue
-        if not isinstance(axis.get_major_locator(), NullLocator):
-            axis.set_major_locator(_InView(axis.get_major_locator()))
-        if not isinstance(axis.get_minor_locator(), NullLocator):
-            axis.set_minor_locator(_InView(axis.get_minor_locator()))
-
-
-class _InView(Locator):
-    """A locator's locations, less those well outside the view.
-
-    matplotlib makes a tick (two lines, a grid line and two labels) for every location its locator gives and draws
-    those in the view; a log locator gives one decade or more beyond each end, a third of these diagrams' ticks.
-    A location dropped here is one matplotlib would not draw, so the drawing is the same, for less making.
-    """
-
-    SLACK = 1.001  # a location this close beyond an end (as a ratio) is kept; matplotlib decides whether to draw it
-
-    def __init__(self, locator: Locator):
-        self.locator = locator
-
-    def set_axis(self, axis) -> None:
-        """The axis of this locator and of the one it filters."""
-        super().set_axis(axis)
-        self.locator.set_axis(axis)
-
-    def __call__(self):
-        return self._in_view(self.locator(), *self.axis.get_view_interval())
-
-    def tick_values(self, vmin, vmax):
-        """The filtered locator's locations between vmin and vmax (and a little beyond)."""
-        return self._in_view(self.locator.tick_values(vmin, vmax), vmin, vmax)
-
-    def nonsingular(self, v0, v1):
-        """As the filtered locator."""
-        return self.locator.nonsingular(v0, v1)
-
-    def view_limits(self, vmin, vmax):
-        """As the filtered locator."""
-        return self.locator.view_limits(vmin, vmax)
-
-    def _in_view(self, locations, vmin, vmax):
-        low, high = min(vmin, vmax), max(vmin, vmax)
-        locations = np.asarray(locations)
-        return locations[(locations >= low / self.SLACK) & (locations <= high * self.SLACK)]
 
 
 def _clamped(panel: Panel, y: float) -> float:

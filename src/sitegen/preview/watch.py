@@ -8,6 +8,7 @@ and an edit to a model recomputes only the scenes that use it.
 """
 from __future__ import annotations
 
+import gc
 import queue
 import threading
 import time
@@ -81,6 +82,9 @@ class Builder:
         else:
             self.say(f"built {what} in {seconds:.2f} s: {report.pages} pages, {report.scenes} scenes "
                      f"({report.computed} computed)", flush=True)
+        # What the attempt left in reference cycles (its records, a failed build's traceback) is freed by a
+        # full collection; the watcher allocates next to nothing between rebuilds, so none would come by itself.
+        gc.collect()
         return report is not None
 
     def _refresh(self, changed: set[Path]) -> list[str]:

@@ -18,7 +18,8 @@ from sitegen.registry import builtin_registry
 from sitegen.models.bubble.model import Bubble
 from sitegen.models.bubble.point import compose
 from sitegen.models.bubble.solve import integrate
-from sitegen.models.kinetic.model import QUANTILE, RANDOM, Kinetic, molecules
+from sitegen.models.kinetic.model import Kinetic
+from sitegen.models.kinetic.walls import QUANTILE, RANDOM, molecules
 
 MODELS = builtin_registry().models
 

@@ -8,9 +8,10 @@ import numpy as np
 import pytest
 
 from sitegen.compute.quantize import fmt
-from sitegen.models.kinetic.model import (
-    ATOMIC_MASS, BOX_SIDE, K_B, MASS_U, QUANTILE, RANDOM, SPECIES, TRAIN_BINS, Kinetic, cumulative_impulse,
-    maxwell_wall_records, molecules, pulsed_impulse, sample_ratio, soft_record, wall_hits, wall_record,
+from sitegen.models.kinetic.model import ATOMIC_MASS, BOX_SIDE, K_B, MASS_U, SPECIES, Kinetic
+from sitegen.models.kinetic.walls import (
+    QUANTILE, RANDOM, TRAIN_BINS, cumulative_impulse, maxwell_wall_records, molecules, pulsed_impulse, sample_ratio,
+    soft_record, wall_hits, wall_record,
 )
 
 EPS = np.finfo(float).eps

@@ -6,7 +6,8 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .model import HIST_SPAN, TRAIN_BINS
+from .model import HIST_SPAN
+from .walls import TRAIN_BINS
 from ...render import style as s
 from ...render.layers import Layer
 

@@ -28,7 +28,7 @@ from sitegen.models.bubble import point as bubble_point
 from sitegen.models.bubble import solve as bubble_solve
 from sitegen.models.bubble import terms as bubble_terms
 from sitegen.models.chain import model as chain
-from sitegen.models.impulse import model as impulse
+from sitegen.models.impulse import pulses as impulse
 from sitegen.registry import builtin_registry
 from sitegen.models.bubble import kernel_terms as kernel_terms
 from sitegen.models.bubble.terms import make_rhs

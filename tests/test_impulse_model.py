@@ -8,7 +8,8 @@ import pytest
 from scipy.integrate import quad
 
 from sitegen.compute.quantize import fmt
-from sitegen.models.impulse.model import Impulse, force, velocity
+from sitegen.models.impulse.model import Impulse
+from sitegen.models.impulse.pulses import force, velocity
 
 EPS = np.finfo(float).eps
 
@@ -186,7 +187,7 @@ def test_out_of_domain_input_raises_naming_the_parameter(inputs):
 # --- effect `shape`: the four pulses of physics.md I1 -------------------------------------------------------------
 
 from sitegen.models.collision.model import Collision  # noqa: E402
-from sitegen.models.impulse.model import SHAPES, shaped_force  # noqa: E402
+from sitegen.models.impulse.pulses import SHAPES, shaped_force  # noqa: E402
 
 # The closed-form J of each shape, as an exact multiple of F_pk·τ (the half-sine's 2/π in floating point).
 SHAPE_J = {"triangle": 0.5, "hann": 0.5, "half_sine": 2.0 / np.pi, "rectangle": 1.0}

@@ -16,9 +16,8 @@ from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
 from sitegen.registry import builtin_registry
-from sitegen.models.lever.model import (
-    BALANCED, BLOCK_SIDE_PER_CUBE_ROOT_KG, DRAWN_SLOPE, LENGTH, TIPS_LEFT, TIPS_RIGHT, Lever, _tipping_integral,
-)
+from sitegen.models.lever.mechanics import BALANCED, LENGTH, TIPS_LEFT, TIPS_RIGHT, tipping_integral
+from sitegen.models.lever.model import BLOCK_SIDE_PER_CUBE_ROOT_KG, DRAWN_SLOPE, Lever
 from sitegen.render.layers import layer_points
 from sitegen.site.assemble import readout_text
 from sitegen.site.payload import scene_payload
@@ -458,7 +457,7 @@ def test_integrated_motion_conserves_energy(m_L, m_R, x_p, theta_s):
 def test_tipping_integral_closed_form_matches_quadrature(theta):
     """∫₀^θ dφ/√(sin φ) in elliptic closed form equals adaptive quadrature with the √φ singularity as a weight, 1e−13 rel."""
     reference = quad(lambda p: math.sqrt(p / math.sin(p)) if p else 1.0, 0.0, theta, weight="alg", wvar=(-0.5, 0.0), epsabs=0, epsrel=1e-13)[0]
-    assert abs(float(_tipping_integral(theta)) / reference - 1) <= 1e-13
+    assert abs(float(tipping_integral(theta)) / reference - 1) <= 1e-13
 
 
 def test_small_stop_angle_is_uniform_angular_acceleration():

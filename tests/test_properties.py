@@ -27,8 +27,9 @@ from sitegen.registry import builtin_registry
 from sitegen.models.bubble import model as bubble_module
 from sitegen.models.acoustic_energy.model import C as C_AIR
 from sitegen.models.bubble.terms import P0
-from sitegen.models.impulse.model import Impulse, force
-from sitegen.models.lever.model import TIPS_LEFT, TIPS_RIGHT
+from sitegen.models.impulse.model import Impulse
+from sitegen.models.impulse.pulses import force
+from sitegen.models.lever.mechanics import TIPS_LEFT, TIPS_RIGHT
 from sitegen.models.work.model import ARC, DIRECT, SPRING, line_integral_work
 
 MODELS = builtin_registry().models

@@ -5,7 +5,8 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .model import DRAWN_SLOPE, LENGTH
+from .mechanics import LENGTH
+from .model import DRAWN_SLOPE
 from ...render import style as s
 from ...render.layers import Layer
 from ...render.figures.base import table_range

@@ -9,21 +9,14 @@ import math
 
 import numpy as np
 from scipy.integrate import solve_ivp
-from scipy.special import ellipk, ellipkinc
 
 from ...physics.base import Model, Output, Param
 from ...physics.numerics import Measurement, Numerics
 from ...physics.structure import Choose, Coord, Poly, Threshold, param
+from .mechanics import (BALANCE_SLACK, BALANCED, G, LENGTH, STATES, TIPS_LEFT, TIPS_RIGHT, angular_velocity_at_stop,
+                        balance_point, mechanical_advantage, moment_of_inertia, moving_torque, time_to_stop, tip_state,
+                        torque_per_g)
 
-G = 9.81  # physics.md §0.1 requires 9.81: the seed's 2 kg · 9.81 m/s² · 1 m = 19.62 N·m (9.80665 shows 19.61)
-LENGTH = 2.0  # ℓ, the bar's length (m)
-BALANCED, TIPS_LEFT, TIPS_RIGHT = 0, 1, 2
-STATES = ("balanced", "tips left", "tips right")
-# Relative slack on the balance test, so that a balance point exactly midway between two pivot
-# stops counts for both (the rule is |x_p − x*| ≤ Δx_p/2) whatever the last-bit rounding of the
-# floats. On the 0.01 m × 0.1 kg grids a true |x_p − x*| that is not exactly Δx_p/2 differs from it
-# by at least 0.5 % of Δx_p/2, so the slack changes no other verdict.
-BALANCE_SLACK = 1e-9
 
 # Geometry of the figure, in metres in the bar's own frame (the pivot is at height 0). The page
 # script only looks values up, so every moving vertex that needs arithmetic is an output.
@@ -31,7 +24,6 @@ DRAWN_SLOPE = math.tan(math.radians(5.0))  # how far the drawn bar leans when it
 BLOCK_SIDE_PER_CUBE_ROOT_KG = 0.16  # block side ∝ m^(1/3): the blocks' volume grows with mass
 FULCRUM_HALF_WIDTH = 0.11
 MARKER_HALF_WIDTH = 0.05
-EPS = np.finfo(float).eps
 
 _POSITION = ("m_L", "m_R", "x_p")
 _TILT = _POSITION + ("balance_tolerance",)
@@ -172,8 +164,8 @@ class Lever(Model):
     def measure_error(self, values, effects) -> Measurement:
         """t_stop by the elliptic integral against DOP853 at rtol 1e-12 with a terminal event at θ_s."""
         x = {k: np.asarray(v, float) for k, v in {**self.defaults(), **values}.items()}
-        elliptic = float(_time_to_stop(x))
-        torque, inertia, stop = abs(float(_moving_torque(x))), float(_inertia(x)), math.radians(float(x["theta_s"]))
+        elliptic = float(time_to_stop(x))
+        torque, inertia, stop = abs(float(moving_torque(x))), float(moment_of_inertia(x)), math.radians(float(x["theta_s"]))
         if torque == 0.0:  # the bar never moves: both say ∞
             return Measurement(0.0 if math.isinf(elliptic) else math.inf, 0, "elliptic integral", "DOP853 at rtol 1e-12")
         hit = lambda t, y: y[0] - stop  # noqa: E731
@@ -191,62 +183,31 @@ class Lever(Model):
         formulas = {
             "tau_L": lambda: m_L * G * x_p,
             "tau_R": lambda: m_R * G * (LENGTH - x_p),
-            "tau_net": lambda: G * _torque_per_g(x),
-            "MA": lambda: _mechanical_advantage(x_p),
-            "state": lambda: _state(x, with_bar=False),
-            "x_star": lambda: _balance_point(x, with_bar=False),
+            "tau_net": lambda: G * torque_per_g(x),
+            "MA": lambda: mechanical_advantage(x_p),
+            "state": lambda: tip_state(x, with_bar=False),
+            "x_star": lambda: balance_point(x, with_bar=False),
             "fulcrum_x0": lambda: x_p - FULCRUM_HALF_WIDTH,
             "fulcrum_x1": lambda: x_p + FULCRUM_HALF_WIDTH,
             "left_block_x0": lambda: -0.5 * side_L,
             "left_block_x1": lambda: 0.5 * side_L,
             "right_block_x0": lambda: LENGTH - 0.5 * side_R,
             "right_block_x1": lambda: LENGTH + 0.5 * side_R,
-            "marker_x0": lambda: _balance_point(x, with_bar=False) - MARKER_HALF_WIDTH,
-            "marker_x1": lambda: _balance_point(x, with_bar=False) + MARKER_HALF_WIDTH,
+            "marker_x0": lambda: balance_point(x, with_bar=False) - MARKER_HALF_WIDTH,
+            "marker_x1": lambda: balance_point(x, with_bar=False) + MARKER_HALF_WIDTH,
             "tau_b": lambda: x["m_b"] * G * (x_p - 0.5 * LENGTH),
-            "tau_net_bar": lambda: G * _torque_per_g(x, with_bar=True),
-            "state_bar": lambda: _state(x, with_bar=True),
-            "x_star_bar": lambda: _balance_point(x, with_bar=True),
-            "marker_x0_bar": lambda: _balance_point(x, with_bar=True) - MARKER_HALF_WIDTH,
-            "marker_x1_bar": lambda: _balance_point(x, with_bar=True) + MARKER_HALF_WIDTH,
-            "inertia": lambda: _inertia(x, bar),
-            "t_stop": lambda: _time_to_stop(x, bar),
-            "omega_stop": lambda: _angular_velocity_at_stop(x, bar),
+            "tau_net_bar": lambda: G * torque_per_g(x, with_bar=True),
+            "state_bar": lambda: tip_state(x, with_bar=True),
+            "x_star_bar": lambda: balance_point(x, with_bar=True),
+            "marker_x0_bar": lambda: balance_point(x, with_bar=True) - MARKER_HALF_WIDTH,
+            "marker_x1_bar": lambda: balance_point(x, with_bar=True) + MARKER_HALF_WIDTH,
+            "inertia": lambda: moment_of_inertia(x, bar),
+            "t_stop": lambda: time_to_stop(x, bar),
+            "omega_stop": lambda: angular_velocity_at_stop(x, bar),
         }
         for suffix, with_bar in (("", False), ("_bar", True)):
             formulas.update(_tilt_formulas(x, suffix, with_bar, side_L, side_R))
         return {name: formulas[name]() for name in wanted}
-
-
-def _torque_per_g(x, with_bar: bool = False):
-    """Net torque over g, m_L x_p − m_R (ℓ − x_p) [+ m_b (x_p − ℓ/2)], computed directly (0.0 at balance)."""
-    x_p = x["x_p"]
-    masses = x["m_L"] * x_p - x["m_R"] * (LENGTH - x_p)
-    return masses + x["m_b"] * (x_p - 0.5 * LENGTH) if with_bar else masses
-
-
-def _total_mass(x, with_bar: bool):
-    return x["m_L"] + x["m_R"] + x["m_b"] if with_bar else x["m_L"] + x["m_R"]
-
-
-def _balance_point(x, with_bar: bool):
-    """x* = ℓ m_R / (m_L + m_R): the centre of mass; the bar adds m_b at ℓ/2."""
-    heavy_right = x["m_R"] + 0.5 * x["m_b"] if with_bar else x["m_R"]
-    return LENGTH * heavy_right / _total_mass(x, with_bar)
-
-
-def _state(x, with_bar: bool):
-    """Balanced iff |x_p − x*| ≤ tolerance; else the bar tips towards the side of the centre of mass."""
-    # |x_p − x*| = |τ/g| / M: compare torques, no subtraction of nearly equal positions.
-    torque = _torque_per_g(x, with_bar)
-    allowed = x["balance_tolerance"] * (1.0 + BALANCE_SLACK) * _total_mass(x, with_bar)
-    return np.where(np.abs(torque) <= allowed, BALANCED, np.where(torque > 0, TIPS_LEFT, TIPS_RIGHT))
-
-
-def _mechanical_advantage(x_p):
-    """MA = x_p / (ℓ − x_p): +∞ with the pivot at the right end, never NaN."""
-    right_arm = LENGTH - x_p  # exact for x_p in [ℓ/2, ℓ] (Sterbenz), so 0 only at x_p = ℓ
-    return np.divide(x_p, right_arm, out=np.full(np.shape(x_p), np.inf), where=right_arm > 0)
 
 
 def _block_side(mass):
@@ -257,7 +218,7 @@ def _tilt_formulas(x, suffix: str, with_bar: bool, side_L, side_R) -> dict:
     """Heights of the drawn bar and of the blocks standing on its ends, leaning towards the side that wins."""
 
     def slope():
-        state = _state(x, with_bar)
+        state = tip_state(x, with_bar)
         # Tipping left turns the bar counter-clockwise: it rises to the right.
         return np.select([state == TIPS_LEFT, state == TIPS_RIGHT], [DRAWN_SLOPE, -DRAWN_SLOPE], 0.0)
 
@@ -276,50 +237,3 @@ def _tilt_formulas(x, suffix: str, with_bar: bool, side_L, side_R) -> dict:
             formulas[f"{block}_block_bottom{edge}{suffix}"] = height(at)
             formulas[f"{block}_block_top{edge}{suffix}"] = above(at, side)
     return formulas
-
-
-def _inertia(x, with_bar: bool = False):
-    """Moment of inertia about the pivot: the two point masses [+ the uniform bar, m_b(ℓ²/12 + (ℓ/2 − x_p)²)]."""
-    masses = x["m_L"] * x["x_p"] ** 2 + x["m_R"] * (LENGTH - x["x_p"]) ** 2
-    return masses + x["m_b"] * (LENGTH**2 / 12.0 + (0.5 * LENGTH - x["x_p"]) ** 2) if with_bar else masses
-
-
-def _tipping_integral(theta):
-    """∫₀^θ dφ/√(sin φ) for 0 < θ ≤ π/2, in closed form: √2 F(ψ | ½) with tan ψ = √(2 sin θ/(1 − sin θ)).
-
-    This is Legendre's complement of √2 (K(½) − F(arccos √(sin θ) | ½)), which cancels as θ → 0.
-    """
-    sine = np.sin(theta)
-    psi = np.where(sine < 1.0, np.arctan(np.sqrt(2.0 * sine / np.maximum(1.0 - sine, np.finfo(float).tiny))), np.pi / 2)
-    return math.sqrt(2.0) * ellipkinc(psi, 0.5)
-
-
-def _moving_torque(x, with_bar: bool = False):
-    """The net torque that sets the bar turning, with the roundoff of an exact balance set to 0.
-
-    m_L x_p − m_R (ℓ − x_p) carries at most about 3ε (m_L x_p + m_R (ℓ − x_p)) of rounding; a
-    residue that small is a balance (e.g. 0.3 kg · 0.5 m against 0.1 kg · 1.5 m), not a slow tip
-    that would take 10⁷ s. On the slider grids a true imbalance is at least 0.001 kg·m. The bar's
-    own weight acts at its middle: m_b (x_p − ℓ/2), a torque that also scales with cos θ.
-    """
-    per_g = _torque_per_g(x, with_bar)
-    arms = x["m_L"] * x["x_p"] + x["m_R"] * (LENGTH - x["x_p"])
-    roundoff = 4.0 * EPS * (arms + x["m_b"] * np.abs(x["x_p"] - 0.5 * LENGTH) if with_bar else arms)
-    return np.where(np.abs(per_g) <= roundoff, 0.0, G * per_g)
-
-
-def _time_to_stop(x, with_bar: bool = False):
-    """Time from rest to the stop: I θ'' = τ cos θ has the first integral ½ I θ'² = τ sin θ, so
-    t = √(I / 2|τ|) ∫₀^θs dφ/√(sin φ); ∞ when there is no net torque (the bar never moves)."""
-    torque = np.abs(_moving_torque(x, with_bar))
-    scale = np.divide(_inertia(x, with_bar), 2.0 * torque, out=np.full(np.shape(torque), np.inf), where=torque > 0)
-    # θ_s takes a handful of values over a whole grid: evaluate the elliptic integral once for each.
-    angles, where = np.unique(np.radians(x["theta_s"]), return_inverse=True)
-    return np.sqrt(scale) * _tipping_integral(angles)[where].reshape(scale.shape)
-
-
-def _angular_velocity_at_stop(x, with_bar: bool = False):
-    """ω at the stop from ½ I ω² = τ sin θs; positive when the bar turns counter-clockwise (left end down)."""
-    torque = _moving_torque(x, with_bar)
-    speed = np.sqrt(2.0 * np.abs(torque) * np.sin(np.radians(x["theta_s"])) / _inertia(x, with_bar))
-    return np.copysign(speed, torque) + 0.0  # + 0.0: no signed zero when the bar stays put

@@ -12,7 +12,7 @@ export DEBIAN_FRONTEND := noninteractive
 # git and left out of the wheel) rather than compile the package's sources in every one.
 unexport PYTHONDONTWRITEBYTECODE
 
-.PHONY: site test check serve bench clean tools-node tools-chromium tools-java review accept-figures
+.PHONY: site test check serve bench clean tools-node tools-chromium tools-test review accept-figures
 
 site: $(VENV)/.site-installed tools-node
 	$(BIN)/sitegen build
@@ -23,7 +23,7 @@ site: $(VENV)/.site-installed tools-node
 # two cores; `make check` is busy computing and runs one per core.
 TEST_WORKERS ?= 3
 CHECK_WORKERS ?= 2
-test: $(VENV)/.test-installed node_modules/.installed tools-chromium tools-java
+test: tools-test $(VENV)/.test-installed node_modules/.installed
 	$(BIN)/pytest -n $(TEST_WORKERS) --dist loadfile
 
 # The inner loop: every test but those that drive Chromium or build the project's own book
@@ -36,7 +36,7 @@ check: $(VENV)/.test-installed node_modules/.installed
 serve: $(VENV)/.site-installed tools-node
 	$(BIN)/sitegen serve --watch --port $(PORT)
 
-bench: $(VENV)/.test-installed node_modules/.installed tools-chromium
+bench: tools-chromium $(VENV)/.test-installed node_modules/.installed
 	$(BIN)/python bench/run.py
 	$(BIN)/python bench/shelf.py
 	$(BIN)/python bench/preview.py
@@ -45,7 +45,7 @@ bench: $(VENV)/.test-installed node_modules/.installed tools-chromium
 # Build revision BASE (default HEAD) in a temporary git worktree, build the working tree, and write
 # build-review/index.html and build-review/summary.md. Exits 1 when anything changed (for CI).
 BASE ?= HEAD
-review: $(VENV)/.test-installed node_modules/.installed tools-chromium
+review: tools-chromium $(VENV)/.test-installed node_modules/.installed
 	$(BIN)/sitegen build
 	$(BIN)/sitegen review --base $(BASE)
 
@@ -74,15 +74,22 @@ node_modules/.installed: package.json package-lock.json | tools-node
 	npm ci --ignore-scripts --no-audit --no-fund --loglevel=error
 	touch $@
 
+# Debian packages, each named only while what it provides is missing. A target installs all it needs in one apt
+# run, so that on a fresh machine `make test` updates the package lists once rather than once per tool.
+NODE_PKGS     = $(if $(shell command -v node >/dev/null && command -v npm >/dev/null && echo found),,nodejs npm)
+JAVA_PKGS     = $(if $(shell command -v java),,default-jre-headless)
+CHROMIUM_PKGS = $(if $(wildcard /usr/bin/chromium),,chromium)
+apt_install   = @packages="$(strip $(1))"; test -z "$$packages" || { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q $$packages; }
+
 # Temml (TeX -> MathML, vendored in the package) runs on node at build time; npm installs the test tools.
 tools-node:
-	@command -v node >/dev/null && command -v npm >/dev/null || { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q nodejs npm; }
-
-# The HTML checker (vnu.jar, from npm's vnu-jar: npm ci runs no install scripts, so its postinstall
-# never tries to download a Java runtime) runs on Debian's Java.
-tools-java:
-	@command -v java >/dev/null || { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q default-jre-headless; }
+	$(call apt_install,$(NODE_PKGS))
 
 # Browser tests drive Debian's chromium through Playwright (Playwright cannot download browsers here).
 tools-chromium:
-	@test -x /usr/bin/chromium || { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q chromium; }
+	$(call apt_install,$(NODE_PKGS) $(CHROMIUM_PKGS))
+
+# Everything `make test` needs: node, chromium, and Java for the HTML checker (vnu.jar, from npm's vnu-jar:
+# npm ci runs no install scripts, so its postinstall never tries to download a Java runtime).
+tools-test:
+	$(call apt_install,$(NODE_PKGS) $(CHROMIUM_PKGS) $(JAVA_PKGS))

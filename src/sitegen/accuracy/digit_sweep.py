@@ -19,9 +19,8 @@ from ..build import BuildConfig, needed_outputs, resolve_book
 from ..compute.grid import CHOICE
 from ..models.bubble.model import ALL, CLOSED_FORMS, PREFIX, Bubble, run_difference, shown_difference
 from ..models.bubble.point import compose, read_run
-from ..models.bubble.solve import (
-    AUTO, EXPLICIT_RTOL, REFERENCE_CAPS, ensure_compiled, method_for, reference_for, solve,
-)
+from ..models.bubble.run import REFERENCE_CAPS
+from ..models.bubble.solve import AUTO, EXPLICIT_RTOL, ensure_compiled, method_for, reference_for, solve
 from ..physics.numerics import Numerics
 
 RTOLS = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10)

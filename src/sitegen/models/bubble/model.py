@@ -24,7 +24,9 @@ from .point import (
     BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, MISSING, SOLVER_LABELS, ROW_OF, Scales, check_effects, compose,
     read_row, read_run,
 )
-from .solve import AUTO, COMPILED, CURVE_POINTS, KERNEL_PARTS, REFERENCE_CAPS, SOLVERS, STIFF, Run, ensure_compiled, method_for, reference_for, solve
+from .run import CURVE_POINTS, REFERENCE_CAPS, Run
+from .scipy_path import SOLVERS
+from .solve import AUTO, COMPILED, KERNEL_PARTS, STIFF, ensure_compiled, method_for, reference_for, solve
 from .terms import P0, WATER, Problem
 from ...physics.numerics import Measurement, Numerics
 

@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from sitegen.models.bubble.model import PRESETS, Bubble, preset_problem
+from sitegen.models.bubble.model import Bubble
+from sitegen.models.bubble.presets import PRESETS, preset_problem
 from sitegen.models.bubble.point import FLAGS, compose, read_run
 from sitegen.models.bubble.run import CAP_NFEV, CORE, FAILED, KM_STOP, MACH, OK, Caps
 from sitegen.models.bubble.scipy_path import SOLVERS

@@ -12,7 +12,8 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.special import betainc, betaincinv
 
 from sitegen.compute.quantize import fmt
-from sitegen.models.bubble.model import PRESETS, Bubble, preset_problem, run_preset
+from sitegen.models.bubble.model import Bubble
+from sitegen.models.bubble.presets import PRESETS, preset_problem, run_preset
 from sitegen.models.bubble import kernel_read
 from sitegen.models.bubble.point import BLAKE_LABELS, FLAGS, MISSING, SOLVER_LABELS, compose, read_run
 from sitegen.models.bubble.run import CAP_NFEV, CORE, FAILED, KM_STOP, MACH, OK, POINT, STATUS_CODES, UNBOUNDED_GROWTH

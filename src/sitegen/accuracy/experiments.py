@@ -11,7 +11,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..models.bubble.model import preset_problem
+from ..models.bubble.presets import preset_problem
 from ..models.bubble.run import MACH, OK, Caps, Run
 from ..models.bubble.solve import ANALYTIC, choose_method, integrate, rayleigh_run
 from ..models.bubble.terms import EPSILON, Problem, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau

@@ -297,7 +297,7 @@ def test_a_cold_timing_forgets_every_model_memo():
     folder, not in physics/) is emptied too, or every repeat after the first would time a lookup."""
     from sitegen.accuracy.build_costs import clear_model_caches
     from sitegen.models.bubble import solve
-    from sitegen.models.bubble.model import preset_problem
+    from sitegen.models.bubble.presets import preset_problem
 
     pb, _ = preset_problem("A")
     solve.solve(pb)

@@ -12,7 +12,8 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import BuildFailed, SourceLoc
 from sitegen.registry import builtin_registry
-from sitegen.models.bubble.model import PRESETS, Bubble
+from sitegen.models.bubble.model import Bubble
+from sitegen.models.bubble.presets import PRESETS
 from sitegen.models.bubble.point import SOLVER_LABELS
 from sitegen.physics.numerics import Numerics, configure
 

@@ -17,7 +17,8 @@ import pytest
 
 from sitegen.build import BuildConfig, resolve_book
 from sitegen.models.bubble import kernel_terms as kernel
-from sitegen.models.bubble.model import ALL, preset_problem
+from sitegen.models.bubble.model import ALL
+from sitegen.models.bubble.presets import preset_problem
 from sitegen.models.bubble.point import compose, read_run
 from sitegen.models.bubble.solve import COMPILED, EXPLICIT, IMPLICIT, STIFF, integrate, method_for
 from sitegen.models.bubble.terms import RADIATION, make_rhs

@@ -10,11 +10,12 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from sitegen.models.bubble.model import PRESETS, Bubble, preset_problem
+from sitegen.models.bubble.model import Bubble
+from sitegen.models.bubble.presets import PRESETS, preset_problem
 from sitegen.models.bubble.point import FLAGS, compose, read_run
-from sitegen.models.bubble.solve import (
-    CAP_NFEV, CORE, FAILED, KM_STOP, MACH, OK, SOLVERS, Caps, choose_method, integrate, method_for, solve,
-)
+from sitegen.models.bubble.run import CAP_NFEV, CORE, FAILED, KM_STOP, MACH, OK, Caps
+from sitegen.models.bubble.scipy_path import SOLVERS
+from sitegen.models.bubble.solve import choose_method, integrate, method_for, solve
 from sitegen.models.bubble.terms import EPSILON, make_rhs, rayleigh_radius, rayleigh_tau
 
 A_STOPS = list(itertools.product((100, 200, 500, 1000, 2000, 5000, 10000), (0.25, 0.5, 1, 2, 5, 10), (0, 1e-4, 1e-3, 1e-2, 1e-1)))

@@ -12,13 +12,12 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.special import betainc, betaincinv
 
 from sitegen.compute.quantize import fmt
-from sitegen.models.bubble.model import PRESETS, Bubble, preset_problem, run_preset
+from sitegen.models.bubble.model import Bubble
+from sitegen.models.bubble.presets import PRESETS, preset_problem, run_preset
 from sitegen.models.bubble import kernel_read
 from sitegen.models.bubble.point import BLAKE_LABELS, FLAGS, MISSING, SOLVER_LABELS, compose, read_run
-from sitegen.models.bubble.solve import (
-    ANALYTIC, CAP_NFEV, CORE, EXPLICIT, FAILED, IMPLICIT, KM_STOP, MACH, OK, POINT, STATUS_CODES, UNBOUNDED_GROWTH, choose_method,
-    integrate, solve,
-)
+from sitegen.models.bubble.run import CAP_NFEV, CORE, FAILED, KM_STOP, MACH, OK, POINT, STATUS_CODES, UNBOUNDED_GROWTH
+from sitegen.models.bubble.solve import ANALYTIC, EXPLICIT, IMPLICIT, choose_method, integrate, solve
 from sitegen.models.bubble.terms import (
     P0, WATER, Problem, blake, energy, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau,
 )

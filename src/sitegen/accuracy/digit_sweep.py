@@ -17,11 +17,11 @@ import numpy as np
 
 from ..build import BuildConfig, needed_outputs, resolve_book
 from ..compute.grid import CHOICE
-from ..models.bubble.model import ALL, CLOSED_FORMS, PREFIX, Bubble, run_difference, shown_difference
+from ..models.bubble.compare import run_difference, shown_difference
+from ..models.bubble.model import ALL, CLOSED_FORMS, PREFIX, Bubble
 from ..models.bubble.point import compose, read_run
-from ..models.bubble.solve import (
-    AUTO, EXPLICIT_RTOL, REFERENCE_CAPS, ensure_compiled, method_for, reference_for, solve,
-)
+from ..models.bubble.run import REFERENCE_CAPS
+from ..models.bubble.solve import AUTO, EXPLICIT_RTOL, ensure_compiled, method_for, reference_for, solve
 from ..physics.numerics import Numerics
 
 RTOLS = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
@@ -82,7 +82,7 @@ def _compare(scene, points, problems, solved, references, shown) -> dict:
     for (stop, _), (pb, scales), (run, mine), reference in zip(points, problems, solved, references):
         theirs = read_run(reference, pb, scales, scene.effects)
         error = run_difference(run, reference, pb, scales, scene.effects)
-        bad, close = shown_difference(mine, theirs, prefix, error)
+        bad, close = shown_difference(mine, theirs, prefix, error, Bubble.outputs)
         wrong += [f"{_stop_text(scene, stop)}: {n}" for n in bad if n in shown]
         near += [f"{_stop_text(scene, stop)}: {n}" for n in close if n in shown]
         worst = max([worst] + [_units(mine, theirs, n) for n in shown])

@@ -11,8 +11,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..models.bubble.model import preset_problem
-from ..models.bubble.solve import ANALYTIC, MACH, OK, Caps, Run, choose_method, integrate, rayleigh_run
+from ..models.bubble.presets import preset_problem
+from ..models.bubble.run import MACH, OK, Caps, Run
+from ..models.bubble.solve import ANALYTIC, choose_method, integrate, rayleigh_run
 from ..models.bubble.terms import EPSILON, Problem, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau
 from ..models.chain.model import LENGTH, RIGHT_MOVING, SPEED, evolve, initial_state, mass_and_stiffness, positions, spacing
 from ..models.chain.integrators import integrate_ivp, velocity_verlet

@@ -8,7 +8,7 @@ import numpy as np
 from matplotlib.lines import Line2D
 
 from .model import DRIVE_PERIODS
-from .solve import CURVE_POINTS
+from .run import CURVE_POINTS
 from .terms import rayleigh_radius
 from ...render import style as s
 from ...render.layers import Layer

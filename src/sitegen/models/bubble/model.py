@@ -1,6 +1,6 @@
 """K4: Rayleigh–Plesset bubble dynamics, composed from the effects a scene names.
 
-Three presets are three scenes of this one model (physics.md K4), one per pressure history:
+Three presets (presets.py) are three scenes of this one model (physics.md K4), one per pressure history:
 A `step`, the Rayleigh collapse (analytic when only inertia and vapour act); B `drive`, a driven
 bubble with Keller–Miksis compressibility; C `ramp`, a nucleus under a ramped tension (Blake
 threshold). The dynamic outputs of each history carry its prefix (collapse_, driven_, ramp_) and
@@ -11,21 +11,23 @@ from __future__ import annotations
 
 import math
 import os
-import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
 
 from . import terms
+from .compare import run_difference, shown_difference
 from ...physics import compiled
 from ...physics.base import Model, Output, Param
 from .point import (
-    BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, MISSING, SOLVER_LABELS, ROW_OF, Scales, check_effects, compose,
+    BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, MISSING, SOLVER_LABELS, ROW_OF, check_effects, compose,
     read_row, read_run,
 )
-from .solve import AUTO, COMPILED, CURVE_POINTS, KERNEL_PARTS, REFERENCE_CAPS, SOLVERS, STIFF, Run, ensure_compiled, method_for, reference_for, solve
-from .terms import P0, WATER, Problem
+from .run import CURVE_POINTS, REFERENCE_CAPS
+from .scipy_path import SOLVERS
+from .solve import AUTO, COMPILED, KERNEL_PARTS, STIFF, ensure_compiled, method_for, reference_for, solve
+from .terms import P0, WATER
 from ...physics.numerics import Measurement, Numerics
 
 EFFECTS = ("inertia", "gas", "vdw_hard_core", "vapour", "surface_tension", "viscosity", "thermal_damping",
@@ -180,7 +182,7 @@ class Bubble(Model):
         error = run_difference(run, reference, pb, scales, effects)
         where = " where stiff" if pb.stiffness > STIFF else ""
         wrong, near = shown_difference(read_run(run, pb, scales, effects), read_run(reference, pb, scales, effects),
-                                       PREFIX[_history(effects)], error)
+                                       PREFIX[_history(effects)], error, self.outputs)
         return Measurement(error, run.nfev, method, f"{ref_method} at rtol {ref_rtol:g}{where}", wrong, near)
 
 
@@ -266,93 +268,3 @@ def _solve_points(x, names, effects, settings: Numerics) -> dict[str, np.ndarray
 
 def _history(effects) -> str:
     return next(name for name in HISTORY_PARAMS if name in effects)
-
-
-def shown_difference(mine: dict, theirs: dict, prefix: str, error: float) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """The outputs (`prefix`_key) whose displayed values differ between two read runs: those that are wrong,
-    and those where the reference lies within the run's measured `error` (relative, at least 1e-12) of a
-    rounding boundary, where the run cannot be expected to show the reference's digit.
-
-    Labels must match exactly (the solver's label names the method, so it is left out); a number is
-    compared at its displayed digits, element by element for the figure's arrays.
-    """
-    wrong, near = [], []
-    for key, theirs_value in theirs.items():
-        name = f"{prefix}_{key}"
-        output = Bubble.output(name) if key != "solver" and any(o.name == name for o in Bubble.outputs) else None
-        if output is None:
-            continue
-        a, b = np.atleast_1d(np.asarray(mine[key], float)), np.atleast_1d(np.asarray(theirs_value, float))
-        if output.labels:
-            if not np.array_equal(a, b):
-                wrong.append(name)
-            continue
-        unit = _last_digit(b, output)
-        differs = _shown(a, unit) != _shown(b, unit)
-        if len(a) != len(b) or np.any(differs & ~(np.isfinite(a) & np.isfinite(b))):
-            wrong.append(name)
-            continue
-        # distance of the reference from the nearest rounding boundary (in the displayed unit's halves)
-        with np.errstate(invalid="ignore"):  # inf and NaN entries are equal here (differs is False)
-            boundary = np.abs(np.abs(b / unit - np.floor(b / unit)) - 0.5) * unit
-        close = boundary <= max(error, 1e-12) * np.maximum(np.abs(b), 1.0)
-        if np.any(differs & ~close):
-            wrong.append(name)
-        elif np.any(differs):
-            near.append(name)
-    return tuple(wrong), tuple(near)
-
-
-def _last_digit(values: np.ndarray, output: Output):
-    """The unit of the last displayed digit: 10**-decimals, or, shown to significant digits, per value."""
-    if not output.digits:
-        return 10.0 ** -output.decimals
-    with np.errstate(divide="ignore", invalid="ignore"):
-        lead = np.floor(np.log10(np.abs(values)))
-    return 10.0 ** np.where(np.isfinite(lead), lead - (output.digits - 1), 0.0)
-
-
-def _shown(values: np.ndarray, unit: float) -> np.ndarray:
-    """Values as the page shows them: counts of the displayed unit (inf and NaN kept apart)."""
-    finite = np.isfinite(values)
-    return np.where(finite, np.rint(np.where(finite, values, 0.0) / unit), np.where(np.isnan(values), -1.5, np.sign(values) * 0.5))
-
-
-def run_difference(run: Run, reference: Run, pb: Problem, scales, effects) -> float:
-    """max |ΔR|/R0 between two runs over the samples both reached and the extrema read from them;
-    inf when they ended differently (one stopped at an event the other did not reach)."""
-    if run.status != reference.status:
-        return np.inf
-    both = np.isfinite(run.r) & np.isfinite(reference.r)
-    worst = float(np.max(np.abs(run.r[both] - reference.r[both]), initial=0.0))
-    mine, theirs = read_run(run, pb, scales, effects), read_run(reference, pb, scales, effects)
-    for key in ("R_max", "R_min", "R_max2", "R_min2"):
-        if np.isfinite(mine[key]) != np.isfinite(theirs[key]):
-            return np.inf
-        if np.isfinite(mine[key]):
-            worst = max(worst, abs(mine[key] - theirs[key]))
-    return worst
-
-
-# --- presets, for the tests and the accuracy report -------------------------------------------------------
-
-PRESETS = {  # name: (effects, parameters that differ from the defaults), physics.md K4 and §11.2
-    "A": (("inertia", "vapour", "step"), {"R0": 1000.0, "p_inf": 1.0}),
-    "B": (("gas", "vdw_hard_core", "surface_tension", "viscosity", "drive", "keller_miksis"), {"R0": 4.5, "p_a": 1.3, "f": 26.5}),
-    "C": (("gas", "vapour", "surface_tension", "viscosity", "ramp"), {"R0": 1.0, "kappa": 1.0, "depth": 0.99}),
-    "stiff": (("gas", "surface_tension", "viscosity", "drive"), {"R0": 1.0, "mu": 1.0, "rho": 1260.0, "p_a": 0.5, "f": 20.0, "kappa": 1.4}),
-}
-
-
-def preset_problem(preset: str, **changes) -> tuple[Problem, Scales]:
-    """The nondimensional problem of a preset at its defaults (or with some parameters changed)."""
-    effects, values = PRESETS[preset]
-    return compose({**Bubble.defaults(), **values, **changes}, effects)
-
-
-def run_preset(preset: str, method: str, rtol: float, **changes) -> tuple[Run, int, float]:
-    """One preset solved with a given method and rtol: (run, nfev, wall seconds), uncached."""
-    pb, _ = preset_problem(preset, **changes)
-    start = time.perf_counter()
-    run = solve.__wrapped__(pb, method, rtol)
-    return run, run.nfev, time.perf_counter() - start

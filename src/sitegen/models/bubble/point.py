@@ -12,7 +12,8 @@ from functools import lru_cache
 import numpy as np
 
 from . import kernel_read, terms
-from .solve import ANALYTIC, CURVE_POINTS, EXPLICIT, EXPLICIT_RTOL, IMPLICIT, IMPLICIT_RTOL, STATUS_CODES, STIFF, Run
+from .run import CURVE_POINTS, STATUS_CODES, Run
+from .solve import ANALYTIC, EXPLICIT, EXPLICIT_RTOL, IMPLICIT, IMPLICIT_RTOL, STIFF
 from .terms import P0, T0, Problem
 
 DRIVE_PERIODS = 2  # the driven bubble runs two acoustic periods from rest at R0

@@ -1,10 +1,10 @@
 """K4 compiled: a whole run — steps, events located on each step's interpolant, samples on the grid, caps.
 
-The loop of solve.py's `_Stepper`, compiled: after each accepted step every event function is
+The loop of scipy_path.py's `Stepper`, compiled: after each accepted step every event function is
 compared at the step's two ends; a sign change in the event's direction is located by Brent's method
 on the step's interpolant (DOP853's of order 7, Radau's collocation polynomial), events up to the
 first terminal one are recorded, and the grid samples the step covers are read from the interpolant.
-Events are rows of a table (kind, level, direction, stop code, record code) built by solve.py.
+Events are rows of a table (kind, level, direction, stop code, record code) built by run.py's `event_table`.
 """
 from __future__ import annotations
 
@@ -22,7 +22,7 @@ from ...physics.compiled import entry, kernel
 DOP853_METHOD, RADAU_METHOD = 0, 1
 G_SPEED, G_ACCELERATION, G_SPEED_LEVEL, G_RADIUS_LEVEL = 0, 1, 2, 3  # g = ṙ, r̈, ṙ − level, r − level
 ENDED, FAILED_CODE, CAP_CODE = 0, 1, 2  # the run's end when no terminal event stopped it (else the event's code)
-MACH_CODE, KM_CODE, POINT_CODE, CORE_CODE, UNBOUNDED_CODE = range(3, 8)  # the terminal events' codes (solve.STOPS)
+MACH_CODE, KM_CODE, POINT_CODE, CORE_CODE, UNBOUNDED_CODE = range(3, 8)  # the terminal events' codes (run.STATUS_CODES)
 ROOT_EPS = 4.0 * np.finfo(np.float64).eps  # Brent's absolute and relative tolerance, as bubble_solve's brentq
 
 

@@ -7,10 +7,11 @@ import pytest
 import scipy.linalg
 
 from sitegen.compute.quantize import fmt
-from sitegen.models.chain.model import (
-    RESOLVED, RIGHT_MOVING, SPLIT, UNDER_RESOLVED, Chain, Terms, chain_motion, continuum, deviation, energy,
-    evolve, initial_state, mass_and_stiffness, mode_frequencies, positions, spacing,
+from sitegen.models.chain.model import Chain
+from sitegen.models.chain.modes import (
+    RESOLVED, RIGHT_MOVING, SPLIT, UNDER_RESOLVED, Terms, mass_and_stiffness, mode_frequencies, positions, spacing,
 )
+from sitegen.models.chain.motion import chain_motion, continuum, deviation, energy, evolve, initial_state
 from sitegen.models.chain.integrators import integrate_ivp, stability_limit, velocity_verlet
 
 EPS = np.finfo(float).eps

@@ -27,7 +27,7 @@ from sitegen.models.bubble import model as bubble
 from sitegen.models.bubble import point as bubble_point
 from sitegen.models.bubble import solve as bubble_solve
 from sitegen.models.bubble import terms as bubble_terms
-from sitegen.models.chain import model as chain
+from sitegen.models.chain import motion as chain_motion
 from sitegen.models.impulse import pulses as impulse
 from sitegen.registry import builtin_registry
 from sitegen.models.bubble import kernel_terms as kernel_terms
@@ -148,8 +148,8 @@ CHAIN_BLOCK = "model: chain\nslider N: 4, 8 default 8\nslider t: 0..1 step 0.5 d
 def chain_spy(monkeypatch) -> Counter:
     """Counts the damped modal evolution (onsite_damping) and the cosine transforms of free ends (boundary)."""
     counter = Counter()
-    monkeypatch.setattr(chain, "_damped_oscillation", counter.wrap("damping", chain._damped_oscillation))
-    monkeypatch.setattr(chain.scipy.fft, "dct", counter.wrap("free-ends", chain.scipy.fft.dct))
+    monkeypatch.setattr(chain_motion, "_damped_oscillation", counter.wrap("damping", chain_motion._damped_oscillation))
+    monkeypatch.setattr(chain_motion.scipy.fft, "dct", counter.wrap("free-ends", chain_motion.scipy.fft.dct))
     return counter
 
 

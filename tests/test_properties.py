@@ -30,7 +30,7 @@ from sitegen.models.bubble.terms import P0
 from sitegen.models.impulse.model import Impulse
 from sitegen.models.impulse.pulses import force
 from sitegen.models.lever.mechanics import TIPS_LEFT, TIPS_RIGHT
-from sitegen.models.work.model import ARC, DIRECT, SPRING, line_integral_work
+from sitegen.models.work.paths import ARC, DIRECT, SPRING, line_integral_work
 
 MODELS = builtin_registry().models
 

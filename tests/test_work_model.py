@@ -14,27 +14,9 @@ from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
 from sitegen.registry import builtin_registry
-from sitegen.models.work.model import (
-    ARC,
-    ARROW_MAX,
-    CONSERVATIVE,
-    DIRECT,
-    DRAG,
-    DRAG_SPACING,
-    G,
-    GRID_X,
-    GRID_Y,
-    JOIN_Y,
-    PATH_DEPENDENT,
-    QUADRATIC,
-    SPRING,
-    WEDGE_VERTICES,
-    Work,
-    arc_length,
-    arc_points,
-    arc_velocity,
-    line_integral_work,
-)
+from sitegen.models.work.model import CONSERVATIVE, PATH_DEPENDENT, QUADRATIC, Work
+from sitegen.models.work.paths import ARC, DIRECT, DRAG, G, SPRING, arc_length, arc_points, arc_velocity, line_integral_work
+from sitegen.models.work.shapes import ARROW_MAX, DRAG_SPACING, GRID_X, GRID_Y, JOIN_Y, WEDGE_VERTICES
 from sitegen.site.assemble import readout_text
 
 MODELS = builtin_registry().models

@@ -15,7 +15,8 @@ from ..models.bubble.presets import preset_problem
 from ..models.bubble.run import MACH, OK, Caps, Run
 from ..models.bubble.solve import ANALYTIC, choose_method, integrate, rayleigh_run
 from ..models.bubble.terms import EPSILON, Problem, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau
-from ..models.chain.model import LENGTH, RIGHT_MOVING, SPEED, evolve, initial_state, mass_and_stiffness, positions, spacing
+from ..models.chain.modes import LENGTH, RIGHT_MOVING, SPEED, mass_and_stiffness, positions, spacing
+from ..models.chain.motion import evolve, initial_state
 from ..models.chain.integrators import integrate_ivp, velocity_verlet
 from .timing import time_medians
 

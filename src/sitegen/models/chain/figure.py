@@ -5,7 +5,8 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
 
-from .model import DRAWN_WALL, LENGTH, SPEED, continuum_grid
+from .model import continuum_grid
+from .modes import DRAWN_WALL, LENGTH, SPEED
 from ...render import style as s
 from ...render.layers import Layer
 from ...render.figures.base import table_range

@@ -4,7 +4,8 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.lines import Line2D
 
-from .model import ARROW_MAX, CHORD, DRAG, GRID_X, GRID_Y, HALF_CHORD, SPRING, arc_half_angle
+from .paths import CHORD, DRAG, HALF_CHORD, SPRING, arc_half_angle
+from .shapes import ARROW_MAX, GRID_X, GRID_Y
 from ...render import style as s
 from ...render.layers import Layer
 from ...render.figures.base import param_range

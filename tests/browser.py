@@ -34,7 +34,6 @@ from sitegen.compute.grid import CHOICE, LIST, RANGE
 from sitegen.compute.quantize import MINUS, fmt, significant_text
 from sitegen.compute.scenes import ResolvedScene
 from sitegen.content.pages import Page
-from sitegen.errors import ErrorLog
 from sitegen.registry import builtin_registry
 from sitegen.review.figures import CHROMIUM, LAUNCH_ARGS  # one place for Chromium's settings
 from sitegen.site.assemble import with_unit

@@ -2,7 +2,6 @@
 or through --root, and the theme folder that overrides templates and adds CSS."""
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
 import pytest

@@ -37,7 +37,6 @@ from browser import (
     describe_stop,
     expected_control_text,
     expected_readouts,
-    launch,
     load,
     layer_deps,
     layer_problems,

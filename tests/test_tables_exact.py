@@ -16,7 +16,6 @@ from sitegen.compute.quantize import SPECIAL
 from sitegen.compute.expression import shown
 from sitegen.compute.structure import Structured
 from sitegen.compute.tabulate import tabulate_scene
-from sitegen.errors import ErrorLog
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 import math
 
 import matplotlib.pyplot as plt
-from matplotlib.lines import Line2D
 
 from ...render import style as s
 from ...render.layers import Layer

@@ -1,5 +1,5 @@
 # sitegen: `make site` builds the book into build/; `make test` runs every test.
-# Both set up what they need on a fresh machine (.venv, node_modules, Debian's chromium for tests).
+# Both set up what they need on a fresh machine (.venv, node_modules; for the tests Debian's chromium and Java).
 
 PYTHON ?= python3
 VENV   := .venv
@@ -7,12 +7,13 @@ BIN    := $(VENV)/bin
 SUDO   := $(if $(filter 0,$(shell id -u)),,sudo)
 PORT   ?= 8000
 export OPENBLAS_NUM_THREADS := 1
-export DEBIAN_FRONTEND := noninteractive
 # The tests start many Python processes: let them keep compiled bytecode (in __pycache__, ignored by
 # git and left out of the wheel) rather than compile the package's sources in every one.
 unexport PYTHONDONTWRITEBYTECODE
 
-.PHONY: site test check serve bench clean tools-node tools-chromium tools-test review accept-figures
+.PHONY: site test check serve bench clean tools-node tools-chromium tools-check tools-test review accept-figures
+# One target at a time: the tool targets may each run apt, which takes a lock (the tests run in parallel by themselves).
+.NOTPARALLEL:
 
 site: $(VENV)/.site-installed tools-node
 	$(BIN)/sitegen build
@@ -29,7 +30,7 @@ test: tools-test $(VENV)/.test-installed node_modules/.installed
 # The inner loop: every test but those that drive Chromium or build the project's own book
 # (the end-to-end tests run on the tiny book in tests/book/), with each property-based test on the
 # first fifth of its examples (`make test` runs them all).
-check: $(VENV)/.test-installed node_modules/.installed
+check: tools-check $(VENV)/.test-installed node_modules/.installed
 	SITEGEN_EXAMPLE_SHARE=0.2 $(BIN)/pytest -q -p no:cacheprovider -m "not browser and not slow" -n $(CHECK_WORKERS) --dist loadfile
 
 # Build, serve on 127.0.0.1 and rebuild on every change to the book; open pages reload by themselves.
@@ -82,16 +83,22 @@ node_modules/.installed: package.json package-lock.json | tools-node
 # run, so that on a fresh machine `make test` updates the package lists once rather than once per tool.
 NODE_PKGS     = $(if $(shell command -v node >/dev/null && command -v npm >/dev/null && echo found),,nodejs npm)
 JAVA_PKGS     = $(if $(shell command -v java),,default-jre-headless)
-CHROMIUM_PKGS = $(if $(wildcard /usr/bin/chromium),,chromium)
-apt_install   = @packages="$(strip $(1))"; test -z "$$packages" || { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q $$packages; }
+CHROMIUM_PKGS = $(if $(shell test -x /usr/bin/chromium && echo found),,chromium)
+# sudo resets the environment: DEBIAN_FRONTEND is handed to apt through env, so that it never asks a question.
+APT           = $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get
+apt_install   = @packages="$(strip $(1))"; test -z "$$packages" || { $(APT) update -q && $(APT) install -y -q $$packages; }
 
 # Temml (TeX -> MathML, vendored in the package) runs on node at build time; npm installs the test tools.
 tools-node:
 	$(call apt_install,$(NODE_PKGS))
 
-# Browser tests drive Debian's chromium through Playwright (Playwright cannot download browsers here).
+# Browser tests drive Debian's chromium through Playwright (Playwright cannot download browsers here); node too.
 tools-chromium:
 	$(call apt_install,$(NODE_PKGS) $(CHROMIUM_PKGS))
+
+# What `make check` needs: node, and Java for the HTML checker (its tests are not left out of the inner loop).
+tools-check:
+	$(call apt_install,$(NODE_PKGS) $(JAVA_PKGS))
 
 # Everything `make test` needs: node, chromium, and Java for the HTML checker (vnu.jar, from npm's vnu-jar:
 # npm ci runs no install scripts, so its postinstall never tries to download a Java runtime).

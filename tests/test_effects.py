@@ -27,8 +27,8 @@ from sitegen.models.bubble import model as bubble
 from sitegen.models.bubble import point as bubble_point
 from sitegen.models.bubble import solve as bubble_solve
 from sitegen.models.bubble import terms as bubble_terms
-from sitegen.models.chain import motion as chain_motion
-from sitegen.models.impulse import pulses as impulse
+from sitegen.models.chain import motion
+from sitegen.models.impulse import pulses
 from sitegen.registry import builtin_registry
 from sitegen.models.bubble import kernel_terms as kernel_terms
 from sitegen.models.bubble.terms import make_rhs
@@ -67,14 +67,14 @@ class Counter:
 
 # --- the impulse's pulse shapes ------------------------------------------------------------------------------
 
-OTHER_SHAPES = [name for name in impulse.SHAPES if name != "triangle"]
+OTHER_SHAPES = [name for name in pulses.SHAPES if name != "triangle"]
 
 
 @pytest.fixture
 def shape_spy(monkeypatch) -> Counter:
     """Counts calls of every shape's force and running integral (the shape effect's terms)."""
     counter = Counter()
-    for table, kind in ((impulse.SHAPE_FORCE, "force"), (impulse.SHAPE_RISE, "rise")):
+    for table, kind in ((pulses.SHAPE_FORCE, "force"), (pulses.SHAPE_RISE, "rise")):
         for name, function in list(table.items()):
             monkeypatch.setitem(table, name, counter.wrap(f"{name}-{kind}", function))
     return counter
@@ -148,8 +148,8 @@ CHAIN_BLOCK = "model: chain\nslider N: 4, 8 default 8\nslider t: 0..1 step 0.5 d
 def chain_spy(monkeypatch) -> Counter:
     """Counts the damped modal evolution (onsite_damping) and the cosine transforms of free ends (boundary)."""
     counter = Counter()
-    monkeypatch.setattr(chain_motion, "_damped_oscillation", counter.wrap("damping", chain_motion._damped_oscillation))
-    monkeypatch.setattr(chain_motion.scipy.fft, "dct", counter.wrap("free-ends", chain_motion.scipy.fft.dct))
+    monkeypatch.setattr(motion, "_damped_oscillation", counter.wrap("damping", motion._damped_oscillation))
+    monkeypatch.setattr(motion.scipy.fft, "dct", counter.wrap("free-ends", motion.scipy.fft.dct))
     return counter
 
 

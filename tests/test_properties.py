@@ -344,7 +344,7 @@ def _arms(x):
 
 def _stop_time_reference(x, off):
     """√(2Iθs/|τ|): uniform angular acceleration, the θs → 0 limit; ∞ where the engine sees a balance
-    (|m_L x_p − m_R(ℓ − x_p)| within the 4ε roundoff of its terms, lever.py `_moving_torque`)."""
+    (|m_L x_p − m_R(ℓ − x_p)| within the 4ε roundoff of its terms, lever/mechanics.py `moving_torque`)."""
     per_g = x["m_L"] * x["x_p"] - x["m_R"] * (2.0 - x["x_p"])
     if abs(per_g) <= 4 * EPS * _arms(x):
         return math.inf

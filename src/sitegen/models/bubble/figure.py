@@ -7,7 +7,7 @@ from dataclasses import replace
 import numpy as np
 from matplotlib.lines import Line2D
 
-from .model import DRIVE_PERIODS
+from .point import DRIVE_PERIODS
 from .run import CURVE_POINTS
 from .terms import rayleigh_radius
 from ...render import style as s

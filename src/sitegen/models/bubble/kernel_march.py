@@ -23,7 +23,7 @@ DOP853_METHOD, RADAU_METHOD = 0, 1
 G_SPEED, G_ACCELERATION, G_SPEED_LEVEL, G_RADIUS_LEVEL = 0, 1, 2, 3  # g = ṙ, r̈, ṙ − level, r − level
 ENDED, FAILED_CODE, CAP_CODE = 0, 1, 2  # the run's end when no terminal event stopped it (else the event's code)
 MACH_CODE, KM_CODE, POINT_CODE, CORE_CODE, UNBOUNDED_CODE = range(3, 8)  # the terminal events' codes (run.STATUS_CODES)
-ROOT_EPS = 4.0 * np.finfo(np.float64).eps  # Brent's absolute and relative tolerance, as bubble_solve's brentq
+ROOT_EPS = 4.0 * np.finfo(np.float64).eps  # Brent's absolute and relative tolerance, as scipy_path's brentq
 
 
 @kernel

@@ -5,7 +5,7 @@ A `step`, the Rayleigh collapse (analytic when only inertia and vapour act); B `
 bubble with Keller–Miksis compressibility; C `ramp`, a nucleus under a ramped tension (Blake
 threshold). The dynamic outputs of each history carry its prefix (collapse_, driven_, ramp_) and
 depend only on its own parameters. Each grid point is solved in nondimensional variables with
-terminal events and caps (solve.py); points that are one nondimensional problem are solved once.
+terminal events and caps (solve.py; what a run is: run.py); points that are one nondimensional problem are solved once.
 """
 from __future__ import annotations
 

@@ -3,7 +3,8 @@
 Effects (physics.md I1): `shape` picks the pulse (triangle, Hann, half-sine or rectangle, each with
 its closed-form J); `initial_velocity` adds v0 and the velocity v(t) of the mass; and
 `contact_from_collision` replaces the pulse by the force of a spring–dashpot contact (contact.py):
-a body of mass m_hit runs into m at the approach speed Δ, and J = μ(1 + e)Δ.
+a body of mass m_hit runs into m at the approach speed Δ, and J = μ(1 + e)Δ. The pulses themselves
+are in pulses.py; this module declares the outputs and their exact forms.
 """
 from __future__ import annotations
 

@@ -1,7 +1,8 @@
 """I4: torques on a bar with a mass at each end, resting on a pivot (closed form).
 
 Sign convention (physics.md I4): a torque is positive when it turns the bar counter-clockwise,
-i.e. when it pushes the left end down.
+i.e. when it pushes the left end down. The mechanics (torques, balance, the rotation to the stop) are
+in mechanics.py; this module declares the outputs, their exact forms and the figure's geometry.
 """
 from __future__ import annotations
 

@@ -83,7 +83,7 @@ def test_a_watcher_keeps_nothing_of_its_earlier_builds(tiny_book, own_thresholds
 
     builder = Builder(read_book(tiny_book.root), tiny_book.out, Pages(), say=lambda *args, **kwargs: None)
     counts = []
-    for _ in range(6):
+    for _ in range(5):  # the first rebuilds fill caches; a leak showed as a few hundred objects more per rebuild after
         assert builder.rebuild(set())
         counts.append(len(gc.get_objects()))
     assert counts[-1] - counts[2] < 100, f"objects held after each rebuild: {counts}"

@@ -70,6 +70,7 @@ def test_the_repository_book_keeps_its_goldens_in_its_folder():
 # --- any book: the tiny test book's goldens, by the commands ----------------------------------------
 
 
+@pytest.mark.browser  # a differing figure is drawn in Chromium (the tool's own), so it is left to `make test`
 def test_check_figures_passes_on_the_tiny_book_and_names_a_changed_figure(tiny_book, tiny_site, capsys, monkeypatch):
     """`sitegen check-figures` in a book's folder compares its build with its goldens/: 0 when equal,
     1 naming the figure when one differs, and `accept-figures` makes them equal again."""

@@ -5,7 +5,7 @@ import gc
 import threading
 from contextlib import contextmanager
 
-_YOUNG = 10_000  # allocations between young collections (Python's default, 700, ran a thousand times a build)
+YOUNG = 10_000  # allocations between young collections (Python's default, 700, ran a thousand times a build)
 _NEVER = 1 << 30  # a full-collection threshold that is never reached: the build collects fully itself
 
 _lock = threading.Lock()
@@ -32,7 +32,7 @@ def collecting_per_page():
         if not _running:
             _thresholds = gc.get_threshold()
             gc.freeze()
-            gc.set_threshold(_YOUNG, _thresholds[1], _NEVER)
+            gc.set_threshold(YOUNG, _thresholds[1], _NEVER)
         _running += 1
     try:
         yield

@@ -107,16 +107,15 @@ def layer_text(layer: Layer, scene: ResolvedScene, tables: dict[str, Table], sto
             parts.append(readout_text(tables[name], scene.model.output(name).unit, stops))
         elif kind == "in":
             index = scene.axis_index(name)
-            parts.append(slider_text(scene, index, stops[index]) if index is not None else
-                         with_unit(plain_float(scene.base_values()[name]), scene.model.param(name).unit))
+            parts.append(slider_text(scene, index, stops[index]) if index is not None else fixed_text(scene, name))
         else:
             parts.append(part)
     return "".join(parts)
 
 
-def plain_float(value: float) -> str:
-    """A parameter's value as a readout writes it: shortest form, with a true minus sign."""
-    return f"{value:g}".replace("-", MINUS)
+def fixed_text(scene: ResolvedScene, name: str) -> str:
+    """A parameter without a slider as a readout writes it: shortest form, a true minus sign, its unit."""
+    return with_unit(f"{scene.base_values()[name]:g}".replace("-", MINUS), scene.model.param(name).unit)
 
 
 def slider_text(scene: ResolvedScene, index: int, stop: int) -> str:

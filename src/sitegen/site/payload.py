@@ -9,13 +9,13 @@ import re
 import numpy as np
 
 from ..compute.grid import RANGE
-from ..compute.quantize import SPECIAL, with_unit, written
+from ..compute.quantize import SPECIAL, written
 from ..compute.scenes import ResolvedScene
 from ..compute.structure import Structured
 from ..compute.table import Table
 from ..render.layers import Layer
 from . import intjson
-from .assemble import plain_float, slider_text
+from .assemble import fixed_text, slider_text
 from .sizes import gzip_bytes
 
 
@@ -165,7 +165,7 @@ def _text_part_json(part: str, scene: ResolvedScene):
         return {"o": name, "u": scene.model.output(name).unit}
     if kind == "in" and scene.axis_index(name) is not None:
         return {"i": scene.axis_index(name)}
-    return with_unit(plain_float(scene.base_values()[name]), scene.model.param(name).unit) if kind == "in" else part
+    return fixed_text(scene, name) if kind == "in" else part
 
 
 def _ref_json(ref, scene: ResolvedScene):

@@ -99,6 +99,23 @@ def event_table(pb: Problem) -> np.ndarray:
     return np.array(codes, float)
 
 
+def unreached(grid: np.ndarray, y0) -> np.ndarray:
+    """The samples (r, ṙ) of a run at its start `y0`, NaN at every later point of `grid` until reached."""
+    samples = np.full((len(grid), 2), np.nan)
+    samples[0] = y0
+    return samples
+
+
+def run_from(status: str, method: str, rtol: float, grid: np.ndarray, samples: np.ndarray, last, maxima=(), minima=(),
+             speeds=(), nfev: int = 0, seconds: float = 0.0) -> Run:
+    """The Run of `samples` on `grid`, ended at `last` (τ, r, ṙ) with `status`; the events it recorded are rows
+    (τ, r, ṙ), of which maxima and minima keep (τ, r) and speeds (τ, ṙ)."""
+    maxima, minima = (frozen([(t, r) for t, r, _ in rows]).reshape(-1, 2) for rows in (maxima, minima))
+    speeds = frozen([(t, v) for t, _, v in speeds]).reshape(-1, 2)
+    return Run(status, method, rtol, frozen(grid), frozen(samples[:, 0]), frozen(samples[:, 1]), tuple(last), maxima,
+               minima, speeds, nfev, seconds)
+
+
 def frozen(array, copy: bool = True) -> np.ndarray:
     """`array` as a read-only C-ordered float array, as a Run holds its arrays."""
     array = np.array(array, float, order="C", copy=copy or None)  # one layout: the compiled reading has one signature

@@ -12,7 +12,7 @@ import numpy as np
 from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
 from scipy.optimize import brentq
 
-from .run import CAP_NFEV, FAILED, KM_STOP, OK, RECORDS, STATUS_OF, Caps, Event, Run, event_table, frozen, sample_grid
+from .run import CAP_NFEV, FAILED, KM_STOP, OK, RECORDS, STATUS_OF, Caps, Event, Run, event_table, run_from, sample_grid, unreached
 from .terms import KELLER_MIKSIS, Problem, make_rhs
 from .kernel_march import G_ACCELERATION, G_RADIUS_LEVEL
 
@@ -60,7 +60,7 @@ def integrate_scipy(pb: Problem, y0, method: str, rtol: float, atol: float, caps
     with np.errstate(over="ignore", invalid="ignore"):  # wild trial stages may overflow; their steps are rejected
         status, solver = _run_guarded(pb, y0, method, rtol, atol, budget, stepper)
     nfev = budget.calls if solver is None else solver.nfev
-    return make_run(status, method, rtol, stepper, nfev, time.perf_counter() - start)
+    return _stepped_run(status, method, rtol, stepper, nfev, time.perf_counter() - start)
 
 
 def _run_guarded(pb: Problem, y0, method: str, rtol: float, atol: float, budget: _Budget, stepper: "Stepper"):
@@ -83,8 +83,7 @@ class Stepper:
     def __init__(self, events, grid, y0):
         self.events, self.grid = events, grid
         self.hits: list[list] = [[] for _ in events]
-        self.samples = np.full((len(grid), 2), np.nan)
-        self.samples[0] = y0
+        self.samples = unreached(grid, y0)
         self.next = 1
         self.last = (0.0, float(y0[0]), float(y0[1]))
 
@@ -154,12 +153,7 @@ def _root(event: Event, dense, t_old: float, t_new: float) -> float:
         return t_new
 
 
-def _pairs(rows, column: int) -> np.ndarray:
-    return frozen([(row[0], row[column]) for row in rows]).reshape(-1, 2)
-
-
-def make_run(status: str, method: str, rtol: float, stepper: Stepper, nfev: int, seconds: float) -> Run:
+def _stepped_run(status: str, method: str, rtol: float, stepper: Stepper, nfev: int, seconds: float) -> Run:
     """The Run of what `stepper` sampled and recorded, ended with `status`."""
-    r, v = frozen(stepper.samples[:, 0]), frozen(stepper.samples[:, 1])
-    maxima, minima, speeds = _pairs(stepper.found("max"), 1), _pairs(stepper.found("min"), 1), _pairs(stepper.found("speed"), 2)
-    return Run(status, method, rtol, frozen(stepper.grid), r, v, tuple(stepper.last), maxima, minima, speeds, nfev, seconds)
+    return run_from(status, method, rtol, stepper.grid, stepper.samples, stepper.last, stepper.found("max"),
+                    stepper.found("min"), stepper.found("speed"), nfev, seconds)

@@ -32,8 +32,9 @@ from ...physics import compiled
 from .kernel_march import DOP853_METHOD, ENDED, RADAU_METHOD, march, split_hits
 from . import kernel_read
 from .kernel_terms import pack
-from .run import KM_STOP, MACH, POINT, RECORDS, STATUS_CODES, STATUS_OF, Caps, Event, Run, event_table, frozen, sample_grid
-from .scipy_path import Stepper, integrate_scipy, make_run
+from .run import (KM_STOP, MACH, POINT, RECORDS, STATUS_CODES, STATUS_OF, Caps, Run, event_table, frozen, run_from,
+                  sample_grid, unreached)
+from .scipy_path import integrate_scipy
 from ...physics.numerics import Numerics
 
 COMPILED = {"compiled-DOP853": DOP853_METHOD, "compiled-Radau": RADAU_METHOD}  # the same steppers, compiled
@@ -124,7 +125,8 @@ def _marched(pb: Problem, y0, method: str, rtol: float, caps: Caps, atol: float 
     grid = sample_grid(pb.tau_end)
     atol = default_atol(rtol) if atol is None else atol
     if pb.compressible == KELLER_MIKSIS and abs(y0[1]) >= pb.speed_limit:
-        return make_run(KM_STOP, method, rtol, Stepper([], grid, y0), 0, time.perf_counter() - start)
+        return run_from(KM_STOP, method, rtol, grid, unreached(grid, y0), (0.0, float(y0[0]), float(y0[1])),
+                        seconds=time.perf_counter() - start)
     marched = march(COMPILED[method], pack(pb), np.array(y0, float), rtol, atol, pb.tau_end, grid, event_table(pb),
                     caps.max_nfev)
     return _run_of(marched, method, rtol, grid, start)
@@ -184,11 +186,12 @@ def rayleigh_run(pb: Problem) -> Run:
     r_stop = max(float(mach_one_radius(delta, pb.sound)), EPSILON)
     tau_stop = tau_c * float(rayleigh_fraction(r_stop))
     speed = lambda r: -np.sqrt(2.0 * delta / 3.0 * (np.asarray(r) ** -3 - 1.0))  # noqa: E731  Ṙ² of ref. 1
-    stepper = Stepper([Event(None, -1, records="max")], sample_grid(pb.tau_end), (1.0, 0.0))
-    stepper.hits[0].append((0.0, 1.0, 0.0))  # the start at rest is the maximum; r and ṙ are monotonic after it
-    reached = stepper.grid <= tau_stop
-    r = rayleigh_radius(stepper.grid[reached] / tau_c)
-    stepper.samples[reached] = np.stack([r, speed(r)], axis=1)
-    stepper.last = (tau_stop, r_stop, float(speed(r_stop)))
+    grid = sample_grid(pb.tau_end)
+    samples = unreached(grid, (1.0, 0.0))
+    reached = grid <= tau_stop
+    r = rayleigh_radius(grid[reached] / tau_c)
+    samples[reached] = np.stack([r, speed(r)], axis=1)
     status = MACH if r_stop > EPSILON else POINT
-    return make_run(status, ANALYTIC, 0.0, stepper, 0, time.perf_counter() - start)
+    # the start at rest is the maximum; r and ṙ are monotonic after it
+    return run_from(status, ANALYTIC, 0.0, grid, samples, (tau_stop, r_stop, float(speed(r_stop))),
+                    maxima=[(0.0, 1.0, 0.0)], seconds=time.perf_counter() - start)

@@ -31,6 +31,7 @@ BOOK = Path(__file__).resolve().parent / "book"  # the tiny book: a few pages, o
 # this process or another, shares the project's: the kernels compile once per checkout, not once per book.
 COMPILED = ROOT / ".cache" / "compiled"
 BROWSER_MODULES = {"test_browser", "test_accessibility"}
+SLOW_FIXTURES = {"built_site", "two_builds"}  # the real book; the tiny book built again in another process
 # Tests that take seconds each on their own (node-id prefixes), left to `make test`:
 SLOW_TESTS = (
     # an ODE solve per stop, with every solver or over whole grids (the bubble's tests of its hard cases)
@@ -48,6 +49,8 @@ SLOW_TESTS = (
     "tests/test_interrupted_build.py::test_kill",
     "tests/test_build.py::test_computing_from_nothing_is_deterministic_across_hash_seeds",
     "tests/test_review.py::test_review_against_a_revision_builds_it_in_a_temporary_worktree",
+    "tests/test_build.py::test_builds_are_byte_identical_across_folders_and_hash_seeds",
+    "tests/test_collect.py::test_a_watcher_keeps_nothing_of_its_earlier_builds",  # five rebuilds
     "tests/test_executors.py::test_dask_cluster_gives_the_serial_bytes",
     "tests/test_determinism_load.py::",  # bubble books built in other processes, beside spinning CPUs
     # pip building and installing the wheel (and a fresh venv that builds a book with it)
@@ -65,11 +68,12 @@ COLLECTED = pytest.StashKey[list]()  # the node ids of every test collected, bef
 
 @pytest.hookimpl(tryfirst=True)  # before -m and -k deselect: they read these marks
 def pytest_collection_modifyitems(config, items) -> None:
-    """Mark what builds the real book (or is listed in SLOW_TESTS) `slow` and what drives Chromium `browser`."""
+    """Mark what builds the real book or a book in another process (or is listed in SLOW_TESTS) `slow`, and
+    what drives Chromium `browser`."""
     config.stash[COLLECTED] = [item.nodeid for item in items]
     for item in items:
         names = set(getattr(item, "fixturenames", ()))
-        if "built_site" in names or item.nodeid.startswith(SLOW_TESTS):
+        if names & SLOW_FIXTURES or item.nodeid.startswith(SLOW_TESTS):
             item.add_marker(pytest.mark.slow)
         if "chromium" in names or item.module.__name__ in BROWSER_MODULES:
             item.add_marker(pytest.mark.browser)

@@ -21,17 +21,18 @@ site: $(VENV)/.site-installed tools-node
 # Tests run in several processes (pytest-xdist), each test file in one of them, so that a file's
 # shared pages and builds are made once; the books every file reads are built once per run. The
 # browser tests mostly wait on Chromium, so `make test` runs one process more than this machine's
-# two cores; `make check` is busy computing and runs one per core.
+# two cores; `make check` is busy computing and runs one per core. Each process is handed the longest files
+# first (tests/conftest.py lists them), not the files with the most tests.
 TEST_WORKERS ?= 3
 CHECK_WORKERS ?= 2
 test: tools-test $(VENV)/.test-installed node_modules/.installed
-	$(BIN)/pytest -n $(TEST_WORKERS) --dist loadfile
+	$(BIN)/pytest -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder
 
 # The inner loop: every test but those that drive Chromium or build the project's own book
 # (the end-to-end tests run on the tiny book in tests/book/), with each property-based test on the
 # first fifth of its examples (`make test` runs them all).
 check: tools-check $(VENV)/.test-installed node_modules/.installed
-	SITEGEN_EXAMPLE_SHARE=0.2 $(BIN)/pytest -q -p no:cacheprovider -m "not browser and not slow" -n $(CHECK_WORKERS) --dist loadfile
+	SITEGEN_EXAMPLE_SHARE=0.2 $(BIN)/pytest -q -p no:cacheprovider -m "not browser and not slow" -n $(CHECK_WORKERS) --dist loadfile --no-loadscope-reorder
 
 # Build, serve on 127.0.0.1 and rebuild on every change to the book; open pages reload by themselves.
 serve: $(VENV)/.site-installed tools-node

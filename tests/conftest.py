@@ -63,14 +63,26 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault(CACHE_ENV, str(COMPILED))  # the tests that call the solvers directly, and their subprocesses
 
 
+# The test files that take longest in `make test`, longest first. pytest-xdist hands a process one whole file at a
+# time, in the order of the collection (with --no-loadscope-reorder, as the Makefile asks; by default it orders the
+# files by their number of tests), so the long files start first and the short ones fill in at the end. Left to the
+# default, a file of two long tests came last and ran alone for 40 s while the other processes had nothing to do.
+LONGEST_FIRST = ("test_browser", "test_accessibility", "test_reader_tools", "test_properties", "test_interrupted_build",
+                 "test_layout", "test_determinism_load", "test_figure_goldens", "test_install", "test_bubble_hard_cases",
+                 "test_sweep", "test_bubble_model", "test_review", "test_fuzz", "test_bubble_compiled", "test_build",
+                 "test_preview", "test_tables_exact", "test_executors", "test_stamp", "test_html_validity", "test_plugins")
+
+
 COLLECTED = pytest.StashKey[list]()  # the node ids of every test collected, before -m or -k leave any out
 
 
 @pytest.hookimpl(tryfirst=True)  # before -m and -k deselect: they read these marks
 def pytest_collection_modifyitems(config, items) -> None:
     """Mark what builds the real book or a book in another process (or is listed in SLOW_TESTS) `slow`, and
-    what drives Chromium `browser`."""
+    what drives Chromium `browser`; put the longest files first."""
     config.stash[COLLECTED] = [item.nodeid for item in items]
+    rank = {name: k for k, name in enumerate(LONGEST_FIRST)}
+    items.sort(key=lambda item: rank.get(item.module.__name__, len(rank)))  # stable: the rest keep their order
     for item in items:
         names = set(getattr(item, "fixturenames", ()))
         if names & SLOW_FIXTURES or item.nodeid.startswith(SLOW_TESTS):

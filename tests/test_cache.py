@@ -8,6 +8,7 @@ import pytest
 
 from sitegen.build import BuildConfig, build
 from sitegen.compute import cache as cache_module
+from sitegen.compute import sources
 
 ROOT = Path(__file__).resolve().parents[1]
 CHAPTER = "newtons-laws.md"
@@ -124,12 +125,12 @@ def test_source_digest_follows_the_bytes_of_the_model_file(tmp_path, monkeypatch
     copy = tmp_path / "impulse.py"
     copy.write_bytes(Path(impulse.__file__).read_bytes())
     monkeypatch.setattr(impulse, "__file__", str(copy))
-    cache_module.forget_sources()
-    before = cache_module.source_digest(frozenset({"sitegen.models.impulse.model"}))
+    sources.forget_sources()
+    before = sources.source_digest(frozenset({"sitegen.models.impulse.model"}))
     copy.write_text(copy.read_text() + "\n# a comment changes the bytes\n")
-    cache_module.forget_sources()
-    assert cache_module.source_digest(frozenset({"sitegen.models.impulse.model"})) != before
-    cache_module.forget_sources()
+    sources.forget_sources()
+    assert sources.source_digest(frozenset({"sitegen.models.impulse.model"})) != before
+    sources.forget_sources()
 
 
 def test_library_version_change_is_named(built, monkeypatch):
@@ -180,7 +181,8 @@ def test_a_scene_key_reads_its_own_model_and_not_the_others():
     """The chain's key hashes the chain's modules and what they import (base, numerics) and the tabulator
     with its imports, but not the other models: editing one model's file recomputes only that model's
     scenes (tests/test_review.py checks it on the whole book, tests/test_plugins.py for each source)."""
-    from sitegen.compute.cache import TABULATOR, source_hashes
+    from sitegen.compute.cache import TABULATOR
+    from sitegen.compute.sources import source_hashes
     from sitegen.registry import builtin_registry
 
     chain = builtin_registry().models["chain"].__module__

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from sitegen.build import BuildConfig, build
-from sitegen.compute.cache import source_hashes
+from sitegen.compute.sources import source_hashes
 from sitegen.errors import BuildFailed, SceneCrashed
 from sitegen.registry import builtin_registry, load_registry
 

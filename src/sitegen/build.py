@@ -9,7 +9,7 @@ come last, as those list every scene.
 """
 from __future__ import annotations
 
-from .compute.cache import forget_sources
+from .compute.sources import forget_sources
 from .phases.collect import collect_garbage, collecting_per_page
 from .phases.pages import assemble_scenes, write_assets, write_page
 from .phases.read import convert_math, figure_name, read_pages, resolve_scenes

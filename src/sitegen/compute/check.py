@@ -22,9 +22,10 @@ import numpy as np
 from ..errors import AuthorError
 from ..physics.numerics import written
 from .accuracy import SceneAccuracy
-from .cache import compute_now, digest, scene_key, source_digest
+from .cache import compute_now, scene_key
 from .grid import CHOICE
 from .scenes import ResolvedScene
+from .sources import digest, source_digest
 
 CHECK_MODULES = frozenset({"sitegen.compute.check", "sitegen.compute.accuracy"})
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import hashlib
 from dataclasses import replace
 
-from ..compute.cache import digest, source_digest
 from ..compute.check import caption_sentence
+from ..compute.sources import digest, source_digest
 from ..content.bench_results import BENCH_NAME, load_results
 from ..content.markdown_ext import fill_slots
 from ..site import assets, search

@@ -6,7 +6,7 @@ import math
 import re
 from html import escape
 
-from ...compute.cache import digest, library_version, source_digest
+from ...compute.sources import digest, library_version, source_digest
 from ...render.style import laid_out
 from ...render.svg import figure_svg
 from ...render.work_precision import Point

@@ -1,0 +1,32 @@
+"""The lists the test suite keeps about itself (tests/conftest.py) name tests that exist: a renamed file or test
+would otherwise drop out of them without a word (a slow test back in `make check`, a long file scheduled last)."""
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from conftest import LONGEST_FIRST, SLOW_TESTS
+
+TESTS = Path(__file__).resolve().parent
+
+
+@pytest.mark.parametrize("name", LONGEST_FIRST)
+def test_each_longest_first_name_is_a_test_file(name):
+    assert (TESTS / f"{name}.py").is_file(), f"tests/conftest.py: LONGEST_FIRST names {name!r}, which is not a test file"
+
+
+def test_longest_first_names_each_file_once():
+    assert len(set(LONGEST_FIRST)) == len(LONGEST_FIRST)
+
+
+@pytest.mark.parametrize("prefix", SLOW_TESTS)
+def test_each_slow_prefix_names_a_file_and_a_test_in_it(prefix):
+    """A prefix is "tests/<file>.py::" (the whole file) or "tests/<file>.py::<test name>" (or the start of its ids)."""
+    path, _, test = prefix.partition("::")
+    source = (TESTS.parent / path).read_text() if (TESTS.parent / path).is_file() else None
+    assert source is not None, f"tests/conftest.py: SLOW_TESTS names {path}, which does not exist"
+    name = re.match(r"\w*", test)[0]
+    if name:
+        assert re.search(rf"^def {name}\w*\(", source, re.M), f"tests/conftest.py: SLOW_TESTS names {prefix!r}, not a test of {path}"

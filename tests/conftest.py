@@ -2,7 +2,8 @@
 session, and the markers that pick a fast subset (`make check` runs everything but `browser` and
 `slow`).
 
-A test that asks for `built_site` (the real book) is marked `slow`; one that asks for `chromium`,
+A test that asks for `built_site` (the real book) or for a book built in another process (SLOW_FIXTURES)
+is marked `slow`, as are the tests SLOW_TESTS lists; one that asks for `chromium`,
 or lives in a browser module, is marked `browser`: the marks follow from what a test uses, so a
 new test cannot forget them.
 """
@@ -82,7 +83,7 @@ def pytest_collection_modifyitems(config, items) -> None:
     what drives Chromium `browser`; put the longest files first."""
     config.stash[COLLECTED] = [item.nodeid for item in items]
     rank = {name: k for k, name in enumerate(LONGEST_FIRST)}
-    items.sort(key=lambda item: rank.get(item.module.__name__, len(rank)))  # stable: the rest keep their order
+    items.sort(key=lambda item: rank.get(item.path.stem, len(rank)))  # stable: the rest keep their order
     for item in items:
         names = set(getattr(item, "fixturenames", ()))
         if names & SLOW_FIXTURES or item.nodeid.startswith(SLOW_TESTS):

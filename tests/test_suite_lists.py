@@ -1,5 +1,6 @@
-"""The lists the test suite keeps about itself (tests/conftest.py) name tests that exist: a renamed file or test
-would otherwise drop out of them without a word (a slow test back in `make check`, a long file scheduled last)."""
+"""The lists the test suite keeps about itself (tests/conftest.py) name tests, files and fixtures that exist: a
+rename would otherwise drop out of them without a word (a slow test back in `make check`, a long file scheduled
+last, a browser module run without its marker)."""
 from __future__ import annotations
 
 import re
@@ -7,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import LONGEST_FIRST, SLOW_TESTS
+from conftest import BROWSER_MODULES, LONGEST_FIRST, SLOW_FIXTURES, SLOW_TESTS
 
 TESTS = Path(__file__).resolve().parent
 
@@ -30,3 +31,16 @@ def test_each_slow_prefix_names_a_file_and_a_test_in_it(prefix):
     name = re.match(r"\w*", test)[0]
     if name:
         assert re.search(rf"^def {name}\w*\(", source, re.M), f"tests/conftest.py: SLOW_TESTS names {prefix!r}, not a test of {path}"
+
+
+@pytest.mark.parametrize("name", sorted(BROWSER_MODULES))
+def test_each_browser_module_is_a_test_file(name):
+    assert (TESTS / f"{name}.py").is_file(), f"tests/conftest.py: BROWSER_MODULES names {name!r}, which is not a test file"
+
+
+@pytest.mark.parametrize("name", sorted(SLOW_FIXTURES))
+def test_each_slow_fixture_is_defined(name):
+    """A fixture is defined by a function of its name under @pytest.fixture, in conftest.py or a test file."""
+    pattern = re.compile(rf"@pytest\.fixture[^\n]*\n(?:@[^\n]*\n)*def {name}\(")
+    assert any(pattern.search(path.read_text()) for path in TESTS.glob("*.py")), \
+        f"tests/conftest.py: SLOW_FIXTURES names {name!r}, which no fixture in tests/ is called"

@@ -19,8 +19,8 @@ from pathlib import Path
 import numpy as np
 
 from .scenes import ResolvedScene
-from .structure import Structured
 from .sources import library_digest, sha, source_digest
+from .structure import Structured
 from .table import Table
 
 TABULATOR = "sitegen.compute.tabulate"  # the code that turns a model's numbers into tables (with its imports)

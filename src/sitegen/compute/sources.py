@@ -132,8 +132,9 @@ _BLOCKS = (ast.stmt, ast.excepthandler, ast.match_case)  # what holds statements
 
 
 def _statements(tree: ast.Module):
-    """The statements of a module, nested ones included, in the order ast.walk meets them (breadth first),
-    without visiting the expressions: they are most of a module's nodes and hold no import."""
+    """The module and every node that holds statements (statements, nested ones included, except handlers
+    and match cases), in the order ast.walk meets them (breadth first), without visiting the expressions:
+    they are most of a module's nodes and hold no import."""
     todo = collections.deque([tree])
     while todo:
         node = todo.popleft()

@@ -9,8 +9,8 @@ from functools import partial
 
 from ..compute.check import check_scenes as check_accuracy
 from ..compute.executors import Background, executor_for, results_in_order
-from ..compute.tabulate import assemble_tables, evaluate_unit, plan_scene
 from ..compute.sources import digest, library_version, source_digest
+from ..compute.tabulate import assemble_tables, evaluate_unit, plan_scene
 from ..render.figures.base import scene_figures
 from ..render.layers import layer_points
 from ..render.style import laid_out

@@ -13,9 +13,9 @@ from conftest import BROWSER_MODULES, LONGEST_FIRST, SLOW_FIXTURES, SLOW_TESTS
 TESTS = Path(__file__).resolve().parent
 
 
-@pytest.mark.parametrize("name", LONGEST_FIRST)
-def test_each_longest_first_name_is_a_test_file(name):
-    assert (TESTS / f"{name}.py").is_file(), f"tests/conftest.py: LONGEST_FIRST names {name!r}, which is not a test file"
+@pytest.mark.parametrize("listed,name", [("LONGEST_FIRST", n) for n in LONGEST_FIRST] + [("BROWSER_MODULES", n) for n in sorted(BROWSER_MODULES)])
+def test_each_listed_module_is_a_test_file(listed, name):
+    assert (TESTS / f"{name}.py").is_file(), f"tests/conftest.py: {listed} names {name!r}, which is not a test file"
 
 
 def test_longest_first_names_each_file_once():
@@ -26,16 +26,11 @@ def test_longest_first_names_each_file_once():
 def test_each_slow_prefix_names_a_file_and_a_test_in_it(prefix):
     """A prefix is "tests/<file>.py::" (the whole file) or "tests/<file>.py::<test name>" (or the start of its ids)."""
     path, _, test = prefix.partition("::")
-    source = (TESTS.parent / path).read_text() if (TESTS.parent / path).is_file() else None
-    assert source is not None, f"tests/conftest.py: SLOW_TESTS names {path}, which does not exist"
+    file = TESTS.parent / path
+    assert file.is_file(), f"tests/conftest.py: SLOW_TESTS names {path}, which does not exist"
     name = re.match(r"\w*", test)[0]
     if name:
-        assert re.search(rf"^def {name}\w*\(", source, re.M), f"tests/conftest.py: SLOW_TESTS names {prefix!r}, not a test of {path}"
-
-
-@pytest.mark.parametrize("name", sorted(BROWSER_MODULES))
-def test_each_browser_module_is_a_test_file(name):
-    assert (TESTS / f"{name}.py").is_file(), f"tests/conftest.py: BROWSER_MODULES names {name!r}, which is not a test file"
+        assert re.search(rf"^def {name}\w*\(", file.read_text(), re.M), f"tests/conftest.py: SLOW_TESTS names {prefix!r}, not a test of {path}"
 
 
 @pytest.mark.parametrize("name", sorted(SLOW_FIXTURES))

@@ -33,6 +33,7 @@ STATUS_CODES = {OK: ENDED, FAILED: FAILED_CODE, CAP_NFEV: CAP_CODE, MACH: MACH_C
                 CORE: CORE_CODE, UNBOUNDED_GROWTH: UNBOUNDED_CODE}
 STATUS_OF = {code: status for status, code in STATUS_CODES.items()}
 RECORDS = {"max": 1, "min": 2, "speed": 3}  # an event table's record codes (split_hits takes them in this order)
+ROLE_OF = {code: role for role, code in RECORDS.items()}
 
 
 @dataclass(frozen=True)

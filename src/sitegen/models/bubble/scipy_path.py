@@ -12,7 +12,7 @@ import numpy as np
 from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
 from scipy.optimize import brentq
 
-from .run import CAP_NFEV, FAILED, KM_STOP, OK, RECORDS, STATUS_OF, Caps, Event, Run, event_table, run_from, sample_grid, unreached
+from .run import CAP_NFEV, FAILED, KM_STOP, OK, ROLE_OF, STATUS_OF, Caps, Event, Run, event_table, run_from, sample_grid, unreached
 from .terms import KELLER_MIKSIS, Problem, make_rhs
 from .kernel_march import G_ACCELERATION, G_RADIUS_LEVEL
 
@@ -47,8 +47,7 @@ def bubble_events(pb: Problem, fun) -> list[Event]:
         column = 0 if kind == G_RADIUS_LEVEL else 1
         return lambda t, y: y[column] - level
 
-    roles = {code: role for role, code in RECORDS.items()}
-    return [Event(g(int(kind), level), int(direction), STATUS_OF[int(stop)] if stop else "", roles.get(int(record), ""))
+    return [Event(g(int(kind), level), int(direction), STATUS_OF[int(stop)] if stop else "", ROLE_OF.get(int(record), ""))
             for kind, level, direction, stop, record in event_table(pb)]
 
 

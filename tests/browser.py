@@ -20,6 +20,7 @@ import json
 import math
 import re
 import threading
+import weakref
 from contextlib import contextmanager
 from dataclasses import dataclass
 from decimal import Decimal
@@ -53,23 +54,23 @@ def launch(playwright, **options):
 
 
 class Tabs:
-    """Pages kept open for a test module, by the options of their contexts, to load documents in.
+    """Pages kept open for a test module, by their options, to load documents in.
 
-    A new page costs a renderer process, and a new context one more page: together more than a
-    second of CPU. A new document loaded in a page that is already open costs far less, and the
-    site's script keeps nothing beyond its document (no storage), so a test that needs a page as it
-    loads borrows one and loads its document afresh (`load`).
+    A new page costs a renderer process (about 0.4 s of CPU beyond loading a document). A new document
+    loaded in a page that is already open costs far less, and the site's script keeps nothing beyond its
+    document (no storage), so a test that needs a page as it loads borrows one and loads its document
+    afresh (`load`).
     """
 
     def __init__(self, browser):
         self.browser = browser
         self.idle: dict[str, list] = {}
-        self.contexts: list = []
+        self.pages: list = []
         self.logs: dict = {}  # page -> the list its errors go to
 
     def _open(self, options: dict):
-        context, page, errors = logged_page(self.browser, **options)
-        self.contexts.append(context)
+        page, errors = logged_page(self.browser, **options)
+        self.pages.append(page)
         self.logs[page] = errors
         return page
 
@@ -85,7 +86,7 @@ class Tabs:
             page = pool.pop() if pool else self._open(options)
             taken.append((pool, page))
             self.logs[page].clear()  # what it logged for an earlier test
-            return page, self.logs[page]
+            return front(page), self.logs[page]
 
         try:
             yield borrow
@@ -95,19 +96,56 @@ class Tabs:
                 pool.append(page)
 
     def close(self) -> None:
-        for context in self.contexts:
-            context.close()
+        for page in self.pages:
+            page.close()
+
+
+# What Playwright emulates for one page as well as for a whole context: pages that differ only in these share one.
+PAGE_OPTIONS = ("viewport", "color_scheme", "reduced_motion")
+_CONTEXTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # browser -> {its contexts' options: context}
+_IN_FRONT: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # context -> its tab in front
+
+
+def new_page(browser, **options):
+    """A new page with `options`, in the browser's one context for the options a page cannot take by itself
+    (JavaScript off, a phone's touch and pixel ratio).
+
+    A context's pages are tabs of one window: a new context opens a window, which costs about 1.2 s of CPU
+    more than a tab, and the site leaves nothing in a context (no cookies, no storage) that one page could
+    find of another's. Only the tab in front is drawn (`front`).
+    """
+    on_page = {name: options.pop(name) for name in PAGE_OPTIONS if name in options}
+    contexts = _CONTEXTS.setdefault(browser, {})
+    key = json.dumps(options, sort_keys=True)
+    if key not in contexts:
+        contexts[key] = browser.new_context(**options)
+    page = contexts[key].new_page()
+    _IN_FRONT[contexts[key]] = page  # a new tab opens in front
+    if "viewport" in on_page:
+        page.set_viewport_size(on_page["viewport"])
+    media = {name: on_page[name] for name in ("color_scheme", "reduced_motion") if name in on_page}
+    if media:
+        page.emulate_media(**media)
+    return page
+
+
+def front(page):
+    """`page`, brought to the front of its window: a tab behind another gets about one animation frame a second,
+    so its transitions, observers and Playwright's own waits for a steady element crawl."""
+    if _IN_FRONT.get(page.context) is not page:  # bringing forward the tab in front still redraws it
+        page.bring_to_front()
+        _IN_FRONT[page.context] = page
+    return page
 
 
 def logged_page(browser, **options):
-    """(context, page, errors): a new context with `options`, a page in it, and the list that collects the
-    page's errors and its console errors and warnings."""
-    context = browser.new_context(**options)
-    page = context.new_page()
+    """(page, errors): a new page with `options` (`new_page`), and the list that collects its errors and its
+    console errors and warnings."""
+    page = new_page(browser, **options)
     errors = []
     page.on("pageerror", lambda e: errors.append(str(e)))
     page.on("console", lambda m: errors.append(f"{m.type}: {m.text}") if m.type in ("error", "warning") else None)
-    return context, page, errors
+    return page, errors
 
 
 def load(page, url: str) -> None:

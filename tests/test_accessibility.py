@@ -28,7 +28,7 @@ from a11y import (
     target_size_problems,
     text_contrast_problems,
 )
-from browser import ROOT, load
+from browser import ROOT, front, load, new_page
 from sitegen.content.pages import discover_pages
 
 PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
@@ -40,12 +40,11 @@ def _page_scheme_params():
     return [pytest.param(name, scheme, id=f"{name[:-5]}-{scheme}") for name in PAGES for scheme in SCHEMES]
 
 
-def _load(chromium, site, name: str, contexts: list, **options):
-    """A new context with `options`, and `name` opened in it from disk, fonts settled."""
+def _load(chromium, site, name: str, opened: list, **options):
+    """A new page with `options`, and `name` opened in it from disk, fonts settled."""
     options.setdefault("viewport", {"width": WIDTHS["desktop"], "height": 900})
-    context = chromium.new_context(**options)
-    contexts.append(context)
-    page = context.new_page()
+    page = new_page(chromium, **options)
+    opened.append(page)
     errors = []
     page.on("pageerror", lambda e: errors.append(str(e)))
     page.goto((site / name).as_uri(), wait_until="load")
@@ -73,16 +72,16 @@ def open_page(tabs, built_site):
 @pytest.fixture(scope="module")
 def page_as_loaded(chromium, built_site):
     """page_as_loaded(name, scheme) -> the page as it loads (1280 px wide), shared by the tests that only read it."""
-    contexts, pages = [], {}
+    opened, pages = [], {}
 
     def _get(name: str, scheme: str):
         if (name, scheme) not in pages:
-            pages[name, scheme] = _load(chromium, built_site, name, contexts, color_scheme=scheme)
-        return pages[name, scheme]
+            pages[name, scheme] = _load(chromium, built_site, name, opened, color_scheme=scheme)
+        return front(pages[name, scheme])
 
     yield _get
-    for context in contexts:
-        context.close()
+    for page in opened:
+        page.close()
 
 
 PHONE = {"viewport": {"width": WIDTHS["phone"], "height": 740}, "device_scale_factor": 2, "is_mobile": True, "has_touch": True}
@@ -92,16 +91,16 @@ PHONE = {"viewport": {"width": WIDTHS["phone"], "height": 740}, "device_scale_fa
 def phone_page(chromium, built_site):
     """phone_page(name) -> the page as it loads on a phone 360 px wide (touch, two device pixels to
     the CSS pixel), shared by the tests that only read it."""
-    contexts, pages = [], {}
+    opened, pages = [], {}
 
     def _get(name: str):
         if name not in pages:
-            pages[name] = _load(chromium, built_site, name, contexts, **PHONE)
-        return pages[name]
+            pages[name] = _load(chromium, built_site, name, opened, **PHONE)
+        return front(pages[name])
 
     yield _get
-    for context in contexts:
-        context.close()
+    for page in opened:
+        page.close()
 
 
 def test_every_page_is_checked(built_site):

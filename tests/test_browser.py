@@ -37,12 +37,14 @@ from browser import (
     describe_stop,
     expected_control_text,
     expected_readouts,
+    front,
     load,
     layer_deps,
     layer_problems,
     move,
     move_many,
     move_value,
+    new_page,
     parse_layer,
     plain,
     read_state,
@@ -69,12 +71,13 @@ def _page_params(transports=TRANSPORTS):
     return [pytest.param(p.output_name, t, id=f"{p.slug}-{t}") for p in PAGES for t in transports]
 
 
+# Each transport's tests together: its pages are tabs of one window, and bringing another tab to the front redraws it.
 def _scene_params(scenes=SCENES, transports=TRANSPORTS):
-    return [pytest.param(s, t, id=f"{s.key}-{t}") for s in scenes for t in transports]
+    return [pytest.param(s, t, id=f"{s.key}-{t}") for t in transports for s in scenes]
 
 
 def _control_params(transports=TRANSPORTS):
-    return [pytest.param(s, param, t, id=f"{s.key}-{param}-{t}") for s, param in CONTROLS for t in transports]
+    return [pytest.param(s, param, t, id=f"{s.key}-{param}-{t}") for t in transports for s, param in CONTROLS]
 
 
 # --- fixtures -----------------------------------------------------------------------------------
@@ -114,37 +117,35 @@ class PageLog:
         return self.errors[mark[0]:] + console
 
 
-def _new_page(chromium, url: str, javascript: bool = True, **context_options):
-    context = chromium.new_context(java_script_enabled=javascript, **context_options)
+def _new_page(chromium, url: str, javascript: bool = True, **options):
+    page = new_page(chromium, java_script_enabled=javascript, **options)
     log = PageLog()
-    context.on("request", lambda r: log.requests.append(r.url))
-    context.on("requestfailed", lambda r: log.failed.append(f"{r.url}: {r.failure}"))
-    context.on("response", lambda r: log.responses.append((r.url, r.status)))
-    page = context.new_page()
+    page.on("request", lambda r: log.requests.append(r.url))
+    page.on("requestfailed", lambda r: log.failed.append(f"{r.url}: {r.failure}"))
+    page.on("response", lambda r: log.responses.append((r.url, r.status)))
     page.on("console", lambda m: log.console.append((m.type, m.text, m.location)))
     page.on("pageerror", lambda e: log.errors.append(str(e)))
     page.goto(url, wait_until="load")
     page.evaluate("document.fonts.ready.then(() => true)")
-    return context, page, log
+    return page, log
 
 
 @pytest.fixture(scope="module")
 def loaded(chromium, site_url):
     """loaded(name, transport, javascript=True) -> (page, log): one shared, loaded page per
     (name, transport, javascript) for the whole session. Tests must not navigate it away."""
-    cache, contexts = {}, []
+    cache = {}
 
     def _get(name: str, transport: str, javascript: bool = True):
         key = (name, transport, javascript)
         if key not in cache:
-            context, page, log = _new_page(chromium, site_url(name, transport), javascript)
-            contexts.append(context)
-            cache[key] = (page, log)
+            cache[key] = _new_page(chromium, site_url(name, transport), javascript)
+        front(cache[key][0])
         return cache[key]
 
     yield _get
-    for context in contexts:
-        context.close()
+    for page, _ in cache.values():
+        page.close()
 
 
 @pytest.fixture
@@ -752,21 +753,19 @@ def watched(chromium):
     """watched(motion) -> (page, errors): a page, one per reduced-motion setting, that records in
     every document it loads the changes _WATCH_MOTION_JS watches for, from before any page script
     runs; and the page errors logged from this call on."""
-    contexts, pages, logs = [], {}, {}
+    pages, logs = {}, {}
 
     def _get(motion: str):
         if motion not in pages:
-            context = chromium.new_context(reduced_motion=motion)
-            contexts.append(context)
-            context.add_init_script(_WATCH_MOTION_JS)
-            pages[motion] = context.new_page()
+            pages[motion] = new_page(chromium, reduced_motion=motion)
+            pages[motion].add_init_script(_WATCH_MOTION_JS)
             pages[motion].on("pageerror", lambda e: logs[motion].append(str(e)))
         logs[motion] = []
-        return pages[motion], logs[motion]
+        return front(pages[motion]), logs[motion]
 
     yield _get
-    for context in contexts:
-        context.close()
+    for page in pages.values():
+        page.close()
 
 
 @pytest.mark.parametrize(

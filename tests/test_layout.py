@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import pytest
 
-from browser import ROOT
+from browser import ROOT, front, new_page
 from layout import (
     control_label_problems,
     figure_problems,
@@ -33,18 +33,15 @@ def _settled(page) -> None:
 
 @pytest.fixture(scope="module")
 def page_at(chromium, built_site):
-    """page_at(name, width, scheme) -> the page opened from disk (one context per scheme, one page per
+    """page_at(name, width, scheme) -> the page opened from disk (one page per
     page and scheme, reused by the tests that only read it), its window `width` px wide. A page whose
     window is resized lays out as one loaded at that width: its CSS answers to the width, and its
     script decides what scrolls on every resize."""
-    contexts, pages = {}, {}
+    pages = {}
 
     def _get(name: str, width: int, scheme: str):
-        if scheme not in contexts:
-            contexts[scheme] = chromium.new_context(viewport={"width": width, "height": 844}, color_scheme=scheme)
         if (name, scheme) not in pages:
-            page = contexts[scheme].new_page()
-            page.set_viewport_size({"width": width, "height": 844})
+            page = new_page(chromium, viewport={"width": width, "height": 844}, color_scheme=scheme)
             errors = []
             page.on("pageerror", lambda e: errors.append(str(e)))
             page.goto((built_site / name).as_uri(), wait_until="load")
@@ -52,15 +49,15 @@ def page_at(chromium, built_site):
             _settled(page)
             assert not errors, errors
             pages[name, scheme] = page
-        page = pages[name, scheme]
+        page = front(pages[name, scheme])
         if page.viewport_size["width"] != width:
             page.set_viewport_size({"width": width, "height": 844})
             _settled(page)
         return page
 
     yield _get
-    for context in contexts.values():
-        context.close()
+    for page in pages.values():
+        page.close()
 
 
 @dataclass(frozen=True)

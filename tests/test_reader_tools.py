@@ -16,7 +16,7 @@ from urllib.parse import unquote
 
 import pytest
 
-from browser import SiteServer, book, load, logged_page, move, read_state, scene_problems
+from browser import SiteServer, book, front, load, logged_page, move, read_state, scene_problems
 from sitegen.compute.grid import CHOICE
 from sitegen.site.navigation import reading_order
 
@@ -24,10 +24,10 @@ PAGES, SCENES = book()
 ORDER = [p.output_name for p in reading_order(PAGES)]
 
 
-def _open(chromium, built_site, contexts: list, target: str, javascript: bool = True, width: int = 1280):
-    """(page, errors): `target` (a URL or a page's name) opened in a new context, fonts settled."""
-    context, page, errors = logged_page(chromium, java_script_enabled=javascript, viewport={"width": width, "height": 844})
-    contexts.append(context)
+def _open(chromium, built_site, opened: list, target: str, javascript: bool = True, width: int = 1280):
+    """(page, errors): `target` (a URL or a page's name) opened in a new page, fonts settled."""
+    page, errors = logged_page(chromium, java_script_enabled=javascript, viewport={"width": width, "height": 844})
+    opened.append(page)
     load(page, target if ":" in target else (built_site / target).as_uri())
     return page, errors
 
@@ -50,17 +50,18 @@ def fresh(tabs, built_site):
 def shared(chromium, built_site):
     """shared(page name, javascript=True, width=1280) -> (page, errors): one loaded page per name and
     options for the module, for the tests that only read it or put back what they change."""
-    contexts, pages = [], {}
+    opened, pages = [], {}
 
     def _get(name: str, **options):
         key = (name, *sorted(options.items()))
         if key not in pages:
-            pages[key] = _open(chromium, built_site, contexts, name, **options)
-        return pages[key]
+            pages[key] = _open(chromium, built_site, opened, name, **options)
+        page, errors = pages[key]
+        return front(page), errors
 
     yield _get
-    for context in contexts:
-        context.close()
+    for page in opened:
+        page.close()
 
 
 def _in_view(page, dom_id: str) -> bool:
@@ -100,14 +101,14 @@ def test_scene_state_round_trips_through_its_link(fresh, shared, scene):
             assert abs(Decimal(unquote(text)) - Decimal(str(float(axis.stop(moved.control(param).index))))) < Decimal("1e-6"), (param, text)
 
     opened, opened_errors = fresh(page.url)
-    page.click(f"#{scene.dom_id} button[data-reset]")  # the shared page back on the defaults
+    front(page).click(f"#{scene.dom_id} button[data-reset]")  # the shared page back on the defaults
     state = read_state(opened, scene)
     assert state.stops == moved.stops
     assert state.readouts == moved.readouts and scene_problems(scene, state) == []
     assert state.layers == moved.layers
     assert _in_view(opened, scene.dom_id), "the link did not show the scene"
 
-    opened.click(f"#{scene.dom_id} button[data-reset]")
+    front(opened).click(f"#{scene.dom_id} button[data-reset]")
     reset = read_state(opened, scene)
     assert reset.stops == scene.defaults and scene_problems(scene, reset) == []
     assert _wait_for_hash(opened, f"#{scene.dom_id}") == f"#{scene.dom_id}"

@@ -21,7 +21,7 @@ import re
 import numpy as np
 import pytest
 
-from browser import FIGURES, BookScene, book, describe_stop, stop_inputs
+from browser import FIGURES, BookScene, book, describe_stop, front, new_page, stop_inputs
 from sitegen.compute.structure import structured_pieces
 
 PAGES, SCENES = book()
@@ -124,20 +124,18 @@ def readout_problems(scene: BookScene, stops, seen: dict, values: dict[str, floa
 @pytest.fixture(scope="module")
 def scene_pages(chromium, built_site):
     """One loaded page per book page (file://), shared by the module's tests."""
-    contexts, pages = [], {}
+    pages = {}
 
     def _get(scene: BookScene):
         name = scene.page.output_name
         if name not in pages:
-            context = chromium.new_context()
-            contexts.append(context)
-            pages[name] = context.new_page()
+            pages[name] = new_page(chromium)
             pages[name].goto((built_site / name).as_uri(), wait_until="load")
-        return pages[name]
+        return front(pages[name])
 
     yield _get
-    for context in contexts:
-        context.close()
+    for page in pages.values():
+        page.close()
 
 
 @pytest.mark.parametrize("scene", SCENES, ids=[s.key for s in SCENES])

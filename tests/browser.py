@@ -53,6 +53,14 @@ def launch(playwright, **options):
     return playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS, **options)
 
 
+def close(browser) -> None:
+    """Close `browser`, and forget its contexts and their tabs in front (each holds its browser: left in the
+    tables below, they would keep every closed browser of the test process)."""
+    for context in _CONTEXTS.pop(browser, {}).values():
+        _IN_FRONT.pop(context, None)
+    browser.close()
+
+
 class Tabs:
     """Pages kept open for a test module, by their options, to load documents in.
 

@@ -195,12 +195,12 @@ def chromium():
     """Debian's Chromium, headless, for the browser tests of one module."""
     from playwright.sync_api import sync_playwright
 
-    from browser import launch
+    from browser import close, launch
 
     with sync_playwright() as playwright:
         browser = launch(playwright)
         yield browser
-        browser.close()
+        close(browser)
 
 
 @pytest.fixture(scope="module")

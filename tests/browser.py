@@ -20,7 +20,6 @@ import json
 import math
 import re
 import threading
-import weakref
 from contextlib import contextmanager
 from dataclasses import dataclass
 from decimal import Decimal
@@ -54,8 +53,8 @@ def launch(playwright, **options):
 
 
 def close(browser) -> None:
-    """Close `browser`, and forget its contexts and their tabs in front (each holds its browser: left in the
-    tables below, they would keep every closed browser of the test process)."""
+    """Close `browser`, and forget its contexts and their tabs in front (kept, they would keep every closed browser
+    of the test process)."""
     for context in _CONTEXTS.pop(browser, {}).values():
         _IN_FRONT.pop(context, None)
     browser.close()
@@ -110,8 +109,8 @@ class Tabs:
 
 # What Playwright emulates for one page as well as for a whole context: pages that differ only in these share one.
 PAGE_OPTIONS = ("viewport", "color_scheme", "reduced_motion")
-_CONTEXTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # browser -> {its contexts' options: context}
-_IN_FRONT: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # context -> its tab in front
+_CONTEXTS: dict = {}  # browser -> {its contexts' options: context}, until `close`
+_IN_FRONT: dict = {}  # context -> its tab in front, until `close`
 
 
 def new_page(browser, **options):
@@ -120,9 +119,12 @@ def new_page(browser, **options):
 
     A context's pages are tabs of one window: a new context opens a window, which costs about 1.2 s of CPU
     more than a tab, and the site leaves nothing in a context (no cookies, no storage) that one page could
-    find of another's. Only the tab in front is drawn (`front`).
+    find of another's. They share the HTTP cache: over http a later page may take the assets from it (Playwright
+    still reports each request, and its status as 200). Only the tab in front is drawn (`front`).
     """
     on_page = {name: options.pop(name) for name in PAGE_OPTIONS if name in options}
+    if options.get("java_script_enabled") is True:  # the default: the same context as without the option
+        del options["java_script_enabled"]
     contexts = _CONTEXTS.setdefault(browser, {})
     key = json.dumps(options, sort_keys=True)
     if key not in contexts:

@@ -55,7 +55,7 @@ def _load(chromium, site, name: str, opened: list, **options):
 
 @pytest.fixture
 def open_page(tabs, built_site):
-    """open_page(name, **context options) -> the page loaded afresh, in a page no other part of the
+    """open_page(name, **page options) -> the page loaded afresh, in a page no other part of the
     test uses, for a test that changes it."""
     with tabs.lending() as borrow:
 

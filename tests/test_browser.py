@@ -71,7 +71,8 @@ def _page_params(transports=TRANSPORTS):
     return [pytest.param(p.output_name, t, id=f"{p.slug}-{t}") for p in PAGES for t in transports]
 
 
-# Each transport's tests together: its pages are tabs of one window, and bringing another tab to the front redraws it.
+# Each transport's tests together: consecutive tests then read the same page, and bringing another tab to the front
+# of the window redraws it.
 def _scene_params(scenes=SCENES, transports=TRANSPORTS):
     return [pytest.param(s, t, id=f"{s.key}-{t}") for t in transports for s in scenes]
 
@@ -133,7 +134,7 @@ def _new_page(chromium, url: str, javascript: bool = True, **options):
 @pytest.fixture(scope="module")
 def loaded(chromium, site_url):
     """loaded(name, transport, javascript=True) -> (page, log): one shared, loaded page per
-    (name, transport, javascript) for the whole session. Tests must not navigate it away."""
+    (name, transport, javascript) for the module. Tests must not navigate it away."""
     cache = {}
 
     def _get(name: str, transport: str, javascript: bool = True):
@@ -150,7 +151,7 @@ def loaded(chromium, site_url):
 
 @pytest.fixture
 def open_page(tabs, site_url):
-    """open_page(name, transport, javascript=True, **context options) -> (page, errors): the page
+    """open_page(name, transport, javascript=True, **page options) -> (page, errors): the page
     loaded afresh, in a page no other part of the test uses (for tests that navigate or emulate),
     and the page and console errors logged since."""
     with tabs.lending() as borrow:

@@ -34,8 +34,8 @@ def _settled(page) -> None:
 @pytest.fixture(scope="module")
 def page_at(chromium, built_site):
     """page_at(name, width, scheme) -> the page opened from disk (one page per
-    page and scheme, reused by the tests that only read it), its window `width` px wide. A page whose
-    window is resized lays out as one loaded at that width: its CSS answers to the width, and its
+    page and scheme, reused by the tests that only read it), its viewport `width` px wide. A page whose
+    viewport is resized lays out as one loaded at that width: its CSS answers to the width, and its
     script decides what scrolls on every resize."""
     pages = {}
 

@@ -102,13 +102,13 @@ def test_scene_state_round_trips_through_its_link(fresh, shared, scene):
 
     opened, opened_errors = fresh(page.url)
     front(page).click(f"#{scene.dom_id} button[data-reset]")  # the shared page back on the defaults
-    state = read_state(opened, scene)
+    state = read_state(front(opened), scene)
     assert state.stops == moved.stops
     assert state.readouts == moved.readouts and scene_problems(scene, state) == []
     assert state.layers == moved.layers
     assert _in_view(opened, scene.dom_id), "the link did not show the scene"
 
-    front(opened).click(f"#{scene.dom_id} button[data-reset]")
+    opened.click(f"#{scene.dom_id} button[data-reset]")
     reset = read_state(opened, scene)
     assert reset.stops == scene.defaults and scene_problems(scene, reset) == []
     assert _wait_for_hash(opened, f"#{scene.dom_id}") == f"#{scene.dom_id}"

@@ -53,8 +53,9 @@ def launch(playwright, **options):
 
 
 def close(browser) -> None:
-    """Close `browser`, and forget its contexts and their tabs in front (kept, they would keep every closed browser
-    of the test process)."""
+    """Close `browser` with every page the module's fixtures opened in it (a page lives as long as the module's
+    browser), and forget its contexts and their tabs in front (kept, they would keep every closed browser of the
+    test process)."""
     for context in _CONTEXTS.pop(browser, {}).values():
         _IN_FRONT.pop(context, None)
     browser.close()
@@ -72,12 +73,10 @@ class Tabs:
     def __init__(self, browser):
         self.browser = browser
         self.idle: dict[str, list] = {}
-        self.pages: list = []
         self.logs: dict = {}  # page -> the list its errors go to
 
     def _open(self, options: dict):
         page, errors = logged_page(self.browser, **options)
-        self.pages.append(page)
         self.logs[page] = errors
         return page
 
@@ -101,10 +100,6 @@ class Tabs:
             for pool, page in taken:
                 page.emulate_media(media="null")
                 pool.append(page)
-
-    def close(self) -> None:
-        for page in self.pages:
-            page.close()
 
 
 # What Playwright emulates for one page as well as for a whole context: pages that differ only in these share one.

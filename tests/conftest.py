@@ -208,9 +208,7 @@ def tabs(chromium):
     """Pages of the module's browser kept open to load documents in, by their options (see browser.Tabs)."""
     from browser import Tabs
 
-    tabs = Tabs(chromium)
-    yield tabs
-    tabs.close()
+    return Tabs(chromium)
 
 
 def pytest_collection_finish(session) -> None:

@@ -40,11 +40,10 @@ def _page_scheme_params():
     return [pytest.param(name, scheme, id=f"{name[:-5]}-{scheme}") for name in PAGES for scheme in SCHEMES]
 
 
-def _load(chromium, site, name: str, opened: list, **options):
+def _load(chromium, site, name: str, **options):
     """A new page with `options`, and `name` opened in it from disk, fonts settled."""
     options.setdefault("viewport", {"width": WIDTHS["desktop"], "height": 900})
     page = new_page(chromium, **options)
-    opened.append(page)
     errors = []
     page.on("pageerror", lambda e: errors.append(str(e)))
     page.goto((site / name).as_uri(), wait_until="load")
@@ -72,16 +71,14 @@ def open_page(tabs, built_site):
 @pytest.fixture(scope="module")
 def page_as_loaded(chromium, built_site):
     """page_as_loaded(name, scheme) -> the page as it loads (1280 px wide), shared by the tests that only read it."""
-    opened, pages = [], {}
+    pages = {}
 
     def _get(name: str, scheme: str):
         if (name, scheme) not in pages:
-            pages[name, scheme] = _load(chromium, built_site, name, opened, color_scheme=scheme)
+            pages[name, scheme] = _load(chromium, built_site, name, color_scheme=scheme)
         return front(pages[name, scheme])
 
-    yield _get
-    for page in opened:
-        page.close()
+    return _get
 
 
 PHONE = {"viewport": {"width": WIDTHS["phone"], "height": 740}, "device_scale_factor": 2, "is_mobile": True, "has_touch": True}
@@ -91,16 +88,14 @@ PHONE = {"viewport": {"width": WIDTHS["phone"], "height": 740}, "device_scale_fa
 def phone_page(chromium, built_site):
     """phone_page(name) -> the page as it loads on a phone 360 px wide (touch, two device pixels to
     the CSS pixel), shared by the tests that only read it."""
-    opened, pages = [], {}
+    pages = {}
 
     def _get(name: str):
         if name not in pages:
-            pages[name] = _load(chromium, built_site, name, opened, **PHONE)
+            pages[name] = _load(chromium, built_site, name, **PHONE)
         return front(pages[name])
 
-    yield _get
-    for page in opened:
-        page.close()
+    return _get
 
 
 def test_every_page_is_checked(built_site):

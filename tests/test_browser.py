@@ -118,7 +118,7 @@ class PageLog:
         return self.errors[mark[0]:] + console
 
 
-def _new_page(chromium, url: str, javascript: bool = True, **options):
+def _open_logged(chromium, url: str, javascript: bool = True, **options):
     page = new_page(chromium, java_script_enabled=javascript, **options)
     log = PageLog()
     page.on("request", lambda r: log.requests.append(r.url))
@@ -140,13 +140,11 @@ def loaded(chromium, site_url):
     def _get(name: str, transport: str, javascript: bool = True):
         key = (name, transport, javascript)
         if key not in cache:
-            cache[key] = _new_page(chromium, site_url(name, transport), javascript)
+            cache[key] = _open_logged(chromium, site_url(name, transport), javascript)
         front(cache[key][0])
         return cache[key]
 
-    yield _get
-    for page, _ in cache.values():
-        page.close()
+    return _get
 
 
 @pytest.fixture
@@ -764,9 +762,7 @@ def watched(chromium):
         logs[motion] = []
         return front(pages[motion]), logs[motion]
 
-    yield _get
-    for page in pages.values():
-        page.close()
+    return _get
 
 
 @pytest.mark.parametrize(

@@ -55,9 +55,7 @@ def page_at(chromium, built_site):
             _settled(page)
         return page
 
-    yield _get
-    for page in pages.values():
-        page.close()
+    return _get
 
 
 @dataclass(frozen=True)

@@ -24,10 +24,9 @@ PAGES, SCENES = book()
 ORDER = [p.output_name for p in reading_order(PAGES)]
 
 
-def _open(chromium, built_site, opened: list, target: str, javascript: bool = True, width: int = 1280):
+def _open(chromium, built_site, target: str, javascript: bool = True, width: int = 1280):
     """(page, errors): `target` (a URL or a page's name) opened in a new page, fonts settled."""
     page, errors = logged_page(chromium, java_script_enabled=javascript, viewport={"width": width, "height": 844})
-    opened.append(page)
     load(page, target if ":" in target else (built_site / target).as_uri())
     return page, errors
 
@@ -50,18 +49,16 @@ def fresh(tabs, built_site):
 def shared(chromium, built_site):
     """shared(page name, javascript=True, width=1280) -> (page, errors): one loaded page per name and
     options for the module, for the tests that only read it or put back what they change."""
-    opened, pages = [], {}
+    pages = {}
 
     def _get(name: str, **options):
         key = (name, *sorted(options.items()))
         if key not in pages:
-            pages[key] = _open(chromium, built_site, opened, name, **options)
+            pages[key] = _open(chromium, built_site, name, **options)
         page, errors = pages[key]
         return front(page), errors
 
-    yield _get
-    for page in opened:
-        page.close()
+    return _get
 
 
 def _in_view(page, dom_id: str) -> bool:

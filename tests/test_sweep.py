@@ -133,9 +133,7 @@ def scene_pages(chromium, built_site):
             pages[name].goto((built_site / name).as_uri(), wait_until="load")
         return front(pages[name])
 
-    yield _get
-    for page in pages.values():
-        page.close()
+    return _get
 
 
 @pytest.mark.parametrize("scene", SCENES, ids=[s.key for s in SCENES])

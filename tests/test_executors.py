@@ -1,5 +1,6 @@
-"""Tabulation through an Executor: serial, local processes, a Dask cluster — the same bytes from each; and
-one call run beside the build in a process of its own (how a first build compiles the bubble's kernels)."""
+"""Tabulation through an Executor: serial, local processes, a Dask cluster — the same bytes from each; the
+scenes of models with compiled code tabulated ahead in a forked process beside the build; and one call run
+beside the build in a process of its own (how a first build compiles the bubble's kernels)."""
 from __future__ import annotations
 
 import math
@@ -14,7 +15,7 @@ import numpy as np
 import pytest
 
 from sitegen.build import BuildConfig, build
-from sitegen.compute.executors import Background, BackgroundFailed
+from sitegen.compute.executors import Background, BackgroundFailed, Beside
 from sitegen.compute.tabulate import plan_scene
 from sitegen.errors import BuildFailed
 from sitegen.physics import Model, Output, Param
@@ -133,6 +134,107 @@ def test_worker_failure_comes_back_as_an_author_error(tmp_path, register):
     assert [str(e) for e in failure.value.errors] == [
         "content/scenes.md:5: scene 'explodes': model 'explodes' failed: the solve failed at x = 0.5"
     ]
+
+
+class _ExplodesCompiled(_Explodes):
+    """The failing model, as if it ran compiled code (so that its scenes are tabulated ahead, beside the build)."""
+
+    name = "explodes_compiled"
+
+    def prepare_kernels(self, cache, part=None):
+        return 0.0, False
+
+
+BUBBLE_PAGE = PAGE + """
+```scene
+model: bubble
+id: collapse
+fix R0: 1000
+slider p_inf: 1, 2 default 1
+slider gas_content: 0.01, 0.1 default 0.1
+effects: inertia, vapour, step, gas
+fix kappa: 1.4
+readouts: t_c R_mach t_mach collapse_R_min collapse_flag
+numerics: method auto, rtol 1e-6, tolerance 2e-5
+```
+"""
+
+
+def test_scenes_tabulated_ahead_beside_the_build_give_the_same_bytes(tmp_path, monkeypatch):
+    """The bubble's scene (compiled code) is tabulated in a forked process beside the build, which gives the
+    same tree, byte for byte, as a build that tabulates it here; the forked process is gone when the build ends."""
+    import multiprocessing
+
+    from conftest import share_compiled
+
+    share_compiled(tmp_path)  # the project's compiled code: the kernels load, and then the scene goes ahead
+    lines: list[str] = []
+    build(_book(tmp_path, "ahead", page=BUBBLE_PAGE), progress=lines.append)
+    assert "ahead     bubble: 1 scene tabulating in a process beside the build; pages with them are built last" in lines
+    assert multiprocessing.active_children() == []
+    monkeypatch.setattr(Beside, "start", classmethod(lambda cls: None))  # as where a fork is unsafe
+    here: list[str] = []
+    build(_book(tmp_path, "here", page=BUBBLE_PAGE), progress=here.append)
+    assert not any(line.startswith("ahead     bubble") for line in here)
+    assert _tree(tmp_path / "ahead") == _tree(tmp_path / "here")
+
+
+def test_a_model_failing_beside_the_build_is_reported_from_here(tmp_path, register):
+    """A scene that fails in the process beside the build is computed again here, so that the author reads the
+    same `file:line: scene '...': ...` as from a build without it."""
+    import multiprocessing
+
+    register({"explodes_compiled": _ExplodesCompiled}, {"explodes_compiled": type(builtin_registry().figures["impulse"])(), "bare": _Bare()})
+    page = ('+++\ntitle = "Boom"\n+++\n\n```scene\nmodel: explodes_compiled\nslider x: 0..1 step 0.25 default 0\n'
+            'readouts: y\nfigure: bare\n```\n')
+    lines: list[str] = []
+    with pytest.raises(BuildFailed) as failure:
+        build(_book(tmp_path, "out", page=page), progress=lines.append)
+    assert any(line.startswith("ahead     explodes_compiled: 1 scene") for line in lines)
+    assert [str(e) for e in failure.value.errors] == [
+        "content/scenes.md:5: scene 'explodes_compiled': model 'explodes_compiled' failed: the solve failed at x = 0.5"
+    ]
+    assert multiprocessing.active_children() == []
+
+
+def test_no_fork_while_another_thread_runs():
+    """A fork copies the locks another thread may hold, so none is made then: the scenes are tabulated here."""
+    import threading
+
+    stop = threading.Event()
+    other = threading.Thread(target=stop.wait)
+    other.start()
+    try:
+        assert Beside.start() is None
+    finally:
+        stop.set()
+        other.join()
+    beside = Beside.start()
+    assert beside is not None
+    try:
+        assert beside.submit(math.hypot, 3.0, 4.0).result() == 5.0
+    finally:
+        beside.stop()
+
+
+def test_stopping_the_process_beside_ends_its_running_call():
+    """stop() ends the call running and drops the calls not yet made, at once, and leaves no thread behind
+    (the next build may fork again)."""
+    import threading
+
+    beside = Beside.start()
+    running = beside.submit(time.sleep, 3600)
+    waiting = [beside.submit(math.hypot, 3.0, 4.0) for _ in range(3)]
+    while not running.running():
+        time.sleep(0.01)
+    start = time.perf_counter()
+    beside.stop()
+    assert time.perf_counter() - start < 60
+    assert running.done() and all(future.done() for future in waiting)
+    assert threading.active_count() == 1
+    again = Beside.start()
+    assert again is not None
+    again.stop()
 
 
 class _Bare:

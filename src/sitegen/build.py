@@ -16,13 +16,14 @@ from .phases.read import convert_math, figure_name, read_pages, resolve_scenes
 from .phases.read import needed_outputs as _needed_outputs
 from .phases.record import Book
 from .phases.run import BuildConfig, BuildReport, BuildRun
-from .phases.scenes import check_scenes, compile_kernels, render_figures, tabulate_scenes
+from .phases.scenes import check_scenes, compile_kernels, render_figures, tabulate_ahead, tabulate_scenes
 from .registry import Registry, builtin_registry, load_registry
 from .site.writer import staged_tree
 
 __all__ = ["BuildConfig", "BuildReport", "build", "needed_outputs", "resolve_book", "tabulate_book"]
 
-BOOK_PHASES = (("read", read_pages), ("resolve", resolve_scenes), ("math", convert_math), ("compile", compile_kernels))
+BOOK_PHASES = (("read", read_pages), ("resolve", resolve_scenes), ("math", convert_math), ("compile", compile_kernels),
+               ("ahead", tabulate_ahead))
 PAGE_PHASES = (("tabulate", tabulate_scenes), ("check", check_scenes), ("render", render_figures),
                ("assemble", assemble_scenes), ("write", write_page), ("collect", collect_garbage))
 
@@ -41,7 +42,7 @@ def build(config: BuildConfig, progress=print, registry: Registry | None = None)
             run.log.raise_if_any()
             run.report.pages, run.report.scenes = len(book.pages), len(book.scenes)
             with staged_tree(config.out) as run.tree:
-                for page in book.writing_order(late=run.compiling):
+                for page in book.writing_order(late=run.late_models()):
                     for name, phase in PAGE_PHASES:
                         book = run.phase(name, phase, book.at(page))
                 book = run.phase("write", write_assets, book.at(None))

@@ -5,11 +5,13 @@ results in plan order, so the output is the same byte for byte whichever runs it
 """
 from __future__ import annotations
 
+import multiprocessing
 import os
 import pickle
 import select
 import subprocess
 import sys
+import threading
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from contextlib import contextmanager
 from typing import Iterable, Iterator
@@ -59,6 +61,41 @@ def results_in_order(executor: Executor, function, units: Iterable) -> Iterator:
         return (function(unit) for unit in units)
     futures = [executor.submit(function, unit) for unit in units]
     return (future.result() for future in futures)
+
+
+class Beside:
+    """A forked process that makes calls beside this one, in the order they are handed to it.
+
+    Forked, it starts at once with everything this process has loaded (a model's compiled code included).
+    `Beside.start()` gives None where a fork is unsafe: while another thread runs here (a fork copies the
+    locks it may hold) or where the system cannot fork."""
+
+    def __init__(self, pool: ProcessPoolExecutor):
+        self._pool = pool
+
+    @classmethod
+    def start(cls) -> "Beside | None":
+        """A new process beside this one, or None where forking is unsafe."""
+        if threading.active_count() > 1 or "fork" not in multiprocessing.get_all_start_methods():
+            return None
+        return cls(ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("fork"),
+                                       initializer=_pin_blas_threads))
+
+    def submit(self, fn, /, *args) -> Future:
+        """Hand over `fn(*args)`; its future answers once the calls handed over before it are made."""
+        return self._pool.submit(fn, *args)
+
+    def stop(self) -> None:
+        """End the process: the calls not yet made are dropped, the one running (if any) is ended; returns
+        once the pool's own threads have ended too."""
+        # Details of the pool's: its processes, and the thread that manages them (shutdown forgets both).
+        processes = list((getattr(self._pool, "_processes", None) or {}).values())
+        manager = getattr(self._pool, "_executor_manager_thread", None)
+        self._pool.shutdown(wait=False, cancel_futures=True)
+        for process in processes:
+            process.terminate()
+        if manager is not None:
+            manager.join()
 
 
 class Background:

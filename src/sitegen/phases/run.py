@@ -9,7 +9,7 @@ from pathlib import Path
 from ..compute.accuracy import SceneAccuracy
 from ..config import BookConfig, read_book
 from ..compute.cache import TableCache, compute_now
-from ..compute.executors import Background, BackgroundFailed
+from ..compute.executors import Background, BackgroundFailed, Beside
 from ..errors import AuthorError, ErrorLog, SceneCrashed
 from ..registry import Registry, raising_line
 
@@ -38,6 +38,15 @@ class BuildConfig:
         book = read_book(root)
         options.setdefault("cache", book.root / ".cache")
         return cls(book.root, book.content, (out or book.output).resolve(), book=book, **options)
+
+
+@dataclass(frozen=True)
+class Ahead:
+    """A scene tabulating beside the build: its model, its units of work and their futures, in plan order."""
+
+    model: str
+    units: tuple
+    futures: tuple
 
 
 @dataclass
@@ -71,6 +80,9 @@ class BuildRun:
         self.math_characters: set[str] = set()  # what the pages' formulas show: the math font's subset
         self.searchable: dict[str, list] = {}  # each written page's sections: the search index
         self.compiling: dict[str, list[Background]] = {}  # models whose kernels compile beside the build, by name
+        self.kernels_loaded: set[str] = set()  # models whose compiled code this process has loaded
+        self.beside: Beside | None = None  # the process that tabulates scenes ahead, beside the build
+        self.ahead: dict[str, Ahead] = {}  # scenes tabulating in it, by name
         self._phase = ""  # the phase running now
 
     def phase(self, name: str, function, book):
@@ -111,12 +123,20 @@ class BuildRun:
         self.say(f"compile   {model.name}: {beside}, waited for {waited:.2f} s; "
                  f"then {'compiled' if fresh else 'loaded'} in {seconds:.2f} s")
 
+    def late_models(self) -> set[str]:
+        """The models whose work runs beside the build: the pages with their scenes are built last."""
+        return set(self.compiling) | {ahead.model for ahead in self.ahead.values()}
+
     def stop_background(self) -> None:
-        """End work still running beside the build (a build that stopped early)."""
+        """End work still running beside the build (all done, or a build that stopped early)."""
         for parts in self.compiling.values():
             for part in parts:
                 part.stop()
         self.compiling.clear()
+        if self.beside is not None:
+            self.beside.stop()
+            self.beside = None
+        self.ahead.clear()
 
     def say(self, line: str) -> None:
         """One line of the build's log (nothing when the run is quiet)."""

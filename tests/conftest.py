@@ -49,6 +49,7 @@ SLOW_TESTS = (
     "tests/test_fuzz.py::test_build_of_fuzzed_books_succeeds_or_reports_author_errors",
     "tests/test_interrupted_build.py::test_kill",
     "tests/test_build.py::test_computing_from_nothing_is_deterministic_across_hash_seeds",
+    "tests/test_build.py::test_the_work_ahead_gives_the_bytes_of_work_done_here",
     "tests/test_review.py::test_review_against_a_revision_builds_it_in_a_temporary_worktree",
     "tests/test_build.py::test_builds_are_byte_identical_across_folders_and_hash_seeds",
     "tests/test_collect.py::test_a_watcher_keeps_nothing_of_its_earlier_builds",  # five rebuilds

@@ -304,3 +304,34 @@ def test_a_cold_timing_forgets_every_model_memo():
     assert solve.solve.cache_info().currsize > 0
     clear_model_caches()
     assert solve.solve.cache_info().currsize == 0
+
+
+def test_the_reports_diagrams_from_bench_alone_are_drawn_once_and_not_again_when_cached(tmp_path):
+    """`bench_figures` (what the build draws ahead, beside itself) gives every diagram of the report's parts that
+    needs only bench.json, by the key the page remembers it by; with those in the cache it draws none."""
+    from sitegen.compute.cache import TableCache
+    from sitegen.site.report import ReportContext, bench_figures, report_part
+    from sitegen.site.report.html import FIGURES_KIND
+
+    bench = load_results(ROOT / "tests" / "book" / "content" / BENCH_NAME)
+    registry = builtin_registry()
+    parts = ["machine", "chain", "bubble-B", "digits"]  # one diagram (bubble-B has no results in this quick run)
+    drawn = bench_figures(bench, parts, registry.models, registry.reports)
+    assert len(drawn) == 1
+    assert all(svg.count(b"<svg") == 2 for svg in drawn.values())  # each wide and narrow
+
+    asked = {}
+
+    def remember(kind, key, compute):  # the page's own rendering, with this build's (empty) records
+        asked[key] = compute()
+        return asked[key]
+
+    context = ReportContext(bench, (), (), (), {}, remember, registry.models, registry.reports)
+    for part in parts:
+        report_part(part, context)
+    assert {key: asked[key] for key in drawn} == drawn
+
+    cache = TableCache(tmp_path / "cache")
+    for key, svg in drawn.items():
+        cache.remember(FIGURES_KIND, key, lambda svg=svg: svg)
+    assert bench_figures(bench, parts, registry.models, registry.reports, cache) == {}

@@ -46,6 +46,25 @@ def test_computing_from_nothing_is_deterministic_across_hash_seeds(tiny_book, ti
     done = _cli_build(tmp_path / "cold", "3", tiny_book.root, "--no-cache")
     assert done.returncode == 0, done.stderr
     assert _tree(tmp_path / "cold") == _tree(tiny_site)
+    # Its bubble scene was tabulated, and the report's diagrams drawn, in a process beside the build.
+    assert "ahead     bubble: 1 scene tabulating in a process beside the build" in done.stdout
+    assert "ahead     the accuracy report's diagrams: drawing in the same process" in done.stdout
+
+
+def test_the_work_ahead_gives_the_bytes_of_work_done_here(tmp_path, tiny_site, monkeypatch):
+    """The tiny book computed from nothing with nothing forked (as where forking is unsafe: its bubble scene
+    tabulated and the report's diagrams drawn in this process, as their pages need them) gives the bytes of
+    the session's build."""
+    from conftest import copy_book
+    from sitegen.build import build
+    from sitegen.compute.executors import Beside
+
+    monkeypatch.setattr(Beside, "start", classmethod(lambda cls: None))
+    config = copy_book(tmp_path / "here")
+    lines: list[str] = []
+    build(config, progress=lines.append)
+    assert not [line for line in lines if line.startswith("ahead     ") and ":" in line]
+    assert _tree(config.out) == _tree(tiny_site)
 
 
 def test_output_holds_no_absolute_paths_or_dates(built_site):

@@ -16,14 +16,15 @@ from .phases.read import convert_math, figure_name, read_pages, resolve_scenes
 from .phases.read import needed_outputs as _needed_outputs
 from .phases.record import Book
 from .phases.run import BuildConfig, BuildReport, BuildRun
-from .phases.scenes import check_scenes, compile_kernels, render_figures, tabulate_ahead, tabulate_scenes
+from .phases.ahead import work_ahead
+from .phases.scenes import check_scenes, compile_kernels, render_figures, tabulate_scenes
 from .registry import Registry, builtin_registry, load_registry
 from .site.writer import staged_tree
 
 __all__ = ["BuildConfig", "BuildReport", "build", "needed_outputs", "resolve_book", "tabulate_book"]
 
 BOOK_PHASES = (("read", read_pages), ("resolve", resolve_scenes), ("math", convert_math), ("compile", compile_kernels),
-               ("ahead", tabulate_ahead))
+               ("ahead", work_ahead))
 PAGE_PHASES = (("tabulate", tabulate_scenes), ("check", check_scenes), ("render", render_figures),
                ("assemble", assemble_scenes), ("write", write_page), ("collect", collect_garbage))
 

@@ -88,9 +88,13 @@ class TableCache:
         payload = _encode(tables)
         self._write(self._entry(key), hashlib.sha256(payload).hexdigest().encode() + b"\n" + payload)
 
+    def remembers(self, kind: str, key: str) -> bool:
+        """Whether `remember(kind, key, ...)` has an entry to read (not whether it is sound)."""
+        return self._remembered(kind, key).is_file()
+
     def remember(self, kind: str, key: str, compute) -> bytes:
         """Bytes derived from inputs summed up by `key` (e.g. a figure's SVG): cached, or computed once."""
-        path = self.root / kind / key[:2] / f"{key}.bin"
+        path = self._remembered(kind, key)
         try:
             checksum, _, payload = path.read_bytes().partition(b"\n")
             if checksum.decode() == hashlib.sha256(payload).hexdigest():
@@ -101,6 +105,9 @@ class TableCache:
         payload = compute()
         self._write(path, hashlib.sha256(payload).hexdigest().encode() + b"\n" + payload)
         return payload
+
+    def _remembered(self, kind: str, key: str) -> Path:
+        return self.root / kind / key[:2] / f"{key}.bin"
 
     def explain(self, scene_name: str, key: CacheKey, cached: bool) -> str:
         """Why a scene was computed (or that it was cached), remembering its key for next time."""

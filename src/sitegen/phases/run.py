@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import time
+from concurrent.futures import Future
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -83,6 +84,7 @@ class BuildRun:
         self.kernels_loaded: set[str] = set()  # models whose compiled code this process has loaded
         self.beside: Beside | None = None  # the process that tabulates scenes ahead, beside the build
         self.ahead: dict[str, Ahead] = {}  # scenes tabulating in it, by name
+        self.drawn_ahead: Future | None = None  # the report's diagrams drawn in it (report.bench_figures)
         self._phase = ""  # the phase running now
 
     def phase(self, name: str, function, book):
@@ -127,6 +129,15 @@ class BuildRun:
         """The models whose work runs beside the build: the pages with their scenes are built last."""
         return set(self.compiling) | {ahead.model for ahead in self.ahead.values()}
 
+    def figures_drawn_ahead(self) -> dict[str, bytes]:
+        """The report's diagrams drawn beside the build, by key (once; none if they were not, or failed there:
+        then each is drawn here, where an error says where it happened)."""
+        drawn, self.drawn_ahead = self.drawn_ahead, None
+        try:
+            return drawn.result() if drawn is not None else {}
+        except Exception:
+            return {}
+
     def stop_background(self) -> None:
         """End work still running beside the build (all done, or a build that stopped early)."""
         for parts in self.compiling.values():
@@ -137,6 +148,7 @@ class BuildRun:
             self.beside.stop()
             self.beside = None
         self.ahead.clear()
+        self.drawn_ahead = None
 
     def say(self, line: str) -> None:
         """One line of the build's log (nothing when the run is quiet)."""

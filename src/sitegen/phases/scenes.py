@@ -8,17 +8,16 @@ from dataclasses import replace
 from functools import partial
 
 from ..compute.check import check_scenes as check_accuracy
-from ..compute.executors import Background, Beside, executor_for, results_in_order
+from ..compute.executors import Background, executor_for, results_in_order
 from ..compute.sources import digest, library_version, source_digest
 from ..compute.tabulate import assemble_tables, evaluate_unit, plan_scene
 from ..render.figures.base import scene_figures
 from ..render.layers import layer_points
 from ..render.style import laid_out
 from ..render.svg import figure_svg
-from ..errors import AuthorError
 from ..site.assemble import RenderedScene, dom_id
 from .record import Book, SceneRecord
-from .run import PROGRESS_EVERY, Ahead, BuildRun
+from .run import PROGRESS_EVERY, BuildRun
 
 # The code that turns a view's drawing into the page's SVG (followed through its imports, with the view's module).
 DRAWING = frozenset(f.__module__ for f in (figure_svg, laid_out, layer_points, scene_figures))
@@ -62,35 +61,6 @@ def _other_pages(book: Book, model: str) -> bool:
     return len(book.pages_with({model})) < len(book.pages)
 
 
-def tabulate_ahead(book: Book, run: BuildRun) -> Book:
-    """Start tabulating the scenes of models with compiled code in a process beside the build; the pages
-    with those scenes are built last, and meanwhile this process builds the others.
-
-    Compiled solves are the heaviest tabulating there is, and they keep one core busy while this process
-    draws, assembles and writes the other pages on the other core. The tables are the same wherever they
-    are computed. Not with --jobs or a scheduler (they spread the tabulating already), nor where the build
-    cannot fork (see `Beside`)."""
-    if run.failed or run.config.jobs > 1 or run.config.scheduler:
-        return book
-    pending = [r for r in book.scenes if r.scene.model.name in run.kernels_loaded
-               and not (run.cache and run.cache.has(r.key))]
-    run.beside = Beside.start() if pending else None
-    if run.beside is None:
-        return book
-    for record in pending:
-        try:
-            units = tuple(plan_scene(record.scene, list(record.outputs), record.scene.model.chunk_stops))
-        except AuthorError:  # reported when the scene is tabulated
-            continue
-        futures = tuple(run.beside.submit(_timed, evaluate_unit, unit) for unit in units)
-        run.ahead[record.name] = Ahead(record.scene.model.name, units, futures)
-    for model in sorted({a.model for a in run.ahead.values()}):
-        count = sum(a.model == model for a in run.ahead.values())
-        run.say(f"ahead     {model}: {count} scene{'s' * (count != 1)} tabulating in a process beside the build; "
-                f"pages with them are built last")
-    return book
-
-
 def tabulate_scenes(book: Book, run: BuildRun) -> Book:
     """Each scene's tables: from the cache when its key matches, else computed by the executor."""
     if run.config.jobs > 1 or run.config.scheduler:  # worker processes start with the kernels this one has loaded
@@ -112,13 +82,13 @@ def _tabulated(record: SceneRecord, run: BuildRun, executor) -> SceneRecord:
     ahead = run.ahead.pop(record.name, None)
     if ahead is None:
         units = plan_scene(record.scene, list(record.outputs), record.scene.model.chunk_stops)
-        results, seconds = _evaluated(record, units, results_in_order(executor, partial(_timed, evaluate_unit), units), run)
+        results, seconds = _evaluated(record, units, results_in_order(executor, partial(timed, evaluate_unit), units), run)
     else:
         units = list(ahead.units)
         try:
             results, seconds = _evaluated(record, units, (future.result() for future in ahead.futures), run)
         except Exception:  # computed again here, where an error names the model's file and line
-            results, seconds = _evaluated(record, units, results_in_order(executor, partial(_timed, evaluate_unit), units), run)
+            results, seconds = _evaluated(record, units, results_in_order(executor, partial(timed, evaluate_unit), units), run)
     tables = assemble_tables(record.scene, units, results, list(record.outputs))
     run.report.evaluations += len(units)
     if run.cache:
@@ -138,7 +108,8 @@ def _evaluated(record: SceneRecord, units, timed_results, run: BuildRun) -> tupl
     return results, seconds
 
 
-def _timed(function, *args):
+def timed(function, *args):
+    """`function(*args)` and the seconds it took."""
     start = time.perf_counter()
     return function(*args), time.perf_counter() - start
 

@@ -18,7 +18,7 @@ from typing import Mapping
 from ...compute.accuracy import SceneAccuracy
 from ...compute.cache import compute_now
 from ...render.work_precision import Panel, Point, Series, resolution_figure
-from .html import MISSING, duration, factor, figure, figure_html, kib, sci, table
+from .html import FIGURES_KIND, MISSING, duration, factor, figure, figure_html, kib, sci, table
 
 PER_DIGIT_METHODS = ("velocity Verlet", "RK45", "DOP853", "Radau", "BDF", "LSODA", "compiled-DOP853", "compiled-Radau")
 
@@ -55,6 +55,32 @@ def report_part(part: str, context: ReportContext) -> str:
         return BOOK_PARTS[part](context)
     name = next(name for name, model in context.models.items() if part in model.reports)
     return context.reports[name].part(part, context)
+
+
+def bench_figures(bench: dict, parts: list[str], models: Mapping, reports: Mapping, cache=None) -> dict[str, bytes]:
+    """Every diagram that the report `parts` draw from bench.json alone, by the key `figure` remembers it by
+    (but those `cache`, a TableCache, holds already).
+
+    Drawn before (or beside) the build's own work: a part is rendered as if the build had no scenes, and only
+    its diagrams are kept. A diagram drawn from the build's data has another key then (or its part fails), and
+    is drawn with the part, later."""
+    drawn: dict[str, bytes] = {}
+
+    def keep(kind: str, key: str, compute) -> bytes:
+        if kind != FIGURES_KIND:
+            return compute()
+        if cache is not None and cache.remembers(kind, key):
+            return b""  # drawn before: what the part writes with it is thrown away
+        drawn[key] = compute()
+        return drawn[key]
+
+    context = ReportContext(bench, (), (), (), {}, keep, models, reports)
+    for part in parts:
+        try:
+            report_part(part, context)
+        except Exception:  # a part that needs the build's own data: drawn with it, later
+            continue
+    return drawn
 
 
 def resolution_part(context: ReportContext) -> str:

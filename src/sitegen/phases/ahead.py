@@ -1,0 +1,48 @@
+"""The work that starts before the pages: in one process forked beside the build, the scenes of models
+with compiled code are tabulated and the accuracy report's diagrams are drawn, while this process builds
+the pages that need neither; the pages with those scenes, then those with report parts, come last.
+
+Compiled solves and the report's diagrams are the heaviest work of a cold build that does not depend on
+the pages built before it, and they keep the machine's other core busy. Their results are the same bytes
+wherever they are made. Nothing is forked with --jobs or a scheduler (they spread the tabulating already),
+nor where forking is unsafe (see `Beside`): then everything is done here, as it is needed.
+"""
+from __future__ import annotations
+
+from ..compute.executors import Beside
+from ..compute.tabulate import evaluate_unit, plan_scene
+from ..content.bench_results import BENCH_NAME, load_results
+from ..errors import AuthorError
+from ..site.report import bench_figures
+from .record import Book
+from .run import Ahead, BuildRun
+from .scenes import timed
+
+
+def work_ahead(book: Book, run: BuildRun) -> Book:
+    """Start the compiled scenes' tabulating and the report's diagrams in a process beside the build."""
+    if run.failed or run.config.jobs > 1 or run.config.scheduler:
+        return book
+    scenes = [r for r in book.scenes if r.scene.model.name in run.kernels_loaded and not (run.cache and run.cache.has(r.key))]
+    parts = [block.part for page in book.pages for block in page.found.reports]
+    bench = load_results(run.config.content / BENCH_NAME) if parts else None
+    if not scenes and not bench:
+        return book
+    run.beside = Beside.start()
+    if run.beside is None:
+        return book
+    for record in scenes:
+        try:
+            units = tuple(plan_scene(record.scene, list(record.outputs), record.scene.model.chunk_stops))
+        except AuthorError:  # reported when the scene is tabulated
+            continue
+        futures = tuple(run.beside.submit(timed, evaluate_unit, unit) for unit in units)
+        run.ahead[record.name] = Ahead(record.scene.model.name, units, futures)
+    for model in sorted({a.model for a in run.ahead.values()}):
+        count = sum(a.model == model for a in run.ahead.values())
+        run.say(f"ahead     {model}: {count} scene{'s' * (count != 1)} tabulating in a process beside the build; "
+                f"pages with them are built last")
+    if bench:  # after the scenes: the report's page is written last
+        run.drawn_ahead = run.beside.submit(bench_figures, bench, parts, run.models, run.registry.reports, run.cache)
+        run.say("ahead     the accuracy report's diagrams: drawing in the same process")
+    return book

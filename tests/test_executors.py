@@ -160,6 +160,14 @@ numerics: method auto, rtol 1e-6, tolerance 2e-5
 """
 
 
+def _no_other_thread() -> None:
+    """The precondition of a fork (and so of the work ahead): this process runs no other thread (one left
+    running by an earlier test of this process would be a leak to fix there)."""
+    import threading
+
+    assert threading.active_count() == 1, f"threads left running: {[t.name for t in threading.enumerate()]}"
+
+
 def test_scenes_tabulated_ahead_beside_the_build_give_the_same_bytes(tmp_path, monkeypatch):
     """The bubble's scene (compiled code) is tabulated in a forked process beside the build, which gives the
     same tree, byte for byte, as a build that tabulates it here; the forked process is gone when the build ends."""
@@ -168,6 +176,7 @@ def test_scenes_tabulated_ahead_beside_the_build_give_the_same_bytes(tmp_path, m
     from conftest import share_compiled
 
     share_compiled(tmp_path)  # the project's compiled code: the kernels load, and then the scene goes ahead
+    _no_other_thread()
     lines: list[str] = []
     build(_book(tmp_path, "ahead", page=BUBBLE_PAGE), progress=lines.append)
     assert "ahead     bubble: 1 scene tabulating in a process beside the build; pages with them are built last" in lines
@@ -184,6 +193,7 @@ def test_a_model_failing_beside_the_build_is_reported_from_here(tmp_path, regist
     same `file:line: scene '...': ...` as from a build without it."""
     import multiprocessing
 
+    _no_other_thread()
     register({"explodes_compiled": _ExplodesCompiled}, {"explodes_compiled": type(builtin_registry().figures["impulse"])(), "bare": _Bare()})
     page = ('+++\ntitle = "Boom"\n+++\n\n```scene\nmodel: explodes_compiled\nslider x: 0..1 step 0.25 default 0\n'
             'readouts: y\nfigure: bare\n```\n')
@@ -197,10 +207,48 @@ def test_a_model_failing_beside_the_build_is_reported_from_here(tmp_path, regist
     assert multiprocessing.active_children() == []
 
 
+def test_a_scene_tabulating_beside_the_build_says_how_far_it_got(tmp_path, monkeypatch):
+    """Between phases, a scene tabulating beside the build that has started and not finished gets a line of
+    its stops done, its total and the rate (here at every chance: as if each phase took longer than the pace)."""
+    from concurrent.futures import Future
+
+    from sitegen.phases import run as run_module
+    from sitegen.phases.run import Ahead, BuildRun
+
+    class Unit:
+        def __init__(self, stops):
+            self.count = stops
+
+        def stops(self):
+            return self.count
+
+    monkeypatch.setattr(run_module, "PROGRESS_EVERY", 0.0)
+    lines: list[str] = []
+    run = BuildRun(_book(tmp_path, "out"), lines.append, builtin_registry())
+    futures = tuple(Future() for _ in range(3))
+    run.ahead["scenes#heavy"] = Ahead("heavy", (Unit(1000), Unit(1000), Unit(500)), futures)
+    run.say_ahead_progress()
+    assert lines == []  # not started in the process beside
+    futures[0].set_running_or_notify_cancel()
+    run.say_ahead_progress()  # seen started: its first line comes at the next chance
+    futures[0].set_result(None)
+    futures[1].set_running_or_notify_cancel()
+    time.sleep(0.01)
+    run.say_ahead_progress()
+    assert len(lines) == 1 and lines[0].startswith("  scenes#heavy") and " 1,000 of 2,500 stops, " in lines[0]
+    assert lines[0].endswith(" stops/s, beside the build")
+    futures[2].set_running_or_notify_cancel()
+    for future in futures[1:]:
+        future.set_result(None)
+    run.say_ahead_progress()
+    assert len(lines) == 1  # finished: its own line comes when its page is built
+
+
 def test_no_fork_while_another_thread_runs():
     """A fork copies the locks another thread may hold, so none is made then: the scenes are tabulated here."""
     import threading
 
+    _no_other_thread()
     stop = threading.Event()
     other = threading.Thread(target=stop.wait)
     other.start()
@@ -222,6 +270,7 @@ def test_stopping_the_process_beside_ends_its_running_call():
     (the next build may fork again)."""
     import threading
 
+    _no_other_thread()
     beside = Beside.start()
     running = beside.submit(time.sleep, 3600)
     waiting = [beside.submit(math.hypot, 3.0, 4.0) for _ in range(3)]

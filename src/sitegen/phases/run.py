@@ -49,6 +49,12 @@ class Ahead:
     units: tuple
     futures: tuple
 
+    def stops_done(self) -> tuple[int, int, bool]:
+        """Stops done, stops in all, and whether any work on it has started."""
+        done = sum(u.stops() for u, f in zip(self.units, self.futures) if f.done())
+        started = any(f.running() or f.done() for f in self.futures)
+        return done, sum(u.stops() for u in self.units), started
+
 
 @dataclass
 class BuildReport:
@@ -85,10 +91,12 @@ class BuildRun:
         self.beside: Beside | None = None  # the process that tabulates scenes ahead, beside the build
         self.ahead: dict[str, Ahead] = {}  # scenes tabulating in it, by name
         self.drawn_ahead: Future | None = None  # the report's diagrams drawn in it (report.bench_figures)
+        self._ahead_seen: dict[str, tuple[float, float]] = {}  # scene -> when first seen started, when last said
         self._phase = ""  # the phase running now
 
     def phase(self, name: str, function, book):
         """Run one phase over the book, adding its seconds to the phase's total."""
+        self.say_ahead_progress()
         start, self._phase = time.perf_counter(), name
         try:
             return function(book, self)
@@ -128,6 +136,19 @@ class BuildRun:
     def late_models(self) -> set[str]:
         """The models whose work runs beside the build: the pages with their scenes are built last."""
         return set(self.compiling) | {ahead.model for ahead in self.ahead.values()}
+
+    def say_ahead_progress(self) -> None:
+        """For each scene tabulating beside the build, once it has run PROGRESS_EVERY seconds since it started
+        or since its last line: stops done, total and rate (a finished scene's own line comes with its page)."""
+        now = time.perf_counter()
+        for name, ahead in self.ahead.items():
+            done, total, started = ahead.stops_done()
+            if not started or done >= total:
+                continue
+            first, last = self._ahead_seen.setdefault(name, (now, now))
+            if now - last >= PROGRESS_EVERY and now > first:
+                self._ahead_seen[name] = (first, now)
+                self.say(f"  {name:<40} {done:>12,} of {total:,} stops, {done / (now - first):,.0f} stops/s, beside the build")
 
     def figures_drawn_ahead(self) -> dict[str, bytes]:
         """The report's diagrams drawn beside the build, by key (once; none if they were not, or failed there:

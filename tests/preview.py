@@ -14,6 +14,12 @@ from pathlib import Path
 SERVE_WATCH = [sys.executable, "-m", "sitegen.cli", "serve", "--watch", "--port", "0"]
 
 
+def hears_ctrl_c() -> None:
+    """In a server's process before it starts: Ctrl-C (SIGINT) stops it, even when the tests themselves were
+    started in the background by a shell without job control, which makes its children ignore SIGINT."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 class WatchServer:
     """`sitegen serve --watch` run in `book` (by `command`, default this checkout's): its address once
     it serves, and every line it prints."""
@@ -21,7 +27,7 @@ class WatchServer:
     def __init__(self, book: Path, command: list[str] | None = None, env: dict | None = None):
         self.book = book
         self.process = subprocess.Popen(command or SERVE_WATCH, cwd=book, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                        text=True, env={**(env or os.environ), "PYTHONUNBUFFERED": "1"})
+                                        text=True, env={**(env or os.environ), "PYTHONUNBUFFERED": "1"}, preexec_fn=hears_ctrl_c)
         self.lines: queue.Queue[str] = queue.Queue()
         self.seen: list[str] = []
         threading.Thread(target=self._read, daemon=True).start()

@@ -14,6 +14,8 @@ from pathlib import Path
 
 import pytest
 
+from preview import hears_ctrl_c
+
 SECRET = b"secret outside the site"
 OUTSIDE_PATHS = [
     "/../secret.txt",
@@ -57,7 +59,7 @@ def server(site):
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
     process = subprocess.Popen(
         [sys.executable, "-m", "sitegen.cli", "serve", "--dir", str(site), "--port", "0"],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=site.parent,
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=site.parent, preexec_fn=hears_ctrl_c,
     )
     line = process.stdout.readline()
     assert line.startswith("serving "), (line, process.stderr.read() if process.poll() is not None else "")

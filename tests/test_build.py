@@ -48,7 +48,7 @@ def test_computing_from_nothing_is_deterministic_across_hash_seeds(tiny_book, ti
     assert _tree(tmp_path / "cold") == _tree(tiny_site)
     # Its bubble scene was tabulated, and the report's diagrams drawn, in a process beside the build.
     assert "ahead     bubble: 1 scene tabulating in a process beside the build" in done.stdout
-    assert "ahead     the accuracy report's diagrams: drawing in the same process" in done.stdout
+    assert "ahead     the accuracy report's diagrams that the cache lacks: drawing in the same process" in done.stdout
 
 
 def test_the_work_ahead_gives_the_bytes_of_work_done_here(tmp_path, tiny_site, monkeypatch):

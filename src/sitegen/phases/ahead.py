@@ -44,5 +44,5 @@ def work_ahead(book: Book, run: BuildRun) -> Book:
                 f"pages with them are built last")
     if bench:  # after the scenes: the report's page is written last
         run.drawn_ahead = run.beside.submit(bench_figures, bench, parts, run.models, run.registry.reports, run.cache)
-        run.say("ahead     the accuracy report's diagrams: drawing in the same process")
+        run.say("ahead     the accuracy report's diagrams that the cache lacks: drawing in the same process")
     return book

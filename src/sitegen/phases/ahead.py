@@ -10,13 +10,13 @@ nor where forking is unsafe (see `Beside`): then everything is done here, as it 
 from __future__ import annotations
 
 from ..compute.executors import Beside
-from ..compute.tabulate import evaluate_unit, plan_scene
+from ..compute.tabulate import evaluate_unit
 from ..content.bench_results import BENCH_NAME, load_results
 from ..errors import AuthorError
 from ..site.report import bench_figures
 from .record import Book
 from .run import Ahead, BuildRun
-from .scenes import timed
+from .scenes import planned, timed
 
 
 def work_ahead(book: Book, run: BuildRun) -> Book:
@@ -33,7 +33,7 @@ def work_ahead(book: Book, run: BuildRun) -> Book:
         return book
     for record in scenes:
         try:
-            units = tuple(plan_scene(record.scene, list(record.outputs), record.scene.model.chunk_stops))
+            units = tuple(planned(record))
         except AuthorError:  # reported when the scene is tabulated
             continue
         futures = tuple(run.beside.submit(timed, evaluate_unit, unit) for unit in units)

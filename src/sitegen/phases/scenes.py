@@ -80,20 +80,28 @@ def _tabulated(record: SceneRecord, run: BuildRun, executor) -> SceneRecord:
         return _noted(replace(record, tables=found), run, cached=True, seconds=0.0)
     run.await_kernels(record.scene.model)
     ahead = run.ahead.pop(record.name, None)
+    units = list(ahead.units) if ahead else planned(record)
+
+    def here():
+        return _evaluated(record, units, results_in_order(executor, partial(timed, evaluate_unit), units), run)
+
     if ahead is None:
-        units = plan_scene(record.scene, list(record.outputs), record.scene.model.chunk_stops)
-        results, seconds = _evaluated(record, units, results_in_order(executor, partial(timed, evaluate_unit), units), run)
+        results, seconds = here()
     else:
-        units = list(ahead.units)
         try:
             results, seconds = _evaluated(record, units, (future.result() for future in ahead.futures), run)
         except Exception:  # computed again here, where an error names the model's file and line
-            results, seconds = _evaluated(record, units, results_in_order(executor, partial(timed, evaluate_unit), units), run)
+            results, seconds = here()
     tables = assemble_tables(record.scene, units, results, list(record.outputs))
     run.report.evaluations += len(units)
     if run.cache:
         run.cache.store(record.key, tables)
     return _noted(replace(record, tables=tables), run, cached=False, seconds=seconds)
+
+
+def planned(record: SceneRecord) -> list:
+    """The scene's units of work (`plan_scene` for the outputs it needs, in blocks its model asks for)."""
+    return plan_scene(record.scene, list(record.outputs), record.scene.model.chunk_stops)
 
 
 def _evaluated(record: SceneRecord, units, timed_results, run: BuildRun) -> tuple[list, float]:

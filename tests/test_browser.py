@@ -84,13 +84,13 @@ def _control_params(transports=TRANSPORTS):
 # --- fixtures -----------------------------------------------------------------------------------
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def site_server(built_site):
     with SiteServer(built_site) as server:
         yield server
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def site_url(built_site, site_server):
     def url(name: str, transport: str) -> str:
         return (built_site / name).as_uri() if transport == "file" else site_server.url(name)

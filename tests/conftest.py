@@ -220,3 +220,12 @@ def pytest_collection_finish(session) -> None:
     from sitegen.phases.collect import YOUNG
 
     gc.set_threshold(YOUNG, *gc.get_threshold()[1:])
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_unconfigure(config) -> None:
+    """Leave the heap to the process's exit unsearched, as the `sitegen` command does (cli.run): at exit Python
+    looks through every object it holds for reference cycles, a second or so in a test process that has
+    imported the whole package and built books; the run waits for each of its processes to end."""
+    gc.disable()
+    gc.freeze()

@@ -86,5 +86,5 @@ def arm(point: str) -> None:
 
 
 if __name__ == "__main__":
-    arm(sys.argv[1])
-    sys.exit(cli.main(sys.argv[2:]))
+    arm(sys.argv.pop(1))
+    cli.run()  # the command's own end: main, then an exit that leaves the heap unsearched

@@ -1,7 +1,8 @@
 """`make bench`: a shelf, not a chapter. Builds generated shelves of 1, 4 and 16 copies of the chapter
 "Newton's laws" (content/newtons-laws.md: six scenes, no bubble), each copy's scenes with a slider
 range shortened by a different number of steps so that every scene must be computed, and prints per
-shelf: the cold build (empty cache), its peak memory, and a rebuild with nothing changed.
+shelf: the cold build (empty cache), its peak memory (and that of the process that builds pages beside it),
+and a rebuild with nothing changed.
 
 Each build runs in a fresh process (`sitegen build`), which reports its own peak resident memory.
 Usage: python bench/shelf.py [COPIES ...]   (default 1 4 16)
@@ -22,7 +23,8 @@ ROOT = Path(__file__).resolve().parents[1]
 CHAPTER = ROOT / "content" / "newtons-laws.md"
 _RANGE = re.compile(r"^slider (\w+): (\S+)\.\.(\S+) step (\S+) default (\S+)$")
 _PEAK = "import resource, sys; from sitegen.cli import main; code = main(sys.argv[1:]); " \
-        "print('peak_kib', resource.getrusage(resource.RUSAGE_SELF).ru_maxrss); sys.exit(code)"
+        "print('peak_kib', resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, " \
+        "resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss); sys.exit(code)"
 
 
 def shifted_chapter(text: str, shift: int) -> str:
@@ -70,28 +72,30 @@ def make_shelf(root: Path, copies: int) -> None:
     (root / "book.toml").write_text("")
 
 
-def timed_build(root: Path) -> tuple[float, float]:
-    """Seconds and peak resident MiB of `sitegen build --root ROOT` in a fresh process."""
+def timed_build(root: Path) -> tuple[float, float, float]:
+    """Seconds and peak resident MiB of `sitegen build --root ROOT` in a fresh process, and of the largest
+    process it started (the one that builds pages beside it), if any."""
     env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "PYTHONPATH": str(ROOT / "src")}
     start = time.perf_counter()
     done = subprocess.run([sys.executable, "-c", _PEAK, "build", "--root", str(root)], capture_output=True, text=True, env=env)
     seconds = time.perf_counter() - start
     if done.returncode:
         raise SystemExit(f"the shelf did not build:\n{done.stderr}")
-    peak = int(re.search(r"peak_kib (\d+)", done.stdout)[1])
-    return seconds, peak / 1024
+    peak, beside = re.search(r"peak_kib (\d+) (\d+)", done.stdout).groups()
+    return seconds, int(peak) / 1024, int(beside) / 1024
 
 
 def main(counts: list[int]) -> None:
     print("shelf: copies of the chapter 'Newton's laws' (6 scenes each), every scene computed; one fresh process per build")
-    print(f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} {'peak MiB':>9} {'no-op s':>8}")
+    print(f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} {'peak MiB':>9} {'beside MiB':>11} {'no-op s':>8}")
     for copies in counts:
         with tempfile.TemporaryDirectory() as folder:
             root = Path(folder)
             make_shelf(root, copies)
-            cold, peak = timed_build(root)
-            noop, _ = timed_build(root)
-            print(f"{copies:>8} {6 * copies:>7} {cold:>8.2f} {cold / copies:>10.2f} {peak:>9.0f} {noop:>8.2f}", flush=True)
+            cold, peak, beside = timed_build(root)
+            noop, _, _ = timed_build(root)
+            print(f"{copies:>8} {6 * copies:>7} {cold:>8.2f} {cold / copies:>10.2f} {peak:>9.0f} {beside:>11.0f} "
+                  f"{noop:>8.2f}", flush=True)
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -23,6 +24,7 @@ from sitegen.registry import builtin_registry
 from sitegen.models.collision.model import Collision
 
 ROOT = Path(__file__).resolve().parents[1]
+BOOK = Path(__file__).resolve().parent / "book" / "content"  # the tiny book's pages
 PAGE = """+++
 title = "Scenes"
 +++
@@ -344,3 +346,90 @@ def test_a_call_beside_does_not_run_the_callers_script_again(tmp_path):
     (work / "pickle.py").write_text("raise ImportError('the folder the build was started from shadows pickle')\n")
     done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, check=True, timeout=60, cwd=work)
     assert done.stdout.splitlines() == ["script ran", "120"]
+
+
+def _chapters(tmp_path: Path, name: str, pages: dict[str, str]) -> BuildConfig:
+    """A book of `pages` (file name -> text) in tmp_path/content, built into tmp_path/name with no cache."""
+    content = tmp_path / "content"
+    if not content.exists():
+        content.mkdir()
+        for file, text in pages.items():
+            (content / file).write_text(text)
+    return BuildConfig(tmp_path, content, tmp_path / name, cache=None)
+
+
+def _steady(lines: list[str]) -> list[str]:
+    """The scene and check lines of a build's log, without their seconds."""
+    return [re.sub(r"\d+\.\d+ s", "s", line) for line in lines if line.startswith(("[", "check "))]
+
+
+def _tiny_chapters() -> dict[str, str]:
+    """The tiny book's home page and its two chapters of five scenes each (no bubble scene, no report)."""
+    return {name: (BOOK / name).read_text() for name in ("index.md", "mechanics.md", "waves.md")}
+
+
+@pytest.fixture(scope="module")
+def chapters_here(tmp_path_factory) -> tuple[dict[str, bytes], list[str]]:
+    """The tiny book's chapters built with nothing forked (as where a fork is unsafe): the tree and the log."""
+    lines: list[str] = []
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(Beside, "start", classmethod(lambda cls: None))
+        config = _chapters(tmp_path_factory.mktemp("chapters"), "here", _tiny_chapters())
+        build(config, progress=lines.append)
+    assert not any(line.startswith("beside") for line in lines)
+    return _tree(config.out), lines
+
+
+def test_pages_built_beside_the_build_give_the_same_bytes_and_log(tmp_path, chapters_here):
+    """With nothing else to do beside the build, the process forked there builds the last chapter while the build
+    builds the others: the tree is byte for byte that of a build without it, its scene lines are the same lines
+    in the same place, and the process is gone when the build ends."""
+    import multiprocessing
+
+    _no_other_thread()
+    lines: list[str] = []
+    build(_chapters(tmp_path, "beside", _tiny_chapters()), progress=lines.append)
+    assert "beside    1 page (waves): built in a process beside the build" in lines
+    assert any(line.startswith("beside    1 page built beside the build in ") for line in lines)
+    assert multiprocessing.active_children() == []
+    tree, here = chapters_here
+    assert _steady(lines) == _steady(here) and len(_steady(here)) == 14  # ten scenes, four of them checked
+    assert _tree(tmp_path / "beside") == tree
+
+
+def test_an_author_error_in_a_page_built_beside_is_reported_from_here(tmp_path, register):
+    """A page whose scene fails in the process beside the build is built again here: the author reads the
+    same `file:line: scene '...': ...` as from a build without the fork."""
+    import multiprocessing
+
+    _no_other_thread()
+    register({"explodes": _Explodes}, {"explodes": type(builtin_registry().figures["impulse"])(), "bare": _Bare()})
+    boom = '```scene\nmodel: explodes\nslider x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n'
+    pages = {**_tiny_chapters(), "waves.md": _tiny_chapters()["waves.md"] + "\n" + boom}
+    lines: list[str] = []
+    with pytest.raises(BuildFailed) as failure:
+        build(_chapters(tmp_path, "out", pages), progress=lines.append)
+    assert "beside    1 page (waves): built in a process beside the build" in lines
+    assert "beside    the pages were not built beside the build: building them here" in lines
+    line = max(n for n, text in enumerate(pages["waves.md"].splitlines(), 1) if text == "```scene")  # its fence
+    assert [str(e) for e in failure.value.errors] == [
+        f"content/waves.md:{line}: scene 'explodes': model 'explodes' failed: the solve failed at x = 0.5"
+    ]
+    assert multiprocessing.active_children() == []
+
+
+def _ends_at_once(*args):
+    """In place of the pages' work beside the build: the process ends without a word."""
+    os._exit(3)
+
+
+def test_a_process_beside_that_dies_leaves_its_pages_to_the_build(tmp_path, monkeypatch, chapters_here):
+    """If the process beside ends without answering, the build builds the pages it was given: the same bytes."""
+    from sitegen.phases import beside
+
+    _no_other_thread()
+    monkeypatch.setattr(beside, "build_pages", _ends_at_once)
+    lines: list[str] = []
+    build(_chapters(tmp_path, "died", _tiny_chapters()), progress=lines.append)
+    assert "beside    the pages were not built beside the build: building them here" in lines
+    assert _tree(tmp_path / "died") == chapters_here[0]

@@ -17,6 +17,7 @@ from .phases.read import needed_outputs as _needed_outputs
 from .phases.record import Book
 from .phases.run import BuildConfig, BuildReport, BuildRun
 from .phases.ahead import work_ahead
+from .phases.beside import hand_over_pages, take_pages
 from .phases.scenes import check_scenes, compile_kernels, render_figures, tabulate_scenes
 from .registry import Registry, builtin_registry, load_registry
 from .site.writer import staged_tree
@@ -43,11 +44,19 @@ def build(config: BuildConfig, progress=print, registry: Registry | None = None)
             run.log.raise_if_any()
             run.report.pages, run.report.scenes = len(book.pages), len(book.scenes)
             with staged_tree(config.out) as run.tree:
-                for page in book.writing_order(late=run.late_models()):
-                    for name, phase in PAGE_PHASES:
-                        book = run.phase(name, phase, book.at(page))
-                book = run.phase("write", write_assets, book.at(None))
-                run.log.raise_if_any()
+                try:
+                    order = book.writing_order(late=run.late_models())
+                    hand_over_pages(book, run, order, PAGE_PHASES)
+                    for page in order:
+                        if run.pages_beside and page.slug == run.pages_beside.slugs[0]:
+                            book = run.phase("beside", take_pages, book)
+                        if page.slug not in run.built_beside:
+                            for name, phase in PAGE_PHASES:
+                                book = run.phase(name, phase, book.at(page))
+                    book = run.phase("write", write_assets, book.at(None))
+                    run.log.raise_if_any()
+                finally:
+                    run.stop_background()  # before the staging folder goes: nothing may write into it then
         finally:
             run.stop_background()  # a build that stopped early leaves nothing running
     for name in (n for n, _ in PAGE_PHASES):

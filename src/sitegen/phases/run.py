@@ -56,6 +56,15 @@ class Ahead:
         return done, sum(u.stops() for u in self.units), started
 
 
+@dataclass(frozen=True)
+class Handed:
+    """Pages handed to the process beside the build (phases.beside), by slug in writing order, and the future
+    of what it made of them."""
+
+    slugs: tuple[str, ...]
+    future: Future
+
+
 @dataclass
 class BuildReport:
     """What a build did: pages, scenes, values stored, and seconds per phase."""
@@ -91,6 +100,8 @@ class BuildRun:
         self.beside: Beside | None = None  # the process that tabulates scenes ahead, beside the build
         self.ahead: dict[str, Ahead] = {}  # scenes tabulating in it, by name
         self.drawn_ahead: Future | None = None  # the report's diagrams drawn in it (report.bench_figures)
+        self.pages_beside: Handed | None = None  # pages being built in it, until taken
+        self.built_beside: set[str] = set()  # the pages it built, once taken (by slug)
         self._ahead_seen: dict[str, tuple[float, float]] = {}  # scene -> when first seen started, when last said
         self._phase = ""  # the phase running now
 
@@ -169,7 +180,7 @@ class BuildRun:
             self.beside.stop()
             self.beside = None
         self.ahead.clear()
-        self.drawn_ahead = None
+        self.drawn_ahead = self.pages_beside = None
 
     def say(self, line: str) -> None:
         """One line of the build's log (nothing when the run is quiet)."""

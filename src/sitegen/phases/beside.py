@@ -53,7 +53,7 @@ def hand_over_pages(book: Book, run: BuildRun, order: list[Page], phases) -> Non
     block, share = [], 0
     for page in reversed([p for p in order if not p.found.reports and p.slug not in late]):
         if block and 2 * (share + cost[page.slug]) > sum(cost.values()) + cost[page.slug]:
-            break
+            break  # the middle of this page's work would lie past the half of the book's
         block.insert(0, page)
         share += cost[page.slug]
     here = sum(cost.values()) - share

@@ -433,3 +433,35 @@ def test_a_process_beside_that_dies_leaves_its_pages_to_the_build(tmp_path, monk
     build(_chapters(tmp_path, "died", _tiny_chapters()), progress=lines.append)
     assert "beside    the pages were not built beside the build: building them here" in lines
     assert _tree(tmp_path / "died") == chapters_here[0]
+
+
+_ORPHANED = """import os, sys, time
+from sitegen.compute.executors import Beside
+beside = Beside.start()
+print(beside.submit(os.getpid).result(), flush=True)
+beside.submit(time.sleep, 60)
+time.sleep(60)
+"""
+
+
+def _ended(pid: int) -> bool:
+    """Whether process `pid` has ended (gone, or a zombie no one has reaped yet)."""
+    try:
+        return Path(f"/proc/{pid}/status").read_text().split("State:")[1].split()[0] == "Z"
+    except FileNotFoundError:
+        return True
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="a parent's death is signalled to its children on Linux")
+def test_the_process_beside_ends_when_the_build_is_killed():
+    """A build killed without a word (SIGKILL: no cleanup runs) takes its process beside with it, which would
+    otherwise wait for calls for ever."""
+    build = subprocess.Popen([sys.executable, "-c", _ORPHANED], stdout=subprocess.PIPE, text=True)
+    beside = int(build.stdout.readline())
+    assert not _ended(beside)
+    build.kill()
+    build.wait()
+    deadline = time.monotonic() + 10
+    while not _ended(beside) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert _ended(beside), f"process {beside} outlived the build"

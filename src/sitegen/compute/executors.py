@@ -5,16 +5,21 @@ results in plan order, so the output is the same byte for byte whichever runs it
 """
 from __future__ import annotations
 
+import ctypes
 import multiprocessing
 import os
 import pickle
 import select
+import signal
 import subprocess
 import sys
 import threading
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from contextlib import contextmanager
 from typing import Iterable, Iterator
+
+
+_PR_SET_PDEATHSIG = 1  # prctl's option: the signal a process gets when its parent ends (linux/prctl.h)
 
 
 class SerialExecutor(Executor):
@@ -79,7 +84,7 @@ class Beside:
         if threading.active_count() > 1 or "fork" not in multiprocessing.get_all_start_methods():
             return None
         return cls(ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("fork"),
-                                       initializer=_pin_blas_threads))
+                                       initializer=_beside, initargs=(os.getpid(),)))
 
     def submit(self, fn, /, *args) -> Future:
         """Hand over `fn(*args)`; its future answers once the calls handed over before it are made."""
@@ -96,6 +101,20 @@ class Beside:
             process.terminate()
         if manager is not None:
             manager.join()
+
+
+def _beside(parent: int) -> None:
+    """The start of a process beside `parent`: BLAS pinned to one thread, and (on Linux) killed when `parent` ends.
+
+    A parent killed without a word (SIGTERM, SIGKILL) would otherwise leave it waiting for calls for ever: it holds
+    its own copy of its queue's pipe, so it never reads the end of it. Elsewhere such a process lingers."""
+    _pin_blas_threads()
+    try:
+        ctypes.CDLL(None).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
+    except (OSError, AttributeError):  # no prctl: not Linux
+        return
+    if os.getppid() != parent:  # it ended before the line above
+        os._exit(1)
 
 
 class Background:

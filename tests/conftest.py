@@ -54,8 +54,7 @@ SLOW_TESTS = (
     "tests/test_build.py::test_builds_are_byte_identical_across_folders_and_hash_seeds",
     "tests/test_collect.py::test_a_watcher_keeps_nothing_of_its_earlier_builds",  # five rebuilds
     "tests/test_executors.py::test_dask_cluster_gives_the_serial_bytes",
-    "tests/test_executors.py::test_an_author_error_in_a_page_built_beside_is_reported_from_here",  # built twice
-    "tests/test_executors.py::test_a_process_beside_that_dies_leaves_its_pages_to_the_build",
+    "tests/test_executors.py::test_a_process_beside_that_dies_leaves_its_pages_to_the_build",  # a book built twice
     "tests/test_determinism_load.py::",  # bubble books built in other processes, beside spinning CPUs
     # pip building and installing the wheel (and a fresh venv that builds a book with it)
     "tests/test_install.py::test_installing_writes_nothing_into_build",

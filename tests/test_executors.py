@@ -24,7 +24,6 @@ from sitegen.registry import builtin_registry
 from sitegen.models.collision.model import Collision
 
 ROOT = Path(__file__).resolve().parents[1]
-BOOK = Path(__file__).resolve().parent / "book" / "content"  # the tiny book's pages
 PAGE = """+++
 title = "Scenes"
 +++
@@ -359,22 +358,37 @@ def _chapters(tmp_path: Path, name: str, pages: dict[str, str]) -> BuildConfig:
 
 
 def _steady(lines: list[str]) -> list[str]:
-    """The scene and check lines of a build's log, without their seconds."""
-    return [re.sub(r"\d+\.\d+ s", "s", line) for line in lines if line.startswith(("[", "check "))]
+    """The scene lines and the scenes' check lines of a build's log, without their seconds."""
+    return [re.sub(r"\d+\.\d+ s", "s", line) for line in lines if re.match(r"\[|check {5}\S", line)]
 
 
-def _tiny_chapters() -> dict[str, str]:
-    """The tiny book's home page and its two chapters of five scenes each (no bubble scene, no report)."""
-    return {name: (BOOK / name).read_text() for name in ("index.md", "mechanics.md", "waves.md")}
+WORK = """
+```scene
+model: work
+choice force: spring | drag default spring
+choice path: direct | arc default direct
+slider k: 1..2 step 1 default 1
+slider h: 0..1 step 0.5 default 1
+readouts: W dU W_drag verdict
+```
+"""
+
+
+def _chapters_of(page: str = PAGE + WORK) -> dict[str, str]:
+    """A home page and two chapters of `page`'s scenes (by default three, one of them checked numerically; no
+    bubble scene, no report)."""
+    return {"index.md": (ROOT / "content" / "index.md").read_text(),
+            "one.md": page.replace('title = "Scenes"', 'title = "One"'),
+            "two.md": page.replace('title = "Scenes"', 'title = "Two"')}
 
 
 @pytest.fixture(scope="module")
 def chapters_here(tmp_path_factory) -> tuple[dict[str, bytes], list[str]]:
-    """The tiny book's chapters built with nothing forked (as where a fork is unsafe): the tree and the log."""
+    """The two chapters built with nothing forked (as where a fork is unsafe): the tree and the log."""
     lines: list[str] = []
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(Beside, "start", classmethod(lambda cls: None))
-        config = _chapters(tmp_path_factory.mktemp("chapters"), "here", _tiny_chapters())
+        config = _chapters(tmp_path_factory.mktemp("chapters"), "here", _chapters_of())
         build(config, progress=lines.append)
     assert not any(line.startswith("beside") for line in lines)
     return _tree(config.out), lines
@@ -388,12 +402,12 @@ def test_pages_built_beside_the_build_give_the_same_bytes_and_log(tmp_path, chap
 
     _no_other_thread()
     lines: list[str] = []
-    build(_chapters(tmp_path, "beside", _tiny_chapters()), progress=lines.append)
-    assert "beside    1 page (waves): built in a process beside the build" in lines
+    build(_chapters(tmp_path, "beside", _chapters_of()), progress=lines.append)
+    assert "beside    1 page (two): built in a process beside the build" in lines
     assert any(line.startswith("beside    1 page built beside the build in ") for line in lines)
     assert multiprocessing.active_children() == []
     tree, here = chapters_here
-    assert _steady(lines) == _steady(here) and len(_steady(here)) == 14  # ten scenes, four of them checked
+    assert _steady(lines) == _steady(here) and len(_steady(here)) == 8  # a line per scene, and the work's checks
     assert _tree(tmp_path / "beside") == tree
 
 
@@ -405,15 +419,15 @@ def test_an_author_error_in_a_page_built_beside_is_reported_from_here(tmp_path, 
     _no_other_thread()
     register({"explodes": _Explodes}, {"explodes": type(builtin_registry().figures["impulse"])(), "bare": _Bare()})
     boom = '```scene\nmodel: explodes\nslider x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n'
-    pages = {**_tiny_chapters(), "waves.md": _tiny_chapters()["waves.md"] + "\n" + boom}
+    pages = {**_chapters_of(), "two.md": _chapters_of()["two.md"] + "\n" + boom}
     lines: list[str] = []
     with pytest.raises(BuildFailed) as failure:
         build(_chapters(tmp_path, "out", pages), progress=lines.append)
-    assert "beside    1 page (waves): built in a process beside the build" in lines
+    assert "beside    1 page (two): built in a process beside the build" in lines
     assert "beside    the pages were not built beside the build: building them here" in lines
-    line = max(n for n, text in enumerate(pages["waves.md"].splitlines(), 1) if text == "```scene")  # its fence
+    line = max(n for n, text in enumerate(pages["two.md"].splitlines(), 1) if text == "```scene")  # its fence
     assert [str(e) for e in failure.value.errors] == [
-        f"content/waves.md:{line}: scene 'explodes': model 'explodes' failed: the solve failed at x = 0.5"
+        f"content/two.md:{line}: scene 'explodes': model 'explodes' failed: the solve failed at x = 0.5"
     ]
     assert multiprocessing.active_children() == []
 
@@ -430,7 +444,7 @@ def test_a_process_beside_that_dies_leaves_its_pages_to_the_build(tmp_path, monk
     _no_other_thread()
     monkeypatch.setattr(beside, "build_pages", _ends_at_once)
     lines: list[str] = []
-    build(_chapters(tmp_path, "died", _tiny_chapters()), progress=lines.append)
+    build(_chapters(tmp_path, "died", _chapters_of()), progress=lines.append)
     assert "beside    the pages were not built beside the build: building them here" in lines
     assert _tree(tmp_path / "died") == chapters_here[0]
 

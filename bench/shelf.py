@@ -1,8 +1,8 @@
 """`make bench`: a shelf, not a chapter. Builds generated shelves of 1, 4 and 16 copies of the chapter
 "Newton's laws" (content/newtons-laws.md: six scenes, no bubble), each copy's scenes with a slider
 range shortened by a different number of steps so that every scene must be computed, and prints per
-shelf: the cold build (empty cache), its peak memory (and that of the process that builds pages beside it),
-and a rebuild with nothing changed.
+shelf: the cold build (empty cache), its peak memory (and that of the largest process it started: node converting
+the math, or the process that builds pages beside it), and a rebuild with nothing changed.
 
 Each build runs in a fresh process (`sitegen build`), which reports its own peak resident memory.
 Usage: python bench/shelf.py [COPIES ...]   (default 1 4 16)
@@ -74,7 +74,7 @@ def make_shelf(root: Path, copies: int) -> None:
 
 def timed_build(root: Path) -> tuple[float, float, float]:
     """Seconds and peak resident MiB of `sitegen build --root ROOT` in a fresh process, and of the largest
-    process it started (the one that builds pages beside it), if any."""
+    process it started (node converting the math, or the process that builds pages beside it)."""
     env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "PYTHONPATH": str(ROOT / "src")}
     start = time.perf_counter()
     done = subprocess.run([sys.executable, "-c", _PEAK, "build", "--root", str(root)], capture_output=True, text=True, env=env)
@@ -87,14 +87,14 @@ def timed_build(root: Path) -> tuple[float, float, float]:
 
 def main(counts: list[int]) -> None:
     print("shelf: copies of the chapter 'Newton's laws' (6 scenes each), every scene computed; one fresh process per build")
-    print(f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} {'peak MiB':>9} {'beside MiB':>11} {'no-op s':>8}")
+    print(f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} {'peak MiB':>9} {'child MiB':>10} {'no-op s':>8}")
     for copies in counts:
         with tempfile.TemporaryDirectory() as folder:
             root = Path(folder)
             make_shelf(root, copies)
             cold, peak, beside = timed_build(root)
             noop, _, _ = timed_build(root)
-            print(f"{copies:>8} {6 * copies:>7} {cold:>8.2f} {cold / copies:>10.2f} {peak:>9.0f} {beside:>11.0f} "
+            print(f"{copies:>8} {6 * copies:>7} {cold:>8.2f} {cold / copies:>10.2f} {peak:>9.0f} {beside:>10.0f} "
                   f"{noop:>8.2f}", flush=True)
 
 

@@ -348,18 +348,28 @@ def test_a_call_beside_does_not_run_the_callers_script_again(tmp_path):
 
 
 def _chapters(tmp_path: Path, name: str, pages: dict[str, str]) -> BuildConfig:
-    """A book of `pages` (file name -> text) in tmp_path/content, built into tmp_path/name with no cache."""
+    """A book of `pages` (file name -> text) in tmp_path/content, built into tmp_path/name with its own cache."""
     content = tmp_path / "content"
     if not content.exists():
-        content.mkdir()
+        content.mkdir(parents=True)
         for file, text in pages.items():
             (content / file).write_text(text)
-    return BuildConfig(tmp_path, content, tmp_path / name, cache=None)
+    return BuildConfig(tmp_path, content, tmp_path / name, cache=tmp_path / f"{name}-cache")
 
 
 def _steady(lines: list[str]) -> list[str]:
     """The scene lines and the scenes' check lines of a build's log, without their seconds."""
     return [re.sub(r"\d+\.\d+ s", "s", line) for line in lines if re.match(r"\[|check {5}\S", line)]
+
+
+def _steady_report(report) -> dict:
+    """What a build reports, without the seconds of its phases and scenes."""
+    from dataclasses import asdict
+
+    facts = asdict(report)
+    del facts["phases"]
+    facts["scene_lines"] = _steady(facts["scene_lines"])
+    return facts
 
 
 WORK = """
@@ -372,48 +382,73 @@ slider h: 0..1 step 0.5 default 1
 readouts: W dU W_drag verdict
 ```
 """
+# The second chapter's scenes, each on a range of its own (a table shared by two pages is computed once).
+_OWN_RANGES = (("slider F_pk: 0..50 step 2", "slider F_pk: 0..48 step 2"),
+               ("slider e: 0..1 step 0.25", "slider e: 0..1 step 0.5"),
+               ("slider k: 1..2 step 1", "slider k: 1..3 step 1"))
 
 
-def _chapters_of(page: str = PAGE + WORK) -> dict[str, str]:
+def _chapters_of(page: str = PAGE + WORK, same: bool = False) -> dict[str, str]:
     """A home page and two chapters of `page`'s scenes (by default three, one of them checked numerically; no
-    bubble scene, no report)."""
+    bubble scene, no report), the second's on ranges of their own unless `same`."""
+    second = page.replace('title = "Scenes"', 'title = "Two"')
+    for old, new in () if same else _OWN_RANGES:
+        second = second.replace(old, new)
     return {"index.md": (ROOT / "content" / "index.md").read_text(),
-            "one.md": page.replace('title = "Scenes"', 'title = "One"'),
-            "two.md": page.replace('title = "Scenes"', 'title = "Two"')}
+            "one.md": page.replace('title = "Scenes"', 'title = "One"'), "two.md": second}
 
 
-@pytest.fixture(scope="module")
-def chapters_here(tmp_path_factory) -> tuple[dict[str, bytes], list[str]]:
-    """The two chapters built with nothing forked (as where a fork is unsafe): the tree and the log."""
+def _built_here(config: BuildConfig):
+    """A build with nothing forked (as where a fork is unsafe): its report and its log."""
     lines: list[str] = []
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(Beside, "start", classmethod(lambda cls: None))
-        config = _chapters(tmp_path_factory.mktemp("chapters"), "here", _chapters_of())
-        build(config, progress=lines.append)
+        report = build(config, progress=lines.append)
     assert not any(line.startswith("beside") for line in lines)
-    return _tree(config.out), lines
+    return report, lines
+
+
+@pytest.fixture(scope="module")
+def chapters_here(tmp_path_factory) -> tuple[dict[str, bytes], dict, list[str]]:
+    """The two chapters built with nothing forked: the tree, the report and the log."""
+    config = _chapters(tmp_path_factory.mktemp("chapters"), "here", _chapters_of())
+    report, lines = _built_here(config)
+    return _tree(config.out), _steady_report(report), lines
 
 
 def test_pages_built_beside_the_build_give_the_same_bytes_and_log(tmp_path, chapters_here):
     """With nothing else to do beside the build, the process forked there builds the last chapter while the build
-    builds the others: the tree is byte for byte that of a build without it, its scene lines are the same lines
-    in the same place, and the process is gone when the build ends."""
+    builds the others: the tree is byte for byte that of a build without it, so is the report, its scene lines
+    are the same lines in the same place, and the process is gone when the build ends."""
     import multiprocessing
 
     _no_other_thread()
     lines: list[str] = []
-    build(_chapters(tmp_path, "beside", _chapters_of()), progress=lines.append)
+    report = build(_chapters(tmp_path, "beside", _chapters_of()), progress=lines.append)
     assert "beside    1 page (two): built in a process beside the build" in lines
     assert any(line.startswith("beside    1 page built beside the build in ") for line in lines)
     assert multiprocessing.active_children() == []
-    tree, here = chapters_here
+    tree, facts, here = chapters_here
     assert _steady(lines) == _steady(here) and len(_steady(here)) == 8  # a line per scene, and the work's checks
+    assert all(line.endswith("computed: new") for line in _steady(lines) if line.startswith("["))  # with a cache
+    assert _steady_report(report) == facts
     assert _tree(tmp_path / "beside") == tree
 
 
+def test_a_table_two_pages_compute_is_not_computed_on_both_sides(tmp_path):
+    """A scene on a page of each side would be computed and cached twice at once (a build without the fork
+    computes it once, then takes it from the cache): then nothing is forked."""
+    _no_other_thread()
+    lines: list[str] = []
+    build(_chapters(tmp_path, "out", _chapters_of(same=True)), progress=lines.append)
+    assert not any(line.startswith("beside") for line in lines)
+    statuses = [line.rsplit("  ", 1)[-1] for line in _steady(lines) if line.startswith("[")]
+    assert statuses == ["computed: new"] * 3 + ["cached"] * 3
+
+
 def test_an_author_error_in_a_page_built_beside_is_reported_from_here(tmp_path, register):
-    """A page whose scene fails in the process beside the build is built again here: the author reads the
-    same `file:line: scene '...': ...` as from a build without the fork."""
+    """An author error found beside the build is reported by it: the author reads the same
+    `file:line: scene '...': ...` as from a build without the fork."""
     import multiprocessing
 
     _no_other_thread()
@@ -424,12 +459,35 @@ def test_an_author_error_in_a_page_built_beside_is_reported_from_here(tmp_path, 
     with pytest.raises(BuildFailed) as failure:
         build(_chapters(tmp_path, "out", pages), progress=lines.append)
     assert "beside    1 page (two): built in a process beside the build" in lines
-    assert "beside    the pages were not built beside the build: building them here" in lines
     line = max(n for n, text in enumerate(pages["two.md"].splitlines(), 1) if text == "```scene")  # its fence
     assert [str(e) for e in failure.value.errors] == [
         f"content/two.md:{line}: scene 'explodes': model 'explodes' failed: the solve failed at x = 0.5"
     ]
     assert multiprocessing.active_children() == []
+
+
+def test_after_an_author_error_here_the_pages_beside_are_built_here(tmp_path, register):
+    """Once a page of the build's own has an author error, a build no longer draws or writes, which the process
+    beside did not know: its pages are built here, and the errors and the scene lines' numbers are those of a
+    build without the fork."""
+    _no_other_thread()
+    register({"explodes": _Explodes}, {"explodes": type(builtin_registry().figures["impulse"])(), "bare": _Bare()})
+    boom = '```scene\nmodel: explodes\nslider x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n'
+    pages = {**_chapters_of(), "one.md": _chapters_of()["one.md"] + "\n" + boom}
+    failures, logs = [], []
+    for name in ("beside", "here"):
+        logs.append([])
+        with pytest.MonkeyPatch.context() as patch, pytest.raises(BuildFailed) as failure:
+            if name == "here":
+                patch.setattr(Beside, "start", classmethod(lambda cls: None))
+            build(_chapters(tmp_path / name, "out", pages), progress=logs[-1].append)
+        failures.append([str(e) for e in failure.value.errors])
+    assert "beside    the pages were not built beside the build: building them here" in logs[0]
+    assert failures[0] == failures[1] and len(failures[0]) == 1
+    # The same lines, numbered alike; only the status may differ: the tables computed beside are in the cache by
+    # then, and the lines say so ("cached").
+    beside, here = ([line.rsplit("  ", 1)[0] for line in _steady(log)] for log in logs)
+    assert beside == here
 
 
 def _ends_at_once(*args):
@@ -438,15 +496,17 @@ def _ends_at_once(*args):
 
 
 def test_a_process_beside_that_dies_leaves_its_pages_to_the_build(tmp_path, monkeypatch, chapters_here):
-    """If the process beside ends without answering, the build builds the pages it was given: the same bytes."""
+    """If the process beside ends without answering, the build builds the pages it was given: the same bytes,
+    report and scene lines."""
     from sitegen.phases import beside
 
     _no_other_thread()
     monkeypatch.setattr(beside, "build_pages", _ends_at_once)
     lines: list[str] = []
-    build(_chapters(tmp_path, "died", _chapters_of()), progress=lines.append)
+    report = build(_chapters(tmp_path, "died", _chapters_of()), progress=lines.append)
     assert "beside    the pages were not built beside the build: building them here" in lines
-    assert _tree(tmp_path / "died") == chapters_here[0]
+    tree, facts, here = chapters_here
+    assert _tree(tmp_path / "died") == tree and _steady_report(report) == facts and _steady(lines) == _steady(here)
 
 
 _ORPHANED = """import os, sys, time
@@ -466,15 +526,15 @@ def _ended(pid: int) -> bool:
         return True
 
 
-@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="a parent's death is signalled to its children on Linux")
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="only Linux tells a child that its parent died")
 def test_the_process_beside_ends_when_the_build_is_killed():
     """A build killed without a word (SIGKILL: no cleanup runs) takes its process beside with it, which would
     otherwise wait for calls for ever."""
-    build = subprocess.Popen([sys.executable, "-c", _ORPHANED], stdout=subprocess.PIPE, text=True)
-    beside = int(build.stdout.readline())
+    parent = subprocess.Popen([sys.executable, "-c", _ORPHANED], stdout=subprocess.PIPE, text=True)
+    beside = int(parent.stdout.readline())
     assert not _ended(beside)
-    build.kill()
-    build.wait()
+    parent.kill()
+    parent.wait()
     deadline = time.monotonic() + 10
     while not _ended(beside) and time.monotonic() < deadline:
         time.sleep(0.05)

@@ -4,10 +4,10 @@ read, resolve and math run over the whole book, and every author error they find
 before anything is computed. Then, a page at a time, its scenes are tabulated, checked and drawn,
 the page is assembled and written into a staging folder, and the garbage its work left is collected.
 The staging folder replaces build/ only when every page is written: the build holds one page's tables
-at a time, and the previous build/ stays intact on any failure. Work that needs no earlier page may run in
-a process forked beside the build (phases/ahead.py: compiled scenes and the report's diagrams; else
-phases/beside.py: the last pages), taken back where a build without it would have done it. Pages that show accuracy-report parts
-come last, as those list every scene.
+at a time, and the previous build/ stays intact on any failure. Pages that show accuracy-report parts
+come last, as those list every scene. Work that needs no earlier page may run in a process forked beside
+the build (phases/ahead.py: compiled scenes and the report's diagrams; else phases/beside.py: the last
+pages), taken back where a build without it would have done it.
 """
 from __future__ import annotations
 

@@ -22,6 +22,17 @@ from typing import Iterable, Iterator
 _PR_SET_PDEATHSIG = 1  # prctl's option: the signal a process gets when its parent ends (linux/prctl.h)
 
 
+def _load_prctl():
+    """The C library's prctl (Linux), looked up once here: a forked child should not have to load anything."""
+    try:
+        return getattr(ctypes.CDLL(None, use_errno=True), "prctl", None)
+    except (OSError, TypeError):  # no C library to ask
+        return None
+
+
+_prctl = _load_prctl()
+
+
 class SerialExecutor(Executor):
     """Runs each task at once, in this process."""
 
@@ -104,17 +115,19 @@ class Beside:
 
 
 def _beside(parent: int) -> None:
-    """The start of a process beside `parent`: BLAS pinned to one thread, and (on Linux) killed when `parent` ends.
+    """The start of a process beside `parent`: BLAS pinned to one thread, Ctrl-C left to `parent` (which ends it),
+    and (on Linux) killed when `parent` ends.
 
     A parent killed without a word (SIGTERM, SIGKILL) would otherwise leave it waiting for calls for ever: it holds
-    its own copy of its queue's pipe, so it never reads the end of it. Elsewhere such a process lingers."""
+    its own copy of its queue's pipe, so it never reads the end of it. Elsewhere such a process lingers. The signal
+    comes when the thread that forked it ends: the only thread of `parent` (see `Beside.start`)."""
     _pin_blas_threads()
-    try:
-        ctypes.CDLL(None).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
-    except (OSError, AttributeError):  # no prctl: not Linux
-        return
-    if os.getppid() != parent:  # it ended before the line above
-        os._exit(1)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # else a Ctrl-C while it waits prints its traceback
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # `stop` terminates it, whatever the parent handles
+    if _prctl is not None:
+        _prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)  # refused only in a sandbox: then it may linger, as elsewhere
+        if os.getppid() != parent:  # the parent ended before the call above
+            os._exit(1)
 
 
 class Background:

@@ -14,22 +14,42 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import NamedTuple
 
+from ..compute.accuracy import SceneAccuracy
 from ..compute.executors import Beside
-from ..site.writer import StagedTree
 from ..content.pages import Page
-from .record import Book
+from ..errors import AuthorError
+from ..site.writer import StagedTree
+from .record import Book, SceneRecord
 from .run import BuildRun, Handed
 
 MIN_SCENES = 2  # scenes to compute on each side, below which a fork costs more than it saves
 _FORK_STATE: dict = {}  # the book and the run, as the process beside starts with them (set just before the fork)
 
 
+class Facts(NamedTuple):
+    """What a scene's record keeps once its page is written (SceneRecord.finished), as the process beside found it."""
+
+    slug: str
+    index: int
+    status: str
+    accuracy: SceneAccuracy | None
+    data_bytes: tuple[int, int]
+    stored_values: int
+
+    def onto(self, record: SceneRecord) -> SceneRecord:
+        """`record` as it is once its page is written."""
+        return replace(record.finished(), status=self.status, accuracy=self.accuracy, data_bytes=self.data_bytes,
+                       stored_values=self.stored_values)
+
+
 @dataclass(frozen=True)
 class PagesBuilt:
     """What the process beside made of its pages, beyond their files in the staging folder."""
 
-    facts: tuple  # per scene: (page slug, index, status, accuracy, data bytes, stored values)
+    facts: tuple[Facts, ...]
+    errors: tuple[AuthorError, ...]  # found there, reported here with the build's own
     lines: tuple[str, ...]  # its log, said here when the pages are taken
     scene_lines: tuple[str, ...]
     counts: tuple[int, int, int]  # scenes cached, scenes computed, work units run
@@ -46,31 +66,39 @@ def hand_over_pages(book: Book, run: BuildRun, order: list[Page], phases) -> Non
     if run.config.jobs > 1 or run.config.scheduler or run.beside is not None:
         return
     late = book.pages_with(run.late_models())
-    uncached = {p.slug: 0 for p in order}
+    uncached = {p.slug: set() for p in order}  # the keys of the tables each page computes
     for record in book.scenes:
-        uncached[record.page.slug] += not (run.cache and run.cache.has(record.key))
-    cost = {slug: cost_of(count) for slug, count in uncached.items()}
+        if not (run.cache and run.cache.has(record.key)):
+            uncached[record.page.slug].add(record.key.digest)
+    free = [p for p in order if not p.found.reports and p.slug not in late]
+    cost = {p.slug: cost_of(len(uncached[p.slug])) for p in free}
+    # The block and the free pages before it take about as long, so that neither side waits for the other;
+    # the pages after the take point (late, with report parts) are this process's alone anyway.
     block, share = [], 0
-    for page in reversed([p for p in order if not p.found.reports and p.slug not in late]):
+    for page in reversed(free):
         if block and 2 * (share + cost[page.slug]) > sum(cost.values()) + cost[page.slug]:
-            break  # the middle of this page's work would lie past the half of the book's
+            break  # the middle of this page's work would lie past the half
         block.insert(0, page)
         share += cost[page.slug]
-    here = sum(cost.values()) - share
-    if sum(uncached[p.slug] for p in block) < MIN_SCENES or here < cost_of(MIN_SCENES):  # a fork to wait on
-        return
+    earlier = order[:order.index(block[0])] if block else []
+    computed_here = set().union(*(uncached[p.slug] for p in earlier))
+    if (sum(len(uncached[p.slug]) for p in block) < MIN_SCENES or sum(cost.values()) - share < cost_of(MIN_SCENES)
+            or (run.cache and computed_here & set().union(*(uncached[p.slug] for p in block)))):
+        return  # a fork to wait on; or a table both would compute, and cache, at once (a serial build: once)
+    before = sum(1 for r in book.scenes if r.page in earlier)
+    slugs = tuple(p.slug for p in block)
     _FORK_STATE.update(book=book, run=run)
     try:
         run.beside = Beside.start()
         if run.beside is None:
             return
-        slugs = tuple(p.slug for p in block)
-        earlier = {p.slug for p in order[:order.index(block[0])]}
-        before = sum(r.page.slug in earlier for r in book.scenes)
         future = run.beside.submit(build_pages, slugs, str(run.tree.folder), phases, before, run.report.scenes)
+    except OSError:  # the system would not fork (no memory, too many processes): the pages are built here
+        run.stop_background()
+        return
     finally:
         _FORK_STATE.clear()  # the process beside has its copy (forked in `start`'s first submit)
-    run.pages_beside = Handed(slugs, future)
+    run.pages_beside = Handed(slugs, before, future)
     names = slugs[0] if len(slugs) == 1 else f"{slugs[0]} to {slugs[-1]}"
     run.say(f"beside    {len(slugs)} page{'s' * (len(slugs) != 1)} ({names}): built in a process beside the build")
 
@@ -81,16 +109,10 @@ def cost_of(scenes: int) -> int:
 
 
 def build_pages(slugs: tuple[str, ...], staging: str, phases, before: int, scenes: int) -> PagesBuilt | None:
-    """In the process beside the build: build the pages `slugs` into the staging folder; None if an author
-    error or any exception came up (the build then builds them itself, and reports it there)."""
+    """In the process beside the build: build the pages `slugs` into the staging folder, as the build would
+    from the block on; None if an exception came up (the build then builds them itself, and says where)."""
     book, run = _FORK_STATE["book"], _FORK_STATE["run"]
-    lines: list[str] = []
-    # What the build's process holds of its other work is not this process's to use.
-    run.progress, run.beside, run.ahead, run.drawn_ahead, run.compiling = lines.append, None, {}, None, {}
-    run.tree, run.math_characters, run.searchable = StagedTree(Path(staging)), set(), {}
-    # Counted from the scenes before the block, so its lines are numbered as in a build without the fork.
-    report = run.report
-    report.scenes, report.cached, report.computed, report.evaluations, report.scene_lines = scenes, 0, before, 0, []
+    lines = _working_beside(run, staging, scenes, before)
     problems = len(run.cache.problems) if run.cache else 0
     start = time.perf_counter()
     try:
@@ -100,13 +122,26 @@ def build_pages(slugs: tuple[str, ...], staging: str, phases, before: int, scene
                 book = run.phase(name, phase, book.at(page))
     except Exception:
         return None
-    if run.failed:
-        return None
-    facts = tuple((r.page.slug, r.index, r.status, r.accuracy, r.data_bytes, r.stored_values)
+    report = run.report
+    facts = tuple(Facts(r.page.slug, r.index, r.status, r.accuracy, r.data_bytes, r.stored_values)
                   for r in book.scenes if r.page.slug in slugs)
-    return PagesBuilt(facts, tuple(lines), tuple(report.scene_lines), (report.cached, report.computed - before, report.evaluations),
+    return PagesBuilt(facts, tuple(run.log.errors), tuple(lines), tuple(report.scene_lines),
+                      (report.cached, report.computed - before, report.evaluations),
                       tuple(run.cache.problems[problems:]) if run.cache else (), frozenset(run.math_characters),
                       run.searchable, run.tree.sizes, time.perf_counter() - start)
+
+
+def _working_beside(run: BuildRun, staging: str, scenes: int, before: int) -> list[str]:
+    """Set up the run as the process beside works with it: its log kept (said by the build when it takes the
+    pages), its files into the build's staging folder, and what it makes counted from nothing but the scenes
+    before the block (so that its lines are numbered as in a build without the fork)."""
+    lines: list[str] = []
+    run.progress = lines.append
+    run.compiling = {}  # the build's processes compiling kernels, not this one's to wait for
+    run.tree, run.math_characters, run.searchable = StagedTree(Path(staging)), set(), {}
+    report = run.report
+    report.scenes, report.cached, report.computed, report.evaluations, report.scene_lines = scenes, 0, before, 0, []
+    return lines
 
 
 def take_pages(book: Book, run: BuildRun) -> Book:
@@ -119,12 +154,16 @@ def take_pages(book: Book, run: BuildRun) -> Book:
     except Exception:  # the process died, or was ended
         built = None
     waited = time.perf_counter() - start
-    if built is None:
+    report = run.report
+    # After an author error a build tabulates and checks on, but no longer draws, assembles or writes: the pages
+    # are then built here, where that holds (the process beside did not know of the error).
+    if built is None or run.failed or report.cached + report.computed != handed.before:
         run.say("beside    the pages were not built beside the build: building them here")
         return book
     for line in built.lines:
         run.say(line)
-    report = run.report
+    for error in built.errors:
+        run.error(error)
     report.scene_lines += built.scene_lines
     report.cached, report.computed, report.evaluations = (a + b for a, b in zip(
         (report.cached, report.computed, report.evaluations), built.counts))
@@ -134,13 +173,8 @@ def take_pages(book: Book, run: BuildRun) -> Book:
     run.searchable.update(built.searchable)
     run.tree.sizes.update(built.sizes)
     run.built_beside = set(handed.slugs)
-    facts = {(slug, index): rest for slug, index, *rest in built.facts}
-    records = []
-    for record in book.scenes:
-        if (record.page.slug, record.index) in facts:
-            status, accuracy, data_bytes, stored = facts[record.page.slug, record.index]
-            records.append(replace(record.finished(), status=status, accuracy=accuracy, data_bytes=data_bytes,
-                                   stored_values=stored))
+    facts = {(f.slug, f.index): f for f in built.facts}
+    records = [facts[r.page.slug, r.index].onto(r) for r in book.scenes if (r.page.slug, r.index) in facts]
     run.say(f"beside    {len(handed.slugs)} page{'s' * (len(handed.slugs) != 1)} built beside the build in "
             f"{built.seconds:.2f} s; waited {waited:.2f} s for them")
     return book.with_records(records)

@@ -58,10 +58,11 @@ class Ahead:
 
 @dataclass(frozen=True)
 class Handed:
-    """Pages handed to the process beside the build (phases.beside), by slug in writing order, and the future
-    of what it made of them."""
+    """Pages handed to the process beside the build (phases.beside), by slug in writing order, the scenes before
+    them, and the future of what it made of them."""
 
     slugs: tuple[str, ...]
+    before: int
     future: Future
 
 

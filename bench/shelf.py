@@ -81,8 +81,8 @@ def timed_build(root: Path) -> tuple[float, float, float]:
     seconds = time.perf_counter() - start
     if done.returncode:
         raise SystemExit(f"the shelf did not build:\n{done.stderr}")
-    peak, beside = re.search(r"peak_kib (\d+) (\d+)", done.stdout).groups()
-    return seconds, int(peak) / 1024, int(beside) / 1024
+    peak, child = re.search(r"peak_kib (\d+) (\d+)", done.stdout).groups()
+    return seconds, int(peak) / 1024, int(child) / 1024
 
 
 def main(counts: list[int]) -> None:
@@ -92,9 +92,9 @@ def main(counts: list[int]) -> None:
         with tempfile.TemporaryDirectory() as folder:
             root = Path(folder)
             make_shelf(root, copies)
-            cold, peak, beside = timed_build(root)
+            cold, peak, child = timed_build(root)
             noop, _, _ = timed_build(root)
-            print(f"{copies:>8} {6 * copies:>7} {cold:>8.2f} {cold / copies:>10.2f} {peak:>9.0f} {beside:>10.0f} "
+            print(f"{copies:>8} {6 * copies:>7} {cold:>8.2f} {cold / copies:>10.2f} {peak:>9.0f} {child:>10.0f} "
                   f"{noop:>8.2f}", flush=True)
 
 

@@ -6,7 +6,6 @@ from __future__ import annotations
 import math
 import os
 import re
-import shutil
 import subprocess
 import sys
 import time
@@ -47,12 +46,9 @@ slider e: 0..1 step 0.25 default 1
 
 
 def _book(tmp_path: Path, name: str, page: str = PAGE, **options) -> BuildConfig:
-    content = tmp_path / "content"
-    if not content.exists():
-        content.mkdir()
-        shutil.copy(ROOT / "content" / "index.md", content / "index.md")
-        (content / "scenes.md").write_text(page)
-    return BuildConfig(tmp_path, content, tmp_path / name, cache=None, **options)
+    """The project's home page and `page` as scenes.md, built into tmp_path/name with no cache."""
+    pages = {"index.md": (ROOT / "content" / "index.md").read_text(), "scenes.md": page}
+    return _chapters(tmp_path, name, pages, cache=None, **options)
 
 
 def _tree(folder: Path) -> dict[str, bytes]:
@@ -347,14 +343,15 @@ def test_a_call_beside_does_not_run_the_callers_script_again(tmp_path):
     assert done.stdout.splitlines() == ["script ran", "120"]
 
 
-def _chapters(tmp_path: Path, name: str, pages: dict[str, str]) -> BuildConfig:
-    """A book of `pages` (file name -> text) in tmp_path/content, built into tmp_path/name with its own cache."""
+def _chapters(tmp_path: Path, name: str, pages: dict[str, str], **options) -> BuildConfig:
+    """A book of `pages` (file name -> text) in tmp_path/content (written once), built into tmp_path/name with
+    its own cache unless `options` say otherwise."""
     content = tmp_path / "content"
     if not content.exists():
         content.mkdir(parents=True)
         for file, text in pages.items():
             (content / file).write_text(text)
-    return BuildConfig(tmp_path, content, tmp_path / name, cache=tmp_path / f"{name}-cache")
+    return BuildConfig(tmp_path, content, tmp_path / name, **{"cache": tmp_path / f"{name}-cache", **options})
 
 
 def _steady(lines: list[str]) -> list[str]:

@@ -82,20 +82,27 @@ def results_in_order(executor: Executor, function, units: Iterable) -> Iterator:
 class Beside:
     """A forked process that makes calls beside this one, in the order they are handed to it.
 
-    Forked, it starts at once with everything this process has loaded (a model's compiled code included).
-    `Beside.start()` gives None where a fork is unsafe: while another thread runs here (a fork copies the
-    locks it may hold) or where the system cannot fork."""
+    Forked, it starts at once with everything this process has loaded (a model's compiled code included), as
+    it is when `start` returns. `Beside.start()` gives None where a fork is unsafe: while another thread runs
+    here (a fork copies the locks it may hold), where the system cannot fork, or where it will not now (no
+    memory, too many processes)."""
 
     def __init__(self, pool: ProcessPoolExecutor):
         self._pool = pool
 
     @classmethod
     def start(cls) -> "Beside | None":
-        """A new process beside this one, or None where forking is unsafe."""
+        """A new process beside this one, forked now, or None where forking is unsafe or fails."""
         if threading.active_count() > 1 or "fork" not in multiprocessing.get_all_start_methods():
             return None
-        return cls(ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("fork"),
-                                       initializer=_beside, initargs=(os.getpid(),)))
+        pool = ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("fork"),
+                                   initializer=_beside, initargs=(os.getpid(),))
+        try:
+            pool.submit(int)  # the pool forks at its first call, here rather than wherever a caller makes one
+        except OSError:
+            pool.shutdown(wait=False, cancel_futures=True)
+            return None
+        return cls(pool)
 
     def submit(self, fn, /, *args) -> Future:
         """Hand over `fn(*args)`; its future answers once the calls handed over before it are made."""

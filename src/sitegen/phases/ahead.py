@@ -21,7 +21,7 @@ from .scenes import planned, timed
 
 def work_ahead(book: Book, run: BuildRun) -> Book:
     """Start the compiled scenes' tabulating and the report's diagrams in a process beside the build."""
-    if run.failed or run.config.jobs > 1 or run.config.scheduler:
+    if run.failed or not run.may_fork:
         return book
     scenes = [r for r in book.scenes if r.scene.model.name in run.kernels_loaded and not (run.cache and run.cache.has(r.key))]
     parts = [block.part for page in book.pages for block in page.found.reports]
@@ -31,25 +31,6 @@ def work_ahead(book: Book, run: BuildRun) -> Book:
     run.beside = Beside.start()
     if run.beside is None:
         return book
-    try:  # the fork itself happens at the first call handed over
-        _hand_over_scenes(scenes, run)
-        if bench:  # after the scenes: the report's page is written last
-            run.drawn_ahead = run.beside.submit(bench_figures, bench, parts, run.models, run.registry.reports,
-                                                run.cache)
-    except OSError:  # the system would not fork (no memory, too many processes): the work is done here
-        run.stop_background()
-        return book
-    for model in sorted({a.model for a in run.ahead.values()}):
-        count = sum(a.model == model for a in run.ahead.values())
-        run.say(f"ahead     {model}: {count} scene{'s' * (count != 1)} tabulating in a process beside the build; "
-                f"pages with them are built last")
-    if bench:
-        run.say("ahead     the accuracy report's diagrams that the cache lacks: drawing in the same process")
-    return book
-
-
-def _hand_over_scenes(scenes, run: BuildRun) -> None:
-    """Hand each scene's units of work to the process beside, in plan order."""
     for record in scenes:
         try:
             units = tuple(planned(record))
@@ -57,3 +38,11 @@ def _hand_over_scenes(scenes, run: BuildRun) -> None:
             continue
         futures = tuple(run.beside.submit(timed, evaluate_unit, unit) for unit in units)
         run.ahead[record.name] = Ahead(record.scene.model.name, units, futures)
+    for model in sorted({a.model for a in run.ahead.values()}):
+        count = sum(a.model == model for a in run.ahead.values())
+        run.say(f"ahead     {model}: {count} scene{'s' * (count != 1)} tabulating in a process beside the build; "
+                f"pages with them are built last")
+    if bench:  # after the scenes: the report's page is written last
+        run.drawn_ahead = run.beside.submit(bench_figures, bench, parts, run.models, run.registry.reports, run.cache)
+        run.say("ahead     the accuracy report's diagrams that the cache lacks: drawing in the same process")
+    return book

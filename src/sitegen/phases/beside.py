@@ -38,6 +38,12 @@ class Facts(NamedTuple):
     data_bytes: tuple[int, int]
     stored_values: int
 
+    @classmethod
+    def of(cls, record: SceneRecord) -> "Facts":
+        """The facts of a written page's scene."""
+        return cls(record.page.slug, record.index, record.status, record.accuracy, record.data_bytes,
+                   record.stored_values)
+
     def onto(self, record: SceneRecord) -> SceneRecord:
         """`record` as it is once its page is written."""
         return replace(record.finished(), status=self.status, accuracy=self.accuracy, data_bytes=self.data_bytes,
@@ -63,7 +69,7 @@ class PagesBuilt:
 def hand_over_pages(book: Book, run: BuildRun, order: list[Page], phases) -> None:
     """Hand the last free pages of `order` (about half the work) to a process forked beside the build, which
     builds them with `phases`; only where nothing else runs there and it is worth a fork."""
-    if run.config.jobs > 1 or run.config.scheduler or run.beside is not None:
+    if not run.may_fork or run.beside is not None:
         return
     late = book.pages_with(run.late_models())
     uncached = {p.slug: set() for p in order}  # the keys of the tables each page computes
@@ -72,17 +78,18 @@ def hand_over_pages(book: Book, run: BuildRun, order: list[Page], phases) -> Non
             uncached[record.page.slug].add(record.key.digest)
     free = [p for p in order if not p.found.reports and p.slug not in late]
     cost = {p.slug: cost_of(len(uncached[p.slug])) for p in free}
+    total = sum(cost.values())
     # The block and the free pages before it take about as long, so that neither side waits for the other;
     # the pages after the take point (late, with report parts) are this process's alone anyway.
     block, share = [], 0
     for page in reversed(free):
-        if block and 2 * (share + cost[page.slug]) > sum(cost.values()) + cost[page.slug]:
+        if block and 2 * (share + cost[page.slug]) > total + cost[page.slug]:
             break  # the middle of this page's work would lie past the half
         block.insert(0, page)
         share += cost[page.slug]
     earlier = order[:order.index(block[0])] if block else []
     computed_here = set().union(*(uncached[p.slug] for p in earlier))
-    if (sum(len(uncached[p.slug]) for p in block) < MIN_SCENES or sum(cost.values()) - share < cost_of(MIN_SCENES)
+    if (sum(len(uncached[p.slug]) for p in block) < MIN_SCENES or total - share < cost_of(MIN_SCENES)
             or (run.cache and computed_here & set().union(*(uncached[p.slug] for p in block)))):
         return  # a fork to wait on; or a table both would compute, and cache, at once (a serial build: once)
     before = sum(1 for r in book.scenes if r.page in earlier)
@@ -90,14 +97,11 @@ def hand_over_pages(book: Book, run: BuildRun, order: list[Page], phases) -> Non
     _FORK_STATE.update(book=book, run=run)
     try:
         run.beside = Beside.start()
-        if run.beside is None:
-            return
-        future = run.beside.submit(build_pages, slugs, str(run.tree.folder), phases, before, run.report.scenes)
-    except OSError:  # the system would not fork (no memory, too many processes): the pages are built here
-        run.stop_background()
-        return
     finally:
-        _FORK_STATE.clear()  # the process beside has its copy (forked in `start`'s first submit)
+        _FORK_STATE.clear()  # the process beside has its copy
+    if run.beside is None:
+        return
+    future = run.beside.submit(build_pages, slugs, str(run.tree.folder), phases, before, run.report.scenes)
     run.pages_beside = Handed(slugs, before, future)
     names = slugs[0] if len(slugs) == 1 else f"{slugs[0]} to {slugs[-1]}"
     run.say(f"beside    {len(slugs)} page{'s' * (len(slugs) != 1)} ({names}): built in a process beside the build")
@@ -123,8 +127,7 @@ def build_pages(slugs: tuple[str, ...], staging: str, phases, before: int, scene
     except Exception:
         return None
     report = run.report
-    facts = tuple(Facts(r.page.slug, r.index, r.status, r.accuracy, r.data_bytes, r.stored_values)
-                  for r in book.scenes if r.page.slug in slugs)
+    facts = tuple(Facts.of(r) for r in book.scenes if r.page.slug in slugs)
     return PagesBuilt(facts, tuple(run.log.errors), tuple(lines), tuple(report.scene_lines),
                       (report.cached, report.computed - before, report.evaluations),
                       tuple(run.cache.problems[problems:]) if run.cache else (), frozenset(run.math_characters),

@@ -116,6 +116,12 @@ class BuildRun:
             self.report.phases[name] = self.report.phases.get(name, 0.0) + time.perf_counter() - start
 
     @property
+    def may_fork(self) -> bool:
+        """Whether work may go to a process forked beside the build: not with --jobs or a scheduler, which spread
+        the tabulating already (see `Beside.start` for where a fork is unsafe)."""
+        return self.config.jobs == 1 and not self.config.scheduler
+
+    @property
     def compiled_cache(self) -> Path:
         """The folder of compiled code (kept even when the build keeps no tables)."""
         return self.config.root / ".cache" / "compiled"

@@ -67,6 +67,17 @@ def test_the_work_ahead_gives_the_bytes_of_work_done_here(tmp_path, tiny_site, m
     assert _tree(config.out) == _tree(tiny_site)
 
 
+def test_nothing_goes_ahead_when_the_cache_has_it(tiny_book, tiny_site):
+    """With every table and every report diagram cached, nothing is forked to work ahead (a process with
+    nothing to do would keep the pages from being built beside the build), and the bytes are the same."""
+    from sitegen.build import build
+
+    lines: list[str] = []
+    build(tiny_book, progress=lines.append)
+    assert not [line for line in lines if line.startswith("ahead     ") and ":" in line]
+    assert _tree(tiny_book.out) == _tree(tiny_site)
+
+
 def test_output_holds_no_absolute_paths_or_dates(built_site):
     """Nothing in build/ mentions the machine's folders or a timestamp."""
     for name, data in _tree(built_site).items():

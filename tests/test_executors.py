@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -183,6 +184,23 @@ def test_scenes_tabulated_ahead_beside_the_build_give_the_same_bytes(tmp_path, m
     build(_book(tmp_path, "here", page=BUBBLE_PAGE), progress=here.append)
     assert not any(line.startswith("ahead     bubble") for line in here)
     assert _tree(tmp_path / "ahead") == _tree(tmp_path / "here")
+
+
+def test_a_table_on_two_pages_is_tabulated_ahead_once(tmp_path):
+    """The same bubble scene on two pages goes ahead once: the first page to be built takes it, and the
+    second takes it from the cache, as in a build without the fork."""
+    from conftest import share_compiled
+
+    share_compiled(tmp_path)
+    _no_other_thread()
+    bubble = BUBBLE_PAGE[BUBBLE_PAGE.index("```scene\nmodel: bubble"):]
+    pages = {"index.md": (ROOT / "content" / "index.md").read_text(), "one.md": PAGE + bubble,
+             "two.md": PAGE.replace('title = "Scenes"', 'title = "Two"') + bubble}
+    lines: list[str] = []
+    build(_chapters(tmp_path, "out", pages), progress=lines.append)
+    assert "ahead     bubble: 1 scene tabulating in a process beside the build; pages with them are built last" in lines
+    assert [line.rsplit("  ", 1)[-1] for line in _steady(lines) if "#collapse " in line and line.startswith("[")] == \
+        ["computed: new", "cached"]
 
 
 def test_a_model_failing_beside_the_build_is_reported_from_here(tmp_path, register):
@@ -443,6 +461,34 @@ def test_a_table_two_pages_compute_is_not_computed_on_both_sides(tmp_path):
     assert statuses == ["computed: new"] * 3 + ["cached"] * 3
 
 
+def test_a_table_on_both_sides_is_not_split_even_when_cached(tmp_path):
+    """Nor when that table is cached: its entry may be damaged, and a build without the fork then computes it
+    once (saying so) and takes it from the cache on the later page; two processes would each compute it, and
+    which of them said what would depend on timing."""
+    from sitegen.build import resolve_book
+
+    _no_other_thread()
+    collision = PAGE[PAGE.index("```scene\nmodel: collision"):]
+    on_both = collision.replace("model: collision", "model: collision\nid: shared").replace(
+        "slider e: 0..1 step 0.25", "slider e: 0..1 step 0.125")  # a table of its own, on both chapters
+    pages = {name: text if name == "index.md" else f"{text}\n{on_both}" for name, text in _chapters_of().items()}
+    config = _chapters(tmp_path, "out", pages)
+    build(config, progress=None)
+    digests = {slug: {r.key.digest for r in resolve_book(config).scenes if r.page.slug == slug} for slug in ("one", "two")}
+    shared = (digests["one"] & digests["two"]).pop()
+    for entry in (config.cache / "tables").rglob("*.bin"):  # the shared table alone is cached, and damaged
+        if entry.stem == shared:
+            entry.write_bytes(bytes(b ^ 0xFF for b in entry.read_bytes()))
+        else:
+            entry.unlink()
+    lines: list[str] = []
+    report = build(config, progress=lines.append)
+    assert not any(line.startswith("beside") for line in lines)
+    assert [line.rsplit("  ", 1)[-1] for line in _steady(lines) if "#shared " in line and line.startswith("[")] == \
+        ["computed: not in the cache", "cached"]
+    assert sum("is damaged" in line for line in report.scene_lines) == 1
+
+
 def test_an_author_error_in_a_page_built_beside_is_reported_from_here(tmp_path, register):
     """An author error found beside the build is reported by it: the author reads the same
     `file:line: scene '...': ...` as from a build without the fork."""
@@ -536,3 +582,106 @@ def test_the_process_beside_ends_when_the_build_is_killed():
     while not _ended(beside) and time.monotonic() < deadline:
         time.sleep(0.05)
     assert _ended(beside), f"process {beside} outlived the build"
+
+
+def _children(pid: int) -> list[int]:
+    """The processes whose parent is `pid`."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        try:
+            if entry.name.isdigit() and int((entry / "stat").read_text().rsplit(")", 1)[1].split()[1]) == pid:
+                found.append(int(entry.name))
+        except (FileNotFoundError, ProcessLookupError):
+            continue
+    return found
+
+
+def _all_ended(pids: list[int], seconds: float = 10.0) -> bool:
+    deadline = time.monotonic() + seconds
+    while not all(_ended(p) for p in pids) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    return all(_ended(p) for p in pids)
+
+
+_CALLING = """import signal, sys, time
+signal.signal(signal.SIGINT, signal.default_int_handler)  # ignored if the tests were started without job control
+from sitegen.compute.executors import Background
+call = Background(time.sleep, 60)
+print("started", flush=True)
+try:
+    time.sleep(60)
+except KeyboardInterrupt:
+    print("interrupted", flush=True)
+    time.sleep(60)
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="only Linux tells a child that its parent died")
+def test_a_call_beside_ends_when_its_caller_is_killed():
+    """A process that compiles beside a build killed without a word (SIGKILL) ends with it, rather than
+    compiling on for half a minute (and holding the caller's output open meanwhile)."""
+    caller = subprocess.Popen([sys.executable, "-c", _CALLING], stdout=subprocess.PIPE, text=True)
+    assert caller.stdout.readline() == "started\n"
+    beside = _children(caller.pid)
+    assert beside and not any(_ended(p) for p in beside)
+    caller.kill()
+    caller.wait()
+    assert _all_ended(beside), f"processes {beside} outlived their caller"
+
+
+def test_ctrl_c_at_the_terminal_reaches_the_caller_not_the_call_beside():
+    """A Ctrl-C (SIGINT to the terminal's process group) interrupts the caller, which ends its calls beside;
+    the call's own interpreter never sees it (at start-up it would print a traceback)."""
+    caller = subprocess.Popen([sys.executable, "-c", _CALLING], stdout=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        assert caller.stdout.readline() == "started\n"
+        beside = _children(caller.pid)
+        os.killpg(caller.pid, signal.SIGINT)
+        assert caller.stdout.readline() == "interrupted\n"
+        time.sleep(0.3)
+        assert beside and not any(_ended(p) for p in beside), "the call beside was interrupted too"
+    finally:
+        caller.kill()
+        caller.wait()
+    assert _all_ended(beside)
+
+
+_COMPILING_BOOK = {
+    "index.md": '+++\ntitle = "Home"\n+++\n\nA page the build writes while the kernels compile.\n',
+    "bubble.md": '+++\ntitle = "A bubble"\n+++\n\n```scene\nmodel: bubble\nid: driven\nfix R0: 4.5\n'
+                 'slider p_a: 0.5..1.5 step 0.5 default 1.5\nslider f: 10, 26.5 default 26.5\n'
+                 'effects: gas, vdw_hard_core, surface_tension, viscosity, drive, keller_miksis\n'
+                 'readouts: driven_R_max driven_flag\n```\n',
+}
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_sigterm_stops_a_build_as_ctrl_c_does(tmp_path):
+    """SIGTERM (a service manager, `kill`) on a build while its kernels compile beside it: the build stops as after
+    Ctrl-C, with exit status 143, no staging folder left, the compiling processes ended and build/ untouched."""
+    root = tmp_path / "book"
+    (root / "content").mkdir(parents=True)
+    for name, text in _COMPILING_BOOK.items():
+        (root / "content" / name).write_text(text)
+    (root / "book.toml").write_text("")
+    (root / "build").mkdir()
+    (root / "build" / "index.html").write_text("the last complete build")
+    env = {**os.environ, "PYTHONUNBUFFERED": "1"}
+    env.pop("SITEGEN_COMPILED_CACHE", None)  # the book's own .cache/compiled/, empty: its kernels compile
+    build_process = subprocess.Popen([sys.executable, "-m", "sitegen.cli", "build", "--root", str(root)], env=env,
+                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    seen = []
+    for line in build_process.stdout:
+        seen.append(line)
+        if "compiling in" in line:
+            break
+    assert any("processes beside the build" in line for line in seen), seen
+    compiling = _children(build_process.pid)
+    assert len(compiling) >= 2, compiling
+    build_process.terminate()
+    out, err = build_process.communicate(timeout=60)
+    assert build_process.returncode == 128 + signal.SIGTERM, err
+    assert "build stopped" in err and "Traceback" not in err, err
+    assert _all_ended(compiling), f"processes {compiling} outlived the build"
+    assert not [p.name for p in root.iterdir() if p.name.startswith(".build")]
+    assert (root / "build" / "index.html").read_text() == "the last complete build"

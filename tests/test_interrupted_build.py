@@ -263,3 +263,17 @@ def test_recover_removes_only_dead_builds_folders(tmp_path):
     writer.recover(dest)
     assert sorted(p.name for p in tmp_path.iterdir()) == [f".build.new-{os.getppid()}-def", "build"]
     assert tree(dest) == {"index.html": b"x"}  # .build.old without build/ was put back
+
+
+def test_ctrl_c_before_a_command_begins_is_a_line_not_a_traceback(monkeypatch, capsys):
+    """Ctrl-C while `sitegen` still loads what a command needs (before the build's own handling): one line and
+    exit status 130, as during the build."""
+
+    def interrupted(argv=None):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli, "main", interrupted)
+    with pytest.raises(SystemExit) as ended:
+        cli.run()
+    assert ended.value.code == 130
+    assert capsys.readouterr().err == "sitegen: interrupted\n"

@@ -4,7 +4,10 @@ from __future__ import annotations
 import argparse
 import gc
 import os
+import signal
 import sys
+import threading
+from contextlib import contextmanager
 from pathlib import Path
 
 from . import stamp
@@ -27,7 +30,11 @@ def main(argv: list[str] | None = None) -> int:
 
 def run() -> None:
     """The `sitegen` process: `main`, then an exit that leaves the heap to the operating system."""
-    code = main()
+    try:
+        code = main()
+    except KeyboardInterrupt:  # Ctrl-C before a command's own work began (while it loads, say)
+        print("sitegen: interrupted", file=sys.stderr)
+        code = 130
     # At exit the interpreter would search the whole heap for reference cycles to free, objects the process
     # gives back anyway: after a build (numba's, scipy's and matplotlib's objects) that took about a second.
     gc.disable()
@@ -158,7 +165,8 @@ def _build(args, book: BookConfig) -> int:
     options = {"jobs": args.jobs, "scheduler": args.scheduler, "cache": None if args.no_cache else book.root / ".cache"}
     config = BuildConfig(book.root, book.content, out, book=book, **options)
     try:
-        report = build(config, progress=_Progress(sys.stdout, args.explain))
+        with _sigterm_interrupts():
+            report = build(config, progress=_Progress(sys.stdout, args.explain))
     except BuildFailed as failure:
         for error in failure.errors:
             print(error, file=sys.stderr)
@@ -167,9 +175,10 @@ def _build(args, book: BookConfig) -> int:
     except MathToolMissing as problem:
         print(f"sitegen: {problem}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        print(f"build interrupted; {config.out} holds the last complete build", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as stop:
+        print(f"build {'stopped' if isinstance(stop, Terminated) else 'interrupted'}; {config.out} holds the last "
+              f"complete build", file=sys.stderr)
+        return 128 + signal.SIGTERM if isinstance(stop, Terminated) else 130
     except SceneCrashed as crash:  # an exception in a model's, a figure's or sitegen's code, met on one scene
         if args.debug:
             raise crash.error
@@ -195,6 +204,28 @@ def _build(args, book: BookConfig) -> int:
     print(f"built {report.pages} pages, {report.scenes} scenes ({report.computed} computed, {report.cached} cached), "
           f"{report.stored_values} stored values, {size / 1024:.0f} KiB in {total:.2f} s -> {config.out}")
     return 0
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in a build as Ctrl-C is: it stops as after Ctrl-C, its staging folder removed and the
+    processes it started ended (killed without a word, they would outlive it)."""
+
+
+@contextmanager
+def _sigterm_interrupts():
+    """While the block runs, SIGTERM raises Terminated (only the main thread can catch a signal)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def terminated(signum, frame):
+        raise Terminated
+
+    previous = signal.signal(signal.SIGTERM, terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def _bench(args, book: BookConfig) -> int:

@@ -52,6 +52,13 @@ def _pin_blas_threads() -> None:
     os.environ["OMP_NUM_THREADS"] = "1"
 
 
+def _pool_worker() -> None:
+    """The start of a local worker process: BLAS pinned, and SIGTERM back to ending it (a fork inherits the
+    handler by which the build turns SIGTERM into an interruption; the pool ends its workers with SIGTERM)."""
+    _pin_blas_threads()
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
 @contextmanager
 def executor_for(jobs: int = 1, scheduler: str | None = None) -> Iterator[Executor]:
     """A serial executor, a pool of `jobs` local processes, or a Dask cluster's executor; closed after."""
@@ -64,7 +71,7 @@ def executor_for(jobs: int = 1, scheduler: str | None = None) -> Iterator[Execut
             client.run(_pin_blas_threads)
             yield client.get_executor()
     elif jobs > 1:
-        with ProcessPoolExecutor(max_workers=jobs, initializer=_pin_blas_threads) as pool:
+        with ProcessPoolExecutor(max_workers=jobs, initializer=_pool_worker) as pool:
             yield pool
     else:
         yield SerialExecutor()
@@ -150,9 +157,11 @@ class Background:
         call = pickle.dumps(sys.path) + pickle.dumps((function, args))  # the path first: the call is found through it
         read, write = os.pipe()
         self._answer = os.fdopen(read, "rb")
-        # -P: the current folder does not come first on the path, where a file of its could shadow a module
-        self._process = subprocess.Popen([sys.executable, "-P", "-c", _CHILD, str(write)], stdin=subprocess.PIPE,
-                                         pass_fds=(write,))
+        # -P: the current folder does not come first on the path, where a file of its could shadow a module.
+        # A process group of its own: a Ctrl-C at the terminal reaches this process only, which ends the call
+        # (`stop`), rather than interrupting the new interpreter while it starts (and printing its traceback).
+        self._process = subprocess.Popen([sys.executable, "-P", "-c", _CHILD, str(write), str(os.getpid())],
+                                         stdin=subprocess.PIPE, pass_fds=(write,), process_group=0)
         os.close(write)
         with self._process.stdin as calls:
             calls.write(call)
@@ -191,7 +200,14 @@ class BackgroundFailed(Exception):
     """A call in the background raised (its type and message) or its process died."""
 
 
-_CHILD = """import pickle, sys
+# First of all, on Linux: killed when the process that started it ends, even by SIGKILL (see `_beside`).
+_CHILD = """import ctypes, os, pickle, signal, sys
+try:
+    ctypes.CDLL(None).prctl(1, signal.SIGKILL)
+except (AttributeError, OSError, TypeError):
+    pass
+if os.getppid() != int(sys.argv[2]):
+    sys.exit(1)
 sys.path[:] = pickle.load(sys.stdin.buffer)
 from sitegen.compute.executors import answer_call
 answer_call(sys.stdin.buffer, int(sys.argv[1]))

@@ -13,7 +13,7 @@ from ..compute.executors import Beside
 from ..compute.tabulate import evaluate_unit
 from ..content.bench_results import BENCH_NAME, load_results
 from ..errors import AuthorError
-from ..site.report import bench_figures
+from ..site.report import bench_figures, bench_figures_cached
 from .record import Book
 from .run import Ahead, BuildRun
 from .scenes import planned, timed
@@ -23,9 +23,12 @@ def work_ahead(book: Book, run: BuildRun) -> Book:
     """Start the compiled scenes' tabulating and the report's diagrams in a process beside the build."""
     if run.failed or not run.may_fork:
         return book
-    scenes = [r for r in book.scenes if r.scene.model.name in run.kernels_loaded and not (run.cache and run.cache.has(r.key))]
+    scenes = _in_writing_order([r for r in book.scenes if r.scene.model.name in run.kernels_loaded
+                                and not (run.cache and run.cache.has(r.key))], book, run)
     parts = [block.part for page in book.pages for block in page.found.reports]
     bench = load_results(run.config.content / BENCH_NAME) if parts else None
+    if bench and run.cache and bench_figures_cached(bench, parts, run.models, run.registry.reports, run.cache):
+        bench = None  # nothing to draw
     if not scenes and not bench:
         return book
     run.beside = Beside.start()
@@ -46,3 +49,15 @@ def work_ahead(book: Book, run: BuildRun) -> Book:
         run.drawn_ahead = run.beside.submit(bench_figures, bench, parts, run.models, run.registry.reports, run.cache)
         run.say("ahead     the accuracy report's diagrams that the cache lacks: drawing in the same process")
     return book
+
+
+def _in_writing_order(records: list, book: Book, run: BuildRun) -> list:
+    """The records in the order the build takes them (their pages' writing order), each table once where a cache
+    keeps it: the build takes a second scene of the same table from the cache, where the first put it."""
+    late = run.late_models() | {r.scene.model.name for r in records}
+    rank = {page.slug: n for n, page in enumerate(book.writing_order(late=late))}
+    records = sorted(records, key=lambda r: rank[r.page.slug])  # stable: a page's scenes keep their order
+    if not run.cache:
+        return records
+    seen = set()
+    return [r for r in records if not (r.key.digest in seen or seen.add(r.key.digest))]

@@ -72,8 +72,10 @@ def hand_over_pages(book: Book, run: BuildRun, order: list[Page], phases) -> Non
     if not run.may_fork or run.beside is not None:
         return
     late = book.pages_with(run.late_models())
-    uncached = {p.slug: set() for p in order}  # the keys of the tables each page computes
+    keys = {p.slug: set() for p in order}  # the keys of each page's tables
+    uncached = {p.slug: set() for p in order}  # those it computes
     for record in book.scenes:
+        keys[record.page.slug].add(record.key.digest)
         if not (run.cache and run.cache.has(record.key)):
             uncached[record.page.slug].add(record.key.digest)
     free = [p for p in order if not p.found.reports and p.slug not in late]
@@ -88,10 +90,12 @@ def hand_over_pages(book: Book, run: BuildRun, order: list[Page], phases) -> Non
         block.insert(0, page)
         share += cost[page.slug]
     earlier = order[:order.index(block[0])] if block else []
-    computed_here = set().union(*(uncached[p.slug] for p in earlier))
+    shared = set().union(*(keys[p.slug] for p in earlier)) & set().union(*(keys[p.slug] for p in block))
     if (sum(len(uncached[p.slug]) for p in block) < MIN_SCENES or total - share < cost_of(MIN_SCENES)
-            or (run.cache and computed_here & set().union(*(uncached[p.slug] for p in block)))):
-        return  # a fork to wait on; or a table both would compute, and cache, at once (a serial build: once)
+            or (run.cache and shared)):
+        # A fork to wait on; or a table on both sides, which a serial build computes once and then takes from the
+        # cache (or, its entry damaged, computes and caches again): two processes would do it at once.
+        return
     before = sum(1 for r in book.scenes if r.page in earlier)
     slugs = tuple(p.slug for p in block)
     _FORK_STATE.update(book=book, run=run)

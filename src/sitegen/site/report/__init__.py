@@ -74,13 +74,32 @@ def bench_figures(bench: dict, parts: list[str], models: Mapping, reports: Mappi
         drawn[key] = compute()
         return drawn[key]
 
-    context = ReportContext(bench, (), (), (), {}, keep, models, reports)
+    _parts_from_bench(bench, parts, models, reports, keep)
+    return drawn
+
+
+def bench_figures_cached(bench: dict, parts: list[str], models: Mapping, reports: Mapping, cache) -> bool:
+    """Whether `cache` holds every diagram that `bench_figures` would draw (found without drawing any)."""
+    keys = set()
+
+    def note(kind: str, key: str, compute) -> bytes:
+        if kind != FIGURES_KIND:
+            return compute()
+        keys.add(key)
+        return b""
+
+    _parts_from_bench(bench, parts, models, reports, note)
+    return all(cache.remembers(FIGURES_KIND, key) for key in keys)
+
+
+def _parts_from_bench(bench: dict, parts: list[str], models: Mapping, reports: Mapping, remember) -> None:
+    """Render the report `parts` as if the build had no scenes, with `remember` for what they keep."""
+    context = ReportContext(bench, (), (), (), {}, remember, models, reports)
     for part in parts:
         try:
             report_part(part, context)
         except Exception:  # a part that needs the build's own data: drawn with it, later
             continue
-    return drawn
 
 
 def resolution_part(context: ReportContext) -> str:

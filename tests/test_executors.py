@@ -584,6 +584,50 @@ def test_the_process_beside_ends_when_the_build_is_killed():
     assert _ended(beside), f"process {beside} outlived the build"
 
 
+def test_a_call_handed_to_a_process_beside_that_died_fails_in_its_future():
+    """Once the process beside has died, a call handed to it fails in its future, which every caller reads
+    (and then does the work itself), rather than at the handing over, which would end the build."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    _no_other_thread()
+    beside = Beside.start()
+    try:
+        os.kill(beside.submit(os.getpid).result(), signal.SIGKILL)
+        with pytest.raises(BrokenProcessPool):
+            beside.submit(time.sleep, 0).result(timeout=60)
+        late = beside.submit(int)  # handed over once the pool knows its process is gone
+        with pytest.raises(BrokenProcessPool):
+            late.result(timeout=60)
+    finally:
+        beside.stop()
+
+
+def test_compiling_that_cannot_start_all_its_processes_starts_none(monkeypatch):
+    """When the second of a model's compiling processes cannot start (too many processes), the first is
+    ended and the model compiles in the build's own process, as one that cannot be handed over does."""
+    from types import SimpleNamespace
+
+    from sitegen.phases import scenes
+
+    started = []
+
+    class Starting:
+        def __init__(self, *call):
+            if started:
+                raise OSError(11, "Resource temporarily unavailable")
+            self.stopped = False
+            started.append(self)
+
+        def stop(self):
+            self.stopped = True
+
+    monkeypatch.setattr(scenes, "Background", Starting)
+    run = SimpleNamespace(compiled_cache=Path("compiled"), compiling={})
+    model = SimpleNamespace(name="bubble", kernel_parts=("march", "read"), prepare_kernels=print)
+    assert scenes._compiling_beside(model, run) is False
+    assert run.compiling == {} and [s.stopped for s in started] == [True]
+
+
 def _children(pid: int) -> list[int]:
     """The processes whose parent is `pid`."""
     found = []

@@ -15,6 +15,7 @@ import subprocess
 import sys
 import threading
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from contextlib import contextmanager
 from typing import Iterable, Iterator
 
@@ -112,8 +113,14 @@ class Beside:
         return cls(pool)
 
     def submit(self, fn, /, *args) -> Future:
-        """Hand over `fn(*args)`; its future answers once the calls handed over before it are made."""
-        return self._pool.submit(fn, *args)
+        """Hand over `fn(*args)`; its future answers once the calls handed over before it are made (or, the
+        process gone, holds the error at once: every caller then does the work itself)."""
+        try:
+            return self._pool.submit(fn, *args)
+        except BrokenProcessPool as gone:
+            future: Future = Future()
+            future.set_exception(gone)
+            return future
 
     def stop(self) -> None:
         """End the process: the calls not yet made are dropped, the one running (if any) is ended; returns

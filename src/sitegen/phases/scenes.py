@@ -48,11 +48,15 @@ def _compiling_beside(model, run: BuildRun) -> bool:
 
     Compiling takes many seconds of one core: it runs beside the pages that need no compiled code, which
     are built first (the machine's other core does the compiling)."""
+    parts = []
     try:  # every part hands over the same call, so one that cannot be pickled fails at the first, before any starts
-        run.compiling[model.name] = [Background(model.prepare_kernels, run.compiled_cache, part)
-                                     for part in model.kernel_parts or (None,)]
-    except (pickle.PicklingError, TypeError, AttributeError):
+        for part in model.kernel_parts or (None,):
+            parts.append(Background(model.prepare_kernels, run.compiled_cache, part))
+    except (pickle.PicklingError, TypeError, AttributeError, OSError):  # OSError: no process could start
+        for started in parts:
+            started.stop()
         return False
+    run.compiling[model.name] = parts
     return True
 
 

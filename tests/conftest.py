@@ -159,6 +159,17 @@ def made_once(tmp_path_factory, name: str, make: Callable[[Path], object]) -> Pa
 
 
 @pytest.fixture(scope="session")
+def bubble_kernels() -> Path:
+    """The project's compiled code (.cache/compiled/) with the bubble's kernels complete, loaded in this process:
+    compiled here, or (another test process compiling them) loaded once it is done. A build sharing it then
+    loads them, and tabulates its bubble scenes ahead, whatever ran before; with them missing it would compile."""
+    from sitegen.models.bubble.model import Bubble
+
+    Bubble().prepare_kernels(COMPILED)
+    return COMPILED
+
+
+@pytest.fixture(scope="session")
 def tiny_built(tmp_path_factory) -> BuildConfig:
     """The tiny book built once from nothing (its own cache, filled by this build)."""
     from sitegen.build import BuildConfig, build

@@ -57,6 +57,7 @@ SLOW_TESTS = (
     "tests/test_executors.py::test_a_process_beside_that_dies_leaves_its_pages_to_the_build",  # a book built twice
     "tests/test_executors.py::test_after_an_author_error_here_the_pages_beside_are_built_here",
     "tests/test_executors.py::test_sigterm_stops_a_build_as_ctrl_c_does",  # a book built in another process
+    "tests/test_executors.py::test_a_table_on_both_sides_is_not_split_even_when_cached",  # a book built twice
     "tests/test_determinism_load.py::",  # bubble books built in other processes, beside spinning CPUs
     # pip building and installing the wheel (and a fresh venv that builds a book with it)
     "tests/test_install.py::test_installing_writes_nothing_into_build",

@@ -142,9 +142,13 @@ def _beside(parent: int) -> None:
     A parent killed without a word (SIGTERM, SIGKILL) would otherwise leave it waiting for calls for ever: it holds
     its own copy of its queue's pipe, so it never reads the end of it. Elsewhere such a process lingers. The signal
     comes when the thread that forked it ends: the only thread of `parent` (see `Beside.start`)."""
-    _pin_blas_threads()
+    _pool_worker()  # `stop` terminates it with SIGTERM, whatever the parent handles
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # else a Ctrl-C while it waits prints its traceback
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)  # `stop` terminates it, whatever the parent handles
+    _end_with(parent)
+
+
+def _end_with(parent: int) -> None:
+    """(On Linux) have this process killed when `parent` ends, or end it now if `parent` already has."""
     if _prctl is not None:
         _prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)  # refused only in a sandbox: then it may linger, as elsewhere
         if os.getppid() != parent:  # the parent ended before the call above
@@ -207,22 +211,17 @@ class BackgroundFailed(Exception):
     """A call in the background raised (its type and message) or its process died."""
 
 
-# First of all, on Linux: killed when the process that started it ends, even by SIGKILL (see `_beside`).
-_CHILD = """import ctypes, os, pickle, signal, sys
-try:
-    ctypes.CDLL(None).prctl(1, signal.SIGKILL)
-except (AttributeError, OSError, TypeError):
-    pass
-if os.getppid() != int(sys.argv[2]):
-    sys.exit(1)
+_CHILD = """import pickle, sys
 sys.path[:] = pickle.load(sys.stdin.buffer)
 from sitegen.compute.executors import answer_call
-answer_call(sys.stdin.buffer, int(sys.argv[1]))
+answer_call(sys.stdin.buffer, int(sys.argv[1]), int(sys.argv[2]))
 """
 
 
-def answer_call(calls, answer_fd: int) -> None:
-    """In a Background's process: read the call from `calls`, make it, and write its outcome to `answer_fd`."""
+def answer_call(calls, answer_fd: int, caller: int) -> None:
+    """In a Background's process: read the call from `calls`, make it, and write its outcome to `answer_fd`;
+    killed, on Linux, when `caller` ends (even by SIGKILL), rather than working on for nobody."""
+    _end_with(caller)
     try:
         function, args = pickle.load(calls)
         outcome = (True, function(*args))

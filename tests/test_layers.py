@@ -25,7 +25,7 @@ LAYERS = (
     ("sitegen.registry", "sitegen.reference"),  # finds the plugins (built-in, installed, the book's); lists them
     ("sitegen.phases", "sitegen.build", "sitegen.stamp"),  # the build: its phases, the script that runs them, its stamp
     ("sitegen.accuracy", "sitegen.review", "sitegen.preview", "sitegen.newbook"),  # tools that use the build and the layers below it
-    ("sitegen.cli",),
+    ("sitegen.cli", "sitegen.progress"),  # the command, and how it shows a build's progress on a terminal
 )
 # Who may import the built-in models by name: their own plugins, the registry (which lists them) and the
 # bench's experiments (which time the solvers themselves). The build gets them from the registry only.

@@ -1,0 +1,68 @@
+"""An axis' further ticks, copied from its first (render/tick_copies.py), draw the same bytes as matplotlib's own."""
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+
+# A figure with what tick copying must keep: many major ticks, log axes with minor ticks, tick parameters changed
+# after the first ticks exist, labels set per tick and then more ticks needed, a layout measured then drawn.
+FIGURE = r'''
+import io, sys
+import matplotlib
+matplotlib.use("svg")
+import matplotlib.pyplot as plt
+import numpy as np
+with plt.rc_context({"svg.hashsalt": "test", "svg.fonttype": "none", "axes.grid": True, "figure.dpi": 72}):
+    fig, (a, b, c) = plt.subplots(1, 3, figsize=(9, 3))
+a.plot(np.linspace(0, 37, 50), np.sin(np.linspace(0, 37, 50)))
+a.set_xticks(range(0, 38, 2))
+a.tick_params(labelsize=7, colors="#c8541c")
+b.loglog([1e-9, 1e3], [1e-2, 1e6])
+b.tick_params(which="minor", length=5)
+c.set_xticks([0, 1], ["one\nline", "two"])
+for label in c.get_xticklabels():
+    label.set_linespacing(1.5)
+c.set_xlim(-1, 12)
+c.set_xticks(range(-1, 13))
+fig.tight_layout()
+out = io.StringIO()
+with plt.rc_context({"svg.hashsalt": "test", "svg.fonttype": "none"}):
+    fig.savefig(out, format="svg", metadata={"Date": None, "Creator": None})
+plt.close(fig)
+svg = out.getvalue()
+'''
+
+
+def test_copied_ticks_draw_the_bytes_of_ticks_built_afresh():
+    """The SVG with tick copying (in this process, where sitegen's figures are drawn) is byte-for-byte that of
+    matplotlib's own ticks (in a process without sitegen); the figure has minor, relabelled and restyled ticks."""
+    from sitegen.render import tick_copies  # noqa: F401
+
+    built = subprocess.run([sys.executable, "-c", FIGURE + "sys.stdout.write(svg)"], capture_output=True, text=True,
+                           check=True).stdout
+    drawn: dict = {}
+    exec(FIGURE, drawn)
+    copied = drawn["svg"]
+    # every label of the first axes restyled: the 19 below it and the 9 beside it
+    assert len(re.findall(r'font-size: 7px[^"]*fill: #c8541c', copied)) == 19 + 9
+    assert copied.count("<use ") > 40  # tick marks, the log axes' minor ones among them
+    assert copied == built
+
+
+def test_a_copied_tick_has_artists_and_font_properties_of_its_own():
+    """Changing a copy's label or line leaves the first tick as it was."""
+    import matplotlib.pyplot as plt
+
+    from sitegen.render.tick_copies import copied_tick
+
+    fig, ax = plt.subplots()
+    first = ax.xaxis.get_major_ticks()[0]
+    copy = copied_tick(first)
+    copy.label1.set_fontsize(3)
+    copy.label1.set_text("copy")
+    copy.tick1line.set_xdata([7.0])
+    assert first.label1.get_fontsize() != 3 and first.label1.get_text() != "copy"
+    assert list(first.tick1line.get_xdata()) != [7.0]
+    assert all(getattr(copy, name) is not getattr(first, name) for name in ("label1", "label2", "tick1line", "tick2line", "gridline"))
+    plt.close(fig)

@@ -10,8 +10,6 @@ from pathlib import Path
 import logging
 
 import fontTools
-from fontTools import subset
-from fontTools.ttLib import TTFont
 
 from ..content.math import TEMML_CSS
 
@@ -69,6 +67,11 @@ def math_font(characters: set[str], remember=None) -> bytes:
 
 
 def _subset_font(text: str) -> bytes:
+    # Imported here: a build whose font is cached (most rebuilds) never subsets one, and fontTools' subsetter
+    # takes a fifth of a second to import.
+    from fontTools import subset
+    from fontTools.ttLib import TTFont
+
     font = TTFont(STATIC / FONT_FILE, recalcTimestamp=False)  # keep head.modified: byte-stable output
     options = subset.Options()
     options.layout_features = ["*"]

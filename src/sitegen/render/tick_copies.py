@@ -1,11 +1,13 @@
-"""An axis' further ticks made as copies of its first tick, not built afresh.
+"""An axis' new ticks made as copies of one tick built the matplotlib way, not each built afresh.
 
-matplotlib builds each tick an axis needs beyond its first from the axis' tick keywords (five artists, each
-through its property setters) and then copies the first tick's properties onto it (`Axis._copy_tick_props`).
-That was a fifth of a figure's drawing time, and a third for the accuracy report's log axes with their minor
-ticks. A copy of the first tick has those same properties from the start; what differs from tick to tick (its
-position and its label's text) `Axis._update_ticks` sets on every tick before it is measured or drawn. So the
-figures keep every byte (the build's tests compare them with the goldens and across builds). Imported for its
+When an axis needs more ticks, matplotlib builds each one from the axis' tick keywords and the rc settings of
+the moment (five artists, each through its property setters), then gives it the first tick's properties
+(`Axis._copy_tick_props`). Building was a fifth of a figure's drawing time, and a third for the accuracy
+report's log axes with their minor ticks. Here one tick is built that way per call, and the others needed in
+the same call are copies of it taken before anything changes it: each is what a build at that moment gives,
+with artists, font properties and data of its own, and then receives the first tick's properties as
+matplotlib's would. So no figure changes by a byte, whatever its code sets on its ticks (the tests compare a
+figure with restyled, relabelled, minor and per-tick-marked ticks against matplotlib's own). Imported for its
 effect by `style`.
 """
 from __future__ import annotations
@@ -18,47 +20,53 @@ from matplotlib import cbook
 _PARTS = ("tick1line", "tick2line", "gridline", "label1", "label2")  # the artists a Tick is drawn with
 
 
-def copied_tick(first: maxis.Tick) -> maxis.Tick:
-    """A tick with the properties of `first`, with artists of its own (callbacks, font properties)."""
-    tick = _artist_copy(first)
+def copied_tick(built: maxis.Tick) -> maxis.Tick:
+    """A copy of a tick that was just built, sharing nothing that a setter changes in place."""
+    tick = _artist_copy(built)
     for name in _PARTS:
-        part = _artist_copy(getattr(first, name))
-        if hasattr(part, "_fontproperties"):  # a label's font properties are changed in place by its setters
-            part._fontproperties = part._fontproperties.copy()
-        setattr(tick, name, part)
+        setattr(tick, name, _artist_copy(getattr(built, name)))
     return tick
 
 
 def _artist_copy(artist):
-    """A shallow copy of `artist` that shares no observers and belongs to no container yet."""
+    """A shallow copy of `artist` with containers of its own, no observers, and in no container yet."""
     twin = copy.copy(artist)
     twin._callbacks = cbook.CallbackRegistry(signals=["pchanged"])
     twin._remove_method = None
+    if getattr(artist, "_sticky_edges", None) is not None:  # update_from writes into these lists
+        twin._sticky_edges = type(artist._sticky_edges)(list(artist._sticky_edges.x), list(artist._sticky_edges.y))
+    if hasattr(artist, "_fontproperties"):  # a label's setters change its font properties in place
+        twin._fontproperties = artist._fontproperties.copy()
+    for data in ("_xorig", "_yorig"):  # a line's data as given
+        if hasattr(artist, data):
+            setattr(twin, data, copy.copy(getattr(artist, data)))
     return twin
 
 
-def _grown(axis: maxis.Axis, ticks: list, numticks: int, major: bool) -> list:
-    """The first `numticks` of an axis' `ticks`, the list first grown by copies of its first tick."""
-    if not ticks:
-        ticks.append(axis._get_tick(major=major))
-    while len(ticks) < numticks:
-        ticks.append(copied_tick(ticks[0]))
+def grown(axis: maxis.Axis, ticks: list, numticks: int, major: bool) -> list:
+    """The first `numticks` of the axis' `ticks`, adding the missing ones as matplotlib would, by copies."""
+    missing = numticks - len(ticks)
+    if missing > 0:
+        built = axis._get_tick(major=major)  # as matplotlib builds each new tick, with this moment's settings
+        for tick in [copied_tick(built) for _ in range(missing - 1)] + [built]:
+            ticks.append(tick)
+            axis._copy_tick_props(ticks[0], tick)
     return ticks[:numticks]
 
 
-def _copy_further_ticks() -> None:
-    """Make `Axis.get_major_ticks` and `get_minor_ticks` add copies of the first tick."""
+def _copy_new_ticks() -> None:
+    """Make `Axis.get_major_ticks` and `get_minor_ticks` add their new ticks by `grown`."""
     if not hasattr(maxis.Axis, "_copy_tick_props"):  # a detail of matplotlib's: without it, build ticks as it does
         return
 
     def get_major_ticks(self, numticks=None):
-        return _grown(self, self.majorTicks, len(self.get_majorticklocs()) if numticks is None else numticks, True)
+        return grown(self, self.majorTicks, len(self.get_majorticklocs()) if numticks is None else numticks, True)
 
     def get_minor_ticks(self, numticks=None):
-        return _grown(self, self.minorTicks, len(self.get_minorticklocs()) if numticks is None else numticks, False)
+        return grown(self, self.minorTicks, len(self.get_minorticklocs()) if numticks is None else numticks, False)
 
     maxis.Axis.get_major_ticks = get_major_ticks
     maxis.Axis.get_minor_ticks = get_minor_ticks
 
 
-_copy_further_ticks()
+_copy_new_ticks()

@@ -8,7 +8,7 @@ import sys
 # A figure with what making ticks by copies must keep: many major ticks, log axes with minor ticks, tick parameters
 # changed after the first ticks exist, labels set per tick and then more ticks needed, properties that matplotlib
 # does not pass from the first tick to new ones (an id, a rotation mode, a wrapped label), an rc setting that
-# differs between making the axes and drawing them, and a layout measured then drawn.
+# differs between making the axes and drawing them, a layout measured then drawn, and a polar axes.
 FIGURE = r'''
 import io, sys
 import matplotlib
@@ -34,6 +34,13 @@ c.set_xticks(range(-1, 13))
 fig.tight_layout()
 out = io.StringIO()
 with plt.rc_context({"svg.hashsalt": "test", "svg.fonttype": "none"}):
+    fig.savefig(out, format="svg", metadata={"Date": None, "Creator": None})
+plt.close(fig)
+with plt.rc_context({"svg.hashsalt": "test", "svg.fonttype": "none"}):  # a polar axes: its ticks are built, not copied
+    fig = plt.figure(figsize=(3, 3))
+    polar = fig.add_subplot(projection="polar")
+    polar.plot(np.linspace(0, 6, 40), np.linspace(1, 3, 40))
+    polar.set_thetagrids(range(0, 360, 30))
     fig.savefig(out, format="svg", metadata={"Date": None, "Creator": None})
 plt.close(fig)
 svg = out.getvalue()

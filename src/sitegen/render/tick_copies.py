@@ -3,12 +3,12 @@
 When an axis needs more ticks, matplotlib builds each one from the axis' tick keywords and the rc settings of
 the moment (five artists, each through its property setters), then gives it the first tick's properties
 (`Axis._copy_tick_props`). Building was a fifth of a figure's drawing time, and a third for the accuracy
-report's log axes with their minor ticks. Here one tick is built that way per call, and the others needed in
-the same call are copies of it taken before anything changes it: each is what a build at that moment gives,
+report's log axes with their minor ticks. Here, on Cartesian axes, one tick is built that way per call, and the
+others needed in the same call are copies of it taken before anything changes it: each is what a build at that moment gives,
 with artists, font properties and data of its own, and then receives the first tick's properties as
 matplotlib's would. So no figure changes by a byte, whatever its code sets on its ticks (the tests compare a
-figure with restyled, relabelled, minor and per-tick-marked ticks against matplotlib's own). Imported for its
-effect by `style`.
+figure with restyled, relabelled, minor and per-tick-marked ticks, and a polar axes, against matplotlib's own).
+Imported for its effect by `style`.
 """
 from __future__ import annotations
 
@@ -18,6 +18,9 @@ from matplotlib import axis as maxis
 from matplotlib import cbook
 
 _PARTS = ("tick1line", "tick2line", "gridline", "label1", "label2")  # the artists a Tick is drawn with
+# The axes whose ticks are copied: a Cartesian axis' ticks keep nothing that a tick changes in place (a polar
+# tick moves its label by changing its own translation; a 3D axis moves its ticks itself), so copies share none.
+_PLAIN = {maxis.XAxis: maxis.XTick, maxis.YAxis: maxis.YTick}
 
 
 def copied_tick(built: maxis.Tick) -> maxis.Tick:
@@ -48,9 +51,13 @@ def grown(axis: maxis.Axis, ticks: list, numticks: int, major: bool) -> list:
     missing = numticks - len(ticks)
     if missing > 0:
         built = axis._get_tick(major=major)  # as matplotlib builds each new tick, with this moment's settings
-        for tick in [copied_tick(built) for _ in range(missing - 1)] + [built]:
+        copies = missing - 1 if _PLAIN.get(type(axis)) is type(built) else 0
+        for tick in [copied_tick(built) for _ in range(copies)] + [built]:
             ticks.append(tick)
             axis._copy_tick_props(ticks[0], tick)
+        while len(ticks) < numticks:  # other ticks: built one by one, as matplotlib does
+            ticks.append(axis._get_tick(major=major))
+            axis._copy_tick_props(ticks[0], ticks[-1])
     return ticks[:numticks]
 
 

@@ -78,5 +78,6 @@ def test_a_copied_tick_has_artists_and_font_properties_of_its_own():
     copy.tick1line.set_xdata([7.0])
     assert first.label1.get_fontsize() != 3 and first.label1.get_text() != "copy"
     assert list(first.tick1line.get_xdata()) != [7.0]
-    assert all(getattr(copy, name) is not getattr(first, name) for name in ("label1", "label2", "tick1line", "tick2line", "gridline"))
+    parts = ("label1", "label2", "tick1line", "tick2line", "gridline")
+    assert all(getattr(copy, name) is not getattr(first, name) for name in parts)
     plt.close(fig)

@@ -3,12 +3,12 @@
 When an axis needs more ticks, matplotlib builds each one from the axis' tick keywords and the rc settings of
 the moment (five artists, each through its property setters), then gives it the first tick's properties
 (`Axis._copy_tick_props`). Building was a fifth of a figure's drawing time, and a third for the accuracy
-report's log axes with their minor ticks. Here, on Cartesian axes, one tick is built that way per call, and the
-others needed in the same call are copies of it taken before anything changes it: each is what a build at that moment gives,
-with artists, font properties and data of its own, and then receives the first tick's properties as
-matplotlib's would. So no figure changes by a byte, whatever its code sets on its ticks (the tests compare a
-figure with restyled, relabelled, minor and per-tick-marked ticks, and a polar axes, against matplotlib's own).
-Imported for its effect by `style`.
+report's log axes with their minor ticks. Here, on Cartesian axes, one tick is built that way per call, and
+the others needed in the same call are copies of it taken before anything changes it: each is what a build
+at that moment gives, with artists, font properties and data of its own, and then receives the first tick's
+properties as matplotlib's would. So no figure changes by a byte, whatever its code sets on its ticks (the
+tests compare a figure with restyled, relabelled, minor and per-tick-marked ticks, and a polar axes, against
+matplotlib's own). Imported for its effect by `style`.
 """
 from __future__ import annotations
 

@@ -81,3 +81,16 @@ def test_a_copied_tick_has_artists_and_font_properties_of_its_own():
     parts = ("label1", "label2", "tick1line", "tick2line", "gridline")
     assert all(getattr(copy, name) is not getattr(first, name) for name in parts)
     plt.close(fig)
+
+
+def test_a_change_to_a_copied_tick_marks_its_figure_for_redrawing():
+    """As with matplotlib's own ticks, changing one (a copy) tells its axes and figure to draw again."""
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots()
+    ax.set_xticks(range(10))
+    fig.draw_without_rendering()
+    assert not fig.stale
+    ax.xaxis.get_major_ticks()[4].set_visible(False)
+    assert ax.stale and fig.stale
+    plt.close(fig)

@@ -34,6 +34,7 @@ def copied_tick(built: maxis.Tick) -> maxis.Tick:
 def _artist_copy(artist):
     """A shallow copy of `artist` with containers of its own, no observers, and in no container yet."""
     twin = copy.copy(artist)
+    twin.stale_callback = artist.stale_callback  # copying drops it (as pickling must): a tick tells its axes it changed
     twin._callbacks = cbook.CallbackRegistry(signals=["pchanged"])
     twin._remove_method = None
     if getattr(artist, "_sticky_edges", None) is not None:  # update_from writes into these lists
@@ -48,14 +49,15 @@ def _artist_copy(artist):
 
 def grown(axis: maxis.Axis, ticks: list, numticks: int, major: bool) -> list:
     """The first `numticks` of the axis' `ticks`, adding the missing ones as matplotlib would, by copies."""
-    missing = numticks - len(ticks)
-    if missing > 0:
+    if len(ticks) < numticks:
         built = axis._get_tick(major=major)  # as matplotlib builds each new tick, with this moment's settings
-        copies = missing - 1 if _PLAIN.get(type(axis)) is type(built) else 0
-        for tick in [copied_tick(built) for _ in range(copies)] + [built]:
+        new = []
+        while _PLAIN.get(type(axis)) is type(built) and len(ticks) + len(new) + 1 < numticks:
+            new.append(copied_tick(built))
+        for tick in new + [built]:
             ticks.append(tick)
             axis._copy_tick_props(ticks[0], tick)
-        while len(ticks) < numticks:  # other ticks: built one by one, as matplotlib does
+        while len(ticks) < numticks:  # other axes' ticks: built one by one, as matplotlib does
             ticks.append(axis._get_tick(major=major))
             axis._copy_tick_props(ticks[0], ticks[-1])
     return ticks[:numticks]

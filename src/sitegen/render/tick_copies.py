@@ -1,14 +1,12 @@
-"""An axis' new ticks made as copies of one tick built the matplotlib way, not each built afresh.
+"""An axis' new ticks made as copies of one tick made the matplotlib way, not each built afresh.
 
 When an axis needs more ticks, matplotlib builds each one from the axis' tick keywords and the rc settings of
 the moment (five artists, each through its property setters), then gives it the first tick's properties
-(`Axis._copy_tick_props`). Building was a fifth of a figure's drawing time, and a third for the accuracy
-report's log axes with their minor ticks. Here, on Cartesian axes, one tick is built that way per call, and
-the others needed in the same call are copies of it taken before anything changes it: each is what a build
-at that moment gives, with artists, font properties and data of its own, and then receives the first tick's
-properties as matplotlib's would. So no figure changes by a byte, whatever its code sets on its ticks (the
-tests compare a figure with restyled, relabelled, minor and per-tick-marked ticks, and a polar axes, against
-matplotlib's own). Imported for its effect by `style`.
+(`Axis._copy_tick_props`). That was a fifth of a figure's drawing time, and a third for the accuracy report's
+log axes with their minor ticks. Here, on Cartesian axes, one tick per call is made exactly that way, and the
+others the call needs are copies of it, each with artists, font properties and data of its own. So no figure
+changes by a byte, whatever its code sets on its ticks (the tests compare a figure with restyled, relabelled,
+minor and per-tick-marked ticks, and a polar axes, against matplotlib's own). Imported for its effect by `style`.
 """
 from __future__ import annotations
 
@@ -23,11 +21,12 @@ _PARTS = ("tick1line", "tick2line", "gridline", "label1", "label2")  # the artis
 _PLAIN = {maxis.XAxis: maxis.XTick, maxis.YAxis: maxis.YTick}
 
 
-def copied_tick(built: maxis.Tick) -> maxis.Tick:
-    """A copy of a tick that was just built, sharing nothing that a setter changes in place."""
-    tick = _artist_copy(built)
+def copied_tick(made: maxis.Tick) -> maxis.Tick:
+    """A copy of a tick that was just made, sharing nothing that a setter changes in place (it shares its lines'
+    marker styles and transforms, which matplotlib replaces rather than changes)."""
+    tick = _artist_copy(made)
     for name in _PARTS:
-        setattr(tick, name, _artist_copy(getattr(built, name)))
+        setattr(tick, name, _artist_copy(getattr(made, name)))
     return tick
 
 
@@ -49,17 +48,17 @@ def _artist_copy(artist):
 
 def grown(axis: maxis.Axis, ticks: list, numticks: int, major: bool) -> list:
     """The first `numticks` of the axis' `ticks`, adding the missing ones as matplotlib would, by copies."""
-    if len(ticks) < numticks:
-        built = axis._get_tick(major=major)  # as matplotlib builds each new tick, with this moment's settings
+    if ticks and len(ticks) < numticks and _PLAIN.get(type(axis)) is axis._tick_class:
+        # What matplotlib makes of every new tick: one built with this moment's settings, given the first's properties.
+        made = axis._get_tick(major=major)
+        axis._copy_tick_props(ticks[0], made)
         new = []
-        while _PLAIN.get(type(axis)) is type(built) and len(ticks) + len(new) + 1 < numticks:
-            new.append(copied_tick(built))
-        for tick in new + [built]:
-            ticks.append(tick)
-            axis._copy_tick_props(ticks[0], tick)
-        while len(ticks) < numticks:  # other axes' ticks: built one by one, as matplotlib does
-            ticks.append(axis._get_tick(major=major))
-            axis._copy_tick_props(ticks[0], ticks[-1])
+        while len(ticks) + len(new) + 1 < numticks:
+            new.append(copied_tick(made))
+        ticks.extend(new + [made])
+    while len(ticks) < numticks:  # other axes' ticks (and an axis' first): built one by one, as matplotlib does
+        ticks.append(axis._get_tick(major=major))
+        axis._copy_tick_props(ticks[0], ticks[-1])
     return ticks[:numticks]
 
 

@@ -175,10 +175,10 @@ class _Terminal(io.StringIO):
 def test_progress_inside_a_scene_is_a_line_in_a_log_and_replaced_on_a_terminal(tty):
     """In a log every update inside a long scene is a line of its own; on a terminal each replaces
     the last, and the scene's own line replaces the updates when it ends."""
-    from sitegen.progress import TerminalProgress
+    from sitegen.progress import BuildProgress
 
     stream = _Terminal() if tty else io.StringIO()
-    progress = TerminalProgress(stream, explain=False)
+    progress = BuildProgress(stream, explain=False)
     for done in (16, 32):
         progress(f"  page#scene {done:>12,} of 48 stops, 8 stops/s")
     progress("[1/2] page#scene      48 stops    6.00 s  computed: new")

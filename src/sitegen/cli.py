@@ -13,7 +13,7 @@ from pathlib import Path
 from . import stamp
 from .config import BookConfig, ConfigError, read_book
 from .errors import BuildFailed, SceneCrashed
-from .progress import TerminalProgress
+from .progress import BuildProgress
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -167,7 +167,7 @@ def _build(args, book: BookConfig) -> int:
     config = BuildConfig(book.root, book.content, out, book=book, **options)
     try:
         with _sigterm_interrupts():
-            report = build(config, progress=TerminalProgress(sys.stdout, args.explain))
+            report = build(config, progress=BuildProgress(sys.stdout, args.explain))
     except BuildFailed as failure:
         for error in failure.errors:
             print(error, file=sys.stderr)

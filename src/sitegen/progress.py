@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 
-class TerminalProgress:
+class BuildProgress:
     """Build progress: one line per phase and per scene, and while a long scene computes, how far it got.
     On a terminal a live bar of scenes follows the last line, and a scene's updates replace each other
     in place; in a log every update is a line of its own."""
@@ -22,7 +22,7 @@ class TerminalProgress:
             self.stream.flush()
             return
         self.stream.write(line + "\n")
-        done, total = scene_counter(line)
+        done, total = _scene_counter(line)
         if self.tty and total and done < total:
             filled = 30 * done // total
             self.stream.write(f"[{'#' * filled}{'.' * (30 - filled)}] {done}/{total} scenes")
@@ -30,7 +30,7 @@ class TerminalProgress:
         self.stream.flush()
 
 
-def scene_counter(line: str) -> tuple[int, int]:
+def _scene_counter(line: str) -> tuple[int, int]:
     """(3, 7) from a scene line "[3/7] ..."; (0, 0) for any other line."""
     if not line.startswith("["):
         return 0, 0

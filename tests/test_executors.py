@@ -572,6 +572,14 @@ def _ended(pid: int) -> bool:
         return True
 
 
+def _all_ended(pids: list[int], seconds: float = 10.0) -> bool:
+    """Whether every process of `pids` has ended within `seconds`."""
+    deadline = time.monotonic() + seconds
+    while not all(_ended(p) for p in pids) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    return all(_ended(p) for p in pids)
+
+
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="only Linux tells a child that its parent died")
 def test_the_process_beside_ends_when_the_build_is_killed():
     """A build killed without a word (SIGKILL: no cleanup runs) takes its process beside with it, which would
@@ -581,10 +589,7 @@ def test_the_process_beside_ends_when_the_build_is_killed():
     assert not _ended(beside)
     parent.kill()
     parent.wait()
-    deadline = time.monotonic() + 10
-    while not _ended(beside) and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert _ended(beside), f"process {beside} outlived the build"
+    assert _all_ended([beside]), f"process {beside} outlived the build"
 
 
 def test_a_call_handed_to_a_process_beside_that_died_fails_in_its_future():
@@ -641,13 +646,6 @@ def _children(pid: int) -> list[int]:
         except (FileNotFoundError, ProcessLookupError):
             continue
     return found
-
-
-def _all_ended(pids: list[int], seconds: float = 10.0) -> bool:
-    deadline = time.monotonic() + seconds
-    while not all(_ended(p) for p in pids) and time.monotonic() < deadline:
-        time.sleep(0.05)
-    return all(_ended(p) for p in pids)
 
 
 _CALLING = """import signal, sys, time

@@ -54,7 +54,7 @@ def work_ahead(book: Book, run: BuildRun) -> Book:
 def _in_writing_order(records: list, book: Book, run: BuildRun) -> list:
     """The records in the order the build takes them (their pages' writing order), each table once where a cache
     keeps it: the build takes a second scene of the same table from the cache, where the first put it."""
-    late = run.late_models() | {r.scene.model.name for r in records}
+    late = run.late_models() | {r.scene.model.name for r in records}  # as it will be: these go ahead, so are late
     rank = {page.slug: n for n, page in enumerate(book.writing_order(late=late))}
     records = sorted(records, key=lambda r: rank[r.page.slug])  # stable: a page's scenes keep their order
     if not run.cache:

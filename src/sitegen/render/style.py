@@ -8,7 +8,7 @@ matplotlib.use("svg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from . import shared_measures  # noqa: E402,F401  (figures share matplotlib's text measurements)
-from . import tick_copies  # noqa: E402,F401  (an axis' further ticks are copies of its first)
+from . import tick_copies  # noqa: E402,F401  (an axis' new ticks are copies of one made matplotlib's way)
 
 INK = "#1d2430"
 MUTED = "#5b6472"

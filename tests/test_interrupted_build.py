@@ -219,6 +219,7 @@ def _wait_for_staging(root: Path, process: subprocess.Popen, timeout: float = 12
         with os.scandir(root) as entries:
             if any(e.name.startswith(prefix) for e in entries):
                 return
+        time.sleep(0.0005)  # a poll without a pause would take a core from the build it waits for
 
 
 # --- the writer on its own --------------------------------------------------------------------------

@@ -652,8 +652,8 @@ _CALLING = """import signal, sys, time
 signal.signal(signal.SIGINT, signal.default_int_handler)  # ignored if the tests were started without job control
 from sitegen.compute.executors import Background
 call = Background(time.sleep, 60)
-print("started", flush=True)
-try:
+try:  # from the line on: a Ctrl-C that follows it at once may land before the print returns
+    print("started", flush=True)
     time.sleep(60)
 except KeyboardInterrupt:
     print("interrupted", flush=True)

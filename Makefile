@@ -11,7 +11,7 @@ export OPENBLAS_NUM_THREADS := 1
 # git and left out of the wheel) rather than compile the package's sources in every one.
 unexport PYTHONDONTWRITEBYTECODE
 
-.PHONY: site test check serve bench clean tools-node tools-chromium tools-check tools-test review accept-figures
+.PHONY: site test check lint serve bench clean tools-node tools-chromium tools-check tools-test review accept-figures
 # One target at a time: the tool targets may each run apt, which takes a lock (the tests run in parallel by themselves).
 .NOTPARALLEL:
 
@@ -31,8 +31,13 @@ test: tools-test $(VENV)/.test-installed node_modules/.installed
 # The inner loop: every test but those that drive Chromium or build the project's own book
 # (the end-to-end tests run on the tiny book in tests/book/), with each property-based test on the
 # first fifth of its examples (`make test` runs them all).
-check: tools-check $(VENV)/.test-installed node_modules/.installed
+check: tools-check $(VENV)/.test-installed node_modules/.installed lint
 	SITEGEN_EXAMPLE_SHARE=0.2 $(BIN)/pytest -q -p no:cacheprovider -m "not browser and not slow" -n $(CHECK_WORKERS) --dist loadfile --no-loadscope-reorder
+
+# ruff (pinned in the test extras): the lint rules and the format are in ruff.toml.
+lint: $(VENV)/.test-installed
+	$(BIN)/ruff check --quiet src tests bench
+	$(BIN)/ruff format --check --quiet src tests bench
 
 # Build, serve on 127.0.0.1 and rebuild on every change to the book; open pages reload by themselves.
 serve: $(VENV)/.site-installed tools-node

@@ -13,6 +13,7 @@ per-input percentiles are multiples of about 0.1 ms.
 
 Prints p50 / p95 / max per scene in milliseconds and writes them as JSON to --out.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -25,7 +26,6 @@ from pathlib import Path
 from playwright.sync_api import sync_playwright
 
 from sitegen.review.figures import CHROMIUM, LAUNCH_ARGS
-
 
 # In the page: time `samples` inputs of random sliders at random stops (after `warmup` untimed
 # ones), then the same number again as one batch. Stops are written exactly from the attributes
@@ -121,14 +121,18 @@ def measure(site: Path, samples: int, warmup: int, seed: int) -> dict:
                 errors: list[str] = []
                 page.on("pageerror", lambda e: errors.append(str(e)))
                 page.goto(path.resolve().as_uri(), wait_until="load")
-                scene_ids = page.eval_on_selector_all("figure.scene[id^='scene-']", "els => els.map(e => e.id.slice(6))")
+                scene_ids = page.eval_on_selector_all(
+                    "figure.scene[id^='scene-']", "els => els.map(e => e.id.slice(6))"
+                )
                 for index, scene_id in enumerate(scene_ids):
                     result = page.evaluate(
                         _MEASURE_JS, {"sceneId": scene_id, "samples": samples, "warmup": warmup, "seed": seed + index}
                     )
                     times = result["times"]
                     if result["distinct_readout_states"] < 2:
-                        raise SystemExit(f"{path.name}#{scene_id}: the readouts never changed; is the page script running?")
+                        raise SystemExit(
+                            f"{path.name}#{scene_id}: the readouts never changed; is the page script running?"
+                        )
                     report["scenes"][f"{path.name}#{scene_id}"] = {
                         "sliders": result["sliders"],
                         "samples": len(times),
@@ -169,8 +173,10 @@ def main(argv: list[str] | None = None) -> int:
 
     for name, s in report["scenes"].items():
         print(f"{name:<32} {ms(s['p50_ms'])} {ms(s['p95_ms'])} {ms(s['max_ms'])} {s['batch_mean_ms']:14.4f}")
-    print(f"(performance.now() resolution here: {resolution:.3f} ms; per-input times are multiples of it,"
-          " the batch mean is not)")
+    print(
+        f"(performance.now() resolution here: {resolution:.3f} ms; per-input times are multiples of it,"
+        " the batch mean is not)"
+    )
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(report, indent=2, sort_keys=True) + "\n")
     print(f"wrote {args.out}")

@@ -8,6 +8,7 @@
 
 Usage: python bench/preview.py [RUNS]   (default 10)
 """
+
 from __future__ import annotations
 
 import os
@@ -22,8 +23,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))  # the watch-server helper of the tests
 
 from playwright.sync_api import sync_playwright  # noqa: E402
-
 from preview import WatchServer  # noqa: E402
+
 from sitegen.build import BuildConfig, build  # noqa: E402
 from sitegen.newbook import new_book  # noqa: E402
 from sitegen.registry import load_registry  # noqa: E402
@@ -76,12 +77,18 @@ def main(runs: int) -> None:
     with tempfile.TemporaryDirectory() as scratch:
         starter = Path(scratch) / "starter"
         new_book(starter)
-        print(f"preview: starter book, rebuild after a prose edit: {spread(rebuild_times(BuildConfig.at(starter), starter / 'content' / 'pendulum.md', runs))}", flush=True)
+        print(
+            f"preview: starter book, rebuild after a prose edit: {spread(rebuild_times(BuildConfig.at(starter), starter / 'content' / 'pendulum.md', runs))}",
+            flush=True,
+        )
         copy = Path(scratch) / "repository-book"
         shutil.copytree(ROOT / "content", copy / "content")
         shutil.copy(ROOT / "book.toml", copy / "book.toml")
         config = BuildConfig.at(copy, cache=ROOT / ".cache")
-        print(f"preview: this repository's book, rebuild after a prose edit: {spread(rebuild_times(config, copy / 'content' / 'newtons-laws.md', runs))}", flush=True)
+        print(
+            f"preview: this repository's book, rebuild after a prose edit: {spread(rebuild_times(config, copy / 'content' / 'newtons-laws.md', runs))}",
+            flush=True,
+        )
         print(f"preview: starter book, prose edit saved -> shown in Chromium: {spread(browser_times(starter, runs))}")
 
 

@@ -2,6 +2,7 @@
 
 Timings are medians over repeated runs on this machine; treat them as ratios, not absolutes.
 """
+
 from __future__ import annotations
 
 import json
@@ -20,8 +21,8 @@ ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build-bench"
 sys.path.insert(0, str(ROOT / "src"))
 
-from sitegen.build import BuildConfig, build  # noqa: E402
 from sitegen.accuracy.build_costs import page_bytes  # noqa: E402
+from sitegen.build import BuildConfig, build  # noqa: E402
 
 
 def build_times(runs: int = 3) -> dict:
@@ -60,7 +61,9 @@ def rebuild_times(runs: int = 3) -> dict:
         noops = [timed(config) for _ in range(runs)]
         page = root / "content" / "newtons-laws.md"
         text = page.read_text()
-        assert "slider F_pk: 0..50 step 0.5 default 12" in text, "the impulse scene's F_pk slider changed: update bench/run.py"
+        assert "slider F_pk: 0..50 step 0.5 default 12" in text, (
+            "the impulse scene's F_pk slider changed: update bench/run.py"
+        )
         page.write_text(text.replace("slider F_pk: 0..50 step 0.5 default 12", "slider F_pk: 0..50 step 1 default 12"))
         one_scene = timed(config)
         result = {
@@ -77,8 +80,9 @@ def rebuild_times(runs: int = 3) -> dict:
         except ImportError:
             return result
         with LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster:
-            dask_config = BuildConfig(root, root / "content", root / "build-dask", cache=None,
-                                      scheduler=cluster.scheduler_address)
+            dask_config = BuildConfig(
+                root, root / "content", root / "build-dask", cache=None, scheduler=cluster.scheduler_address
+            )
             seconds, report = timed(dask_config)
         result.update(dask_cold_s=seconds, dask_evaluations=report.evaluations)
         return result
@@ -101,19 +105,32 @@ def main() -> int:
         "pages": page_sizes(site),
     }
     latency_file = OUT / "latency.json"
-    subprocess.run([sys.executable, str(ROOT / "bench" / "latency.py"), "--site", str(site), "--out", str(latency_file)], check=True)
+    subprocess.run(
+        [sys.executable, str(ROOT / "bench" / "latency.py"), "--site", str(site), "--out", str(latency_file)],
+        check=True,
+    )
     report["latency"] = json.loads(latency_file.read_text())
     (OUT / "report.json").write_text(json.dumps(report, indent=2, sort_keys=True))
-    print(f"build: median {report['build']['median_s']:.2f} s over {report['build']['runs']} cold builds, "
-          f"{report['build']['stored_values']} stored values")
+    print(
+        f"build: median {report['build']['median_s']:.2f} s over {report['build']['runs']} cold builds, "
+        f"{report['build']['stored_values']} stored values"
+    )
     r = report["rebuilds"]
-    print(f"cache: cold {r['cold_s']:.2f} s ({r['cold_evaluations']} evaluations), no-op {r['noop_s']:.2f} s "
-          f"({r['noop_evaluations']} evaluations), one scene edited {r['one_scene_s']:.2f} s "
-          f"({r['one_scene_computed']} scene, {r['one_scene_evaluations']} evaluations)"
-          + (f", Dask LocalCluster cold {r['dask_cold_s']:.2f} s ({r['dask_evaluations']} evaluations)" if "dask_cold_s" in r else ""))
+    print(
+        f"cache: cold {r['cold_s']:.2f} s ({r['cold_evaluations']} evaluations), no-op {r['noop_s']:.2f} s "
+        f"({r['noop_evaluations']} evaluations), one scene edited {r['one_scene_s']:.2f} s "
+        f"({r['one_scene_computed']} scene, {r['one_scene_evaluations']} evaluations)"
+        + (
+            f", Dask LocalCluster cold {r['dask_cold_s']:.2f} s ({r['dask_evaluations']} evaluations)"
+            if "dask_cold_s" in r
+            else ""
+        )
+    )
     for name, s in report["pages"].items():
-        print(f"{name:<22} html {s['html_raw'] / 1024:7.1f} KB raw {s['html_gzip'] / 1024:6.1f} KB gzip | "
-              f"with assets {s['total_raw'] / 1024:7.1f} KB raw {s['total_gzip'] / 1024:6.1f} KB gzip")
+        print(
+            f"{name:<22} html {s['html_raw'] / 1024:7.1f} KB raw {s['html_gzip'] / 1024:6.1f} KB gzip | "
+            f"with assets {s['total_raw'] / 1024:7.1f} KB raw {s['total_gzip'] / 1024:6.1f} KB gzip"
+        )
     print(f"wrote {OUT / 'report.json'}")
     return 0
 

@@ -9,6 +9,7 @@ compiled bytecode is kept, and an untimed build makes it first, as every run aft
 without it each build would also time Python compiling about a thousand modules (2 s on a 2-core machine).
 Usage: python bench/shelf.py [COPIES ...]   (default 1 4 16)
 """
+
 from __future__ import annotations
 
 import os
@@ -24,9 +25,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 CHAPTER = ROOT / "content" / "newtons-laws.md"
 _RANGE = re.compile(r"^slider (\w+): (\S+)\.\.(\S+) step (\S+) default (\S+)$")
-_PEAK = "import resource, sys; from sitegen.cli import main; code = main(sys.argv[1:]); " \
-        "print('peak_kib', resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, " \
-        "resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss); sys.exit(code)"
+_PEAK = (
+    "import resource, sys; from sitegen.cli import main; code = main(sys.argv[1:]); "
+    "print('peak_kib', resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, "
+    "resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss); sys.exit(code)"
+)
 
 
 def shifted_chapter(text: str, shift: int) -> str:
@@ -92,8 +95,9 @@ def timed_build(root: Path) -> tuple[float, float, float]:
     """Seconds and peak resident MiB of `sitegen build --root ROOT` in a fresh process, and of the largest
     process it started (node converting the math, or the process that builds pages beside it)."""
     start = time.perf_counter()
-    done = subprocess.run([sys.executable, "-c", _PEAK, "build", "--root", str(root)], capture_output=True, text=True,
-                          env=_build_env())
+    done = subprocess.run(
+        [sys.executable, "-c", _PEAK, "build", "--root", str(root)], capture_output=True, text=True, env=_build_env()
+    )
     seconds = time.perf_counter() - start
     if done.returncode:
         raise SystemExit(f"the shelf did not build:\n{done.stderr}")
@@ -102,17 +106,24 @@ def timed_build(root: Path) -> tuple[float, float, float]:
 
 
 def main(counts: list[int]) -> None:
-    print("shelf: copies of the chapter 'Newton's laws' (6 scenes each), every scene computed; one fresh process per build")
+    print(
+        "shelf: copies of the chapter 'Newton's laws' (6 scenes each), every scene computed; one fresh process per build"
+    )
     compile_bytecode()
-    print(f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} {'peak MiB':>9} {'child MiB':>10} {'no-op s':>8}")
+    print(
+        f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} {'peak MiB':>9} {'child MiB':>10} {'no-op s':>8}"
+    )
     for copies in counts:
         with tempfile.TemporaryDirectory() as folder:
             root = Path(folder)
             make_shelf(root, copies)
             cold, peak, child = timed_build(root)
             noop, _, _ = timed_build(root)
-            print(f"{copies:>8} {6 * copies:>7} {cold:>8.2f} {cold / copies:>10.2f} {peak:>9.0f} {child:>10.0f} "
-                  f"{noop:>8.2f}", flush=True)
+            print(
+                f"{copies:>8} {6 * copies:>7} {cold:>8.2f} {cold / copies:>10.2f} {peak:>9.0f} {child:>10.0f} "
+                f"{noop:>8.2f}",
+                flush=True,
+            )
 
 
 if __name__ == "__main__":

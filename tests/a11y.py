@@ -4,6 +4,7 @@
 Everything here runs inside the page through one `page.evaluate` per check and returns plain
 lists of problems, so that a failing test prints what is wrong and where.
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -104,7 +105,9 @@ def text_contrast_problems(page) -> list[str]:
     """Every visible piece of text (outside the SVG figures) whose colour misses WCAG AA contrast
     against the colour behind it. The figures are checked by axe and sit on a light card."""
     return page.evaluate(
-        "([normal, large]) => {" + _COLOUR_JS + r"""
+        "([normal, large]) => {"
+        + _COLOUR_JS
+        + r"""
         const problems = [];
         const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
         const seen = new Set();
@@ -128,7 +131,9 @@ def text_contrast_problems(page) -> list[str]:
 def tab_stops(page) -> list[str]:
     """Descriptions of the elements the Tab key should reach, in document order (one per radio group)."""
     return page.evaluate(
-        "() => {" + _COLOUR_JS + r"""
+        "() => {"
+        + _COLOUR_JS
+        + r"""
         const stops = [], groups = new Set();
         for (const el of document.querySelectorAll('a[href], input, button, select, textarea, summary, [tabindex]')) {
           if (el.disabled || el.tabIndex < 0 || !visible(el)) continue;
@@ -146,7 +151,9 @@ def tab_stops(page) -> list[str]:
 def focused_element_problems(page, focus_contrast: float = FOCUS_CONTRAST) -> dict:
     """The focused element: where it is, and what is wrong with how its focus is shown."""
     return page.evaluate(
-        "minimum => {" + _COLOUR_JS + r"""
+        "minimum => {"
+        + _COLOUR_JS
+        + r"""
         const el = document.activeElement;
         if (!el || el === document.body) return {where: null, problems: []};
         const name = where(el.type === 'radio' ? el.closest('fieldset') || el : el);
@@ -172,7 +179,9 @@ def target_size_problems(page, minimum: int = MIN_TARGET) -> list[str]:
     """Pointer targets under `minimum` px that are not spaced as SC 2.5.8 allows. The target of a
     radio button is its label; links inside running text are exempt (SC 2.5.8, 'inline')."""
     return page.evaluate(
-        "minimum => {" + _COLOUR_JS + r"""
+        "minimum => {"
+        + _COLOUR_JS
+        + r"""
         const inline = a => !a.closest('nav, header, footer') && a.closest('p, li, dd, td, figcaption');
         const targets = [];
         for (const el of document.querySelectorAll('a[href], input, button, select, summary')) {
@@ -203,7 +212,9 @@ def target_size_problems(page, minimum: int = MIN_TARGET) -> list[str]:
 def control_size_problems(page, minimum: int = MIN_TARGET) -> list[str]:
     """Scene controls (sliders, radio labels, play buttons) smaller than `minimum` px either way."""
     return page.evaluate(
-        "minimum => {" + _COLOUR_JS + r"""
+        "minimum => {"
+        + _COLOUR_JS
+        + r"""
         const problems = [];
         for (const el of document.querySelectorAll('[data-scene] input[type="range"], [data-scene] button, [data-scene] input[type="radio"]')) {
           const target = el.type === 'radio' ? el.closest('label') : el;
@@ -219,7 +230,9 @@ def control_size_problems(page, minimum: int = MIN_TARGET) -> list[str]:
 def overflow_problems(page) -> list[str]:
     """Elements that stick out of the viewport sideways, unless a scrolling box holds them."""
     return page.evaluate(
-        "() => {" + _COLOUR_JS + r"""
+        "() => {"
+        + _COLOUR_JS
+        + r"""
         const problems = [];
         const width = document.documentElement.clientWidth;
         if (document.documentElement.scrollWidth > width) problems.push(`the page scrolls sideways: ${document.documentElement.scrollWidth} px > ${width} px`);

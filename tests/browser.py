@@ -12,6 +12,7 @@ Nothing is read from the scene's inline tables.
 Every DOM helper is one `page.evaluate()`: resolving a Playwright locator costs several
 milliseconds on the chapters' large DOMs, an evaluate about one.
 """
+
 from __future__ import annotations
 
 import functools
@@ -20,12 +21,12 @@ import json
 import math
 import re
 import threading
+from collections.abc import Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from decimal import Decimal
 from fractions import Fraction
 from pathlib import Path
-from typing import Mapping
 
 import numpy as np
 
@@ -225,7 +226,7 @@ def book() -> tuple[list[Page], list[BookScene]]:
 
 
 class _QuietHandler(http.server.SimpleHTTPRequestHandler):
-    def log_message(self, format, *args):  # noqa: A002 - signature fixed by the base class
+    def log_message(self, format, *args):
         pass
 
 
@@ -240,7 +241,7 @@ class SiteServer:
         self.origin = f"http://127.0.0.1:{self.port}"
         self.thread = threading.Thread(target=self.httpd.serve_forever, name="site-server", daemon=True)
 
-    def __enter__(self) -> "SiteServer":
+    def __enter__(self) -> SiteServer:
         self.thread.start()
         return self
 
@@ -310,7 +311,7 @@ class Control:
         else:
             try:
                 offset = (Decimal(self.value) - self.axis.lo) / self.axis.step
-            except Exception:  # noqa: BLE001 - any unparsable value is "no stop"
+            except Exception:
                 return None
             k = int(offset.to_integral_value())
             # a range input's value is always on its step (to float precision)
@@ -406,8 +407,15 @@ def _state(scene: BookScene, raw: dict) -> SceneState:
             axes[r["param"]] = _UnknownAxis()
         controls.append(
             Control(
-                param=r["param"], axis=axes[r["param"]], tag=r["tag"], dom_id=r["id"], attrs=r["attrs"],
-                value=r["value"], valuetext=r["valuetext"], shown=r["shown"], label=r["label"],
+                param=r["param"],
+                axis=axes[r["param"]],
+                tag=r["tag"],
+                dom_id=r["id"],
+                attrs=r["attrs"],
+                value=r["value"],
+                valuetext=r["valuetext"],
+                shown=r["shown"],
+                label=r["label"],
                 radios=tuple(r["radios"]),
             )
         )
@@ -436,19 +444,24 @@ def move_many(page, scene: BookScene, positions: list[Mapping[str, int]]) -> lis
     read right after the events is what a reader sees in the next frame.
     """
     moves = [[[param, control_value(scene.axis(param), k)] for param, k in stops.items()] for stops in positions]
-    raws = _in_scene(page, scene, f"{_STATE_JS} {_MOVE_JS} return arg.map(pairs => {{ moveTo(pairs); return readState(); }});", moves)
+    raws = _in_scene(
+        page, scene, f"{_STATE_JS} {_MOVE_JS} return arg.map(pairs => {{ moveTo(pairs); return readState(); }});", moves
+    )
     return [_state(scene, raw) for raw in raws]
 
 
 def move_value(page, scene: BookScene, param: str, value: str) -> SceneState:
     """Write a raw value into one control (e.g. an off-grid number) and read the scene back."""
-    return _state(scene, _in_scene(page, scene, f"{_STATE_JS} {_MOVE_JS} moveTo(arg); return readState();", [[param, value]]))
+    return _state(
+        scene, _in_scene(page, scene, f"{_STATE_JS} {_MOVE_JS} moveTo(arg); return readState();", [[param, value]])
+    )
 
 
 def reset(page, scene: BookScene) -> SceneState:
     """Pause the scene's animation if it plays and put every control back on its default."""
     _in_scene(
-        page, scene,
+        page,
+        scene,
         "const b = root.querySelector('button[data-animate]'); if (b && b.getAttribute('aria-pressed') === 'true') b.click();",
     )
     return move(page, scene, dict(zip(scene.params, scene.defaults)))
@@ -492,7 +505,9 @@ def _evaluate_texts(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, t
         if output.labels:
             texts[output.name] = (output.labels[int(value)],)
         elif output.digits:  # significant digits: one correct text (ties are not singled out)
-            texts[output.name] = (significant_text(0.0 if abs(value) < output.floor else value, output.digits, output.unit),)
+            texts[output.name] = (
+                significant_text(0.0 if abs(value) < output.floor else value, output.digits, output.unit),
+            )
         else:
             texts[output.name] = tuple(with_unit(t, output.unit) for t in _roundings(value, output.decimals))
     return texts
@@ -538,7 +553,9 @@ def expected_control_text(scene: BookScene, param: str, index: int) -> str:
     elif axis.has_fractions:
         text = fmt(float(value), axis.decimals)
         # the shown text is the exact stop to within half its last digit
-        assert abs(Fraction(Decimal(text.replace(MINUS, "-"))) - Fraction(value)) <= Fraction(1, 2 * 10**axis.decimals), (text, value)
+        assert abs(Fraction(Decimal(text.replace(MINUS, "-"))) - Fraction(value)) <= Fraction(
+            1, 2 * 10**axis.decimals
+        ), (text, value)
     else:
         text = plain(value).replace("-", MINUS)
     return with_unit(text, unit)
@@ -553,7 +570,9 @@ def scene_problems(scene: BookScene, state: SceneState) -> list[str]:
     stops = state.stops
     for c, k in zip(state.controls, stops):
         if k is None:
-            problems.append(f"control {c.param}: value {c.value!r} / radios {[r['checked'] for r in c.radios]} is no stop")
+            problems.append(
+                f"control {c.param}: value {c.value!r} / radios {[r['checked'] for r in c.radios]} is no stop"
+            )
             continue
         want = expected_control_text(scene, c.param, k)
         if c.kind == CHOICE:
@@ -573,7 +592,9 @@ def scene_problems(scene: BookScene, state: SceneState) -> list[str]:
     if all(k is not None for k in stops):
         for name, texts in accepted_readouts(scene, stops).items():
             if state.readouts.get(name) not in texts:
-                problems.append(f"readout {name}: page {state.readouts.get(name)!r}, model {' or '.join(map(repr, texts))}")
+                problems.append(
+                    f"readout {name}: page {state.readouts.get(name)!r}, model {' or '.join(map(repr, texts))}"
+                )
     if problems:
         where = ", ".join(f"{c.param}={describe_stop(scene, c.param, k)}" for c, k in zip(state.controls, stops))
         problems = [f"[{where}] {p}" for p in problems]

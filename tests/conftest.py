@@ -7,14 +7,16 @@ is marked `slow`, as are the tests SLOW_TESTS lists; one that asks for `chromium
 or lives in a browser module, is marked `browser`: the marks follow from what a test uses, so a
 new test cannot forget them.
 """
+
 from __future__ import annotations
 
 import fcntl
 import gc
 import os
 import shutil
+from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING
 
 import pytest
 
@@ -73,10 +75,30 @@ os.environ.setdefault(CACHE_ENV, str(COMPILED))  # the tests that call the solve
 # time, in the order of the collection (with --no-loadscope-reorder, as the Makefile asks; by default it orders the
 # files by their number of tests), so the long files start first and the short ones fill in at the end. Left to the
 # default, a file of two long tests came last and ran alone for 40 s while the other processes had nothing to do.
-LONGEST_FIRST = ("test_browser", "test_accessibility", "test_reader_tools", "test_properties", "test_interrupted_build",
-                 "test_layout", "test_determinism_load", "test_figure_goldens", "test_install", "test_bubble_hard_cases",
-                 "test_sweep", "test_bubble_model", "test_review", "test_fuzz", "test_bubble_compiled", "test_build",
-                 "test_preview", "test_tables_exact", "test_executors", "test_stamp", "test_html_validity", "test_plugins")
+LONGEST_FIRST = (
+    "test_browser",
+    "test_accessibility",
+    "test_reader_tools",
+    "test_properties",
+    "test_interrupted_build",
+    "test_layout",
+    "test_determinism_load",
+    "test_figure_goldens",
+    "test_install",
+    "test_bubble_hard_cases",
+    "test_sweep",
+    "test_bubble_model",
+    "test_review",
+    "test_fuzz",
+    "test_bubble_compiled",
+    "test_build",
+    "test_preview",
+    "test_tables_exact",
+    "test_executors",
+    "test_stamp",
+    "test_html_validity",
+    "test_plugins",
+)
 
 
 COLLECTED = pytest.StashKey[list]()  # the node ids of every test collected, before -m or -k leave any out
@@ -126,8 +148,11 @@ def register(monkeypatch):
 
     added = {"models": {}, "figures": {}}
     load = sitegen.build.load_registry
-    monkeypatch.setattr(sitegen.build, "load_registry",
-                        lambda book=None: load(book).adding(added["models"], added["figures"], "the test"))
+    monkeypatch.setattr(
+        sitegen.build,
+        "load_registry",
+        lambda book=None: load(book).adding(added["models"], added["figures"], "the test"),
+    )
 
     def _register(models: dict, figures: dict) -> None:
         added["models"].update(models)
@@ -200,7 +225,9 @@ def built_site(tmp_path_factory) -> Path:
     """
     from sitegen.build import BuildConfig, build
 
-    folder = made_once(tmp_path_factory, "site", lambda folder: build(BuildConfig.at(ROOT, folder / "build"), progress=None))
+    folder = made_once(
+        tmp_path_factory, "site", lambda folder: build(BuildConfig.at(ROOT, folder / "build"), progress=None)
+    )
     return folder / "build"
 
 
@@ -209,9 +236,8 @@ def built_site(tmp_path_factory) -> Path:
 @pytest.fixture(scope="module")
 def chromium():
     """Debian's Chromium, headless, for the browser tests of one module."""
-    from playwright.sync_api import sync_playwright
-
     from browser import close, launch
+    from playwright.sync_api import sync_playwright
 
     with sync_playwright() as playwright:
         browser = launch(playwright)

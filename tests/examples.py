@@ -3,6 +3,7 @@
 `make check` is the inner loop: it runs each property on the first fifth of its (derandomized, so
 always the same) examples; `make test` and CI run them all. SITEGEN_EXAMPLE_SHARE sets the share.
 """
+
 from __future__ import annotations
 
 import os

@@ -9,6 +9,7 @@ POINT is one of
   cache       while the first cache entry is being written (half of it on disk, not yet renamed)
   none        not at all
 """
+
 from __future__ import annotations
 
 import os

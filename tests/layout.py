@@ -1,6 +1,7 @@
 """Helpers for the layout tests: what sticks out of its box, text outside or too small in a figure,
 labels over controls, legends over data. Each check is one `page.evaluate` returning a list of
 problems (empty when all is well), so that a failing test says what is wrong and where."""
+
 from __future__ import annotations
 
 from a11y import _COLOUR_JS
@@ -9,17 +10,22 @@ MIN_FIGURE_TEXT_PX = 8.0  # the smallest text a figure may show, in CSS px, at a
 SCRIPT_RATIO = 0.7  # a sub- or superscript may be this much smaller than its line (TeX's is 0.7)
 
 # where(el) and the colour helpers of a11y.py, and two of our own.
-_WHERE_JS = _COLOUR_JS + r"""
+_WHERE_JS = (
+    _COLOUR_JS
+    + r"""
 const shown = el => { const b = el.getBoundingClientRect(); return b.width > 0 && b.height > 0 && getComputedStyle(el).visibility !== 'hidden'; };
 const overlap = (a, b) => Math.max(0, Math.min(a.right, b.right) - Math.max(a.left, b.left)) * Math.max(0, Math.min(a.bottom, b.bottom) - Math.max(a.top, b.top));
 """
+)
 
 
 def overflow_problems(page) -> list[str]:
     """The page scrolling sideways, and any box whose content is wider than it without showing that it
     scrolls (the `scrolls` class the script sets draws a shadow at each edge that hides more)."""
     return page.evaluate(
-        "() => {" + _WHERE_JS + r"""
+        "() => {"
+        + _WHERE_JS
+        + r"""
         const problems = [], width = document.documentElement.clientWidth;
         if (document.documentElement.scrollWidth > width) problems.push(`the page scrolls sideways: ${document.documentElement.scrollWidth} > ${width} px`);
         for (const el of document.body.querySelectorAll('*')) {
@@ -38,7 +44,9 @@ def figure_problems(page) -> list[str]:
     """Each scene shows exactly one of its figures, whole: inside the scene and the viewport, never in a
     box that scrolls."""
     return page.evaluate(
-        "() => {" + _WHERE_JS + r"""
+        "() => {"
+        + _WHERE_JS
+        + r"""
         const problems = [], width = document.documentElement.clientWidth;
         for (const scene of document.querySelectorAll('figure.scene')) {
           const figures = [...scene.querySelectorAll('svg.scene-svg')].filter(shown);
@@ -60,7 +68,9 @@ def svg_text_problems(page, minimum: float = MIN_FIGURE_TEXT_PX) -> list[str]:
     """Text of a shown figure (scenes and diagrams) that reaches outside its SVG, or is drawn smaller
     than `minimum` CSS px (a sub- or superscript: than SCRIPT_RATIO of that)."""
     return page.evaluate(
-        "([minimum, ratio]) => {" + _WHERE_JS + r"""
+        "([minimum, ratio]) => {"
+        + _WHERE_JS
+        + r"""
         const problems = [];
         for (const svg of [...document.querySelectorAll('svg.scene-svg')].filter(shown)) {
           const box = svg.getBoundingClientRect(), scale = box.width / svg.viewBox.baseVal.width;
@@ -93,7 +103,9 @@ def text_collision_problems(page) -> list[str]:
     an accent (DejaVu Sans: ascent 0.93 em, capitals 0.73 em), on whichever side is up for the text.
     """
     return page.evaluate(
-        "() => {" + _WHERE_JS + r"""
+        "() => {"
+        + _WHERE_JS
+        + r"""
         const problems = [];
         const glyphs = text => {
           const r = text.getBoundingClientRect(), m = text.getScreenCTM();
@@ -121,7 +133,9 @@ def text_collision_problems(page) -> list[str]:
 def legend_problems(page) -> list[str]:
     """Legends of a shown figure that cover a panel's plotting area (where data is drawn)."""
     return page.evaluate(
-        "() => {" + _WHERE_JS + r"""
+        "() => {"
+        + _WHERE_JS
+        + r"""
         const problems = [];
         for (const svg of [...document.querySelectorAll('svg.scene-svg')].filter(shown)) {
           const name = (svg.closest('[id]') || svg).id + (svg.classList.contains('narrow') ? ' (narrow)' : '');
@@ -143,7 +157,9 @@ def control_label_problems(page) -> list[str]:
     """A slider's label, the slider and its value text that overlap one another (text measured where
     it is drawn, which may be beyond its element's box)."""
     return page.evaluate(
-        "() => {" + _WHERE_JS + r"""
+        "() => {"
+        + _WHERE_JS
+        + r"""
         const problems = [];
         const extent = el => {
           if (el.localName === 'input') return el.getBoundingClientRect();

@@ -1,5 +1,6 @@
 """Helpers for the tests of `sitegen serve --watch`: the command in a process of its own, its output
 collected line by line, stopped with Ctrl-C (SIGINT)."""
+
 from __future__ import annotations
 
 import os
@@ -26,8 +27,15 @@ class WatchServer:
 
     def __init__(self, book: Path, command: list[str] | None = None, env: dict | None = None):
         self.book = book
-        self.process = subprocess.Popen(command or SERVE_WATCH, cwd=book, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                        text=True, env={**(env or os.environ), "PYTHONUNBUFFERED": "1"}, preexec_fn=hears_ctrl_c)
+        self.process = subprocess.Popen(
+            command or SERVE_WATCH,
+            cwd=book,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+            env={**(env or os.environ), "PYTHONUNBUFFERED": "1"},
+            preexec_fn=hears_ctrl_c,
+        )
         self.lines: queue.Queue[str] = queue.Queue()
         self.seen: list[str] = []
         threading.Thread(target=self._read, daemon=True).start()

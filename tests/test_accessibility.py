@@ -13,10 +13,10 @@
 
 Keyboard operation of each control (arrows, Page Up/Down, Home/End) is tested in test_browser.py.
 """
+
 from __future__ import annotations
 
 import pytest
-
 from a11y import (
     control_size_problems,
     describe_violations,
@@ -29,6 +29,7 @@ from a11y import (
     text_contrast_problems,
 )
 from browser import ROOT, front, load, new_page
+
 from sitegen.content.pages import discover_pages
 
 PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
@@ -81,7 +82,12 @@ def page_as_loaded(chromium, built_site):
     return _get
 
 
-PHONE = {"viewport": {"width": WIDTHS["phone"], "height": 740}, "device_scale_factor": 2, "is_mobile": True, "has_touch": True}
+PHONE = {
+    "viewport": {"width": WIDTHS["phone"], "height": 740},
+    "device_scale_factor": 2,
+    "is_mobile": True,
+    "has_touch": True,
+}
 
 
 @pytest.fixture(scope="module")

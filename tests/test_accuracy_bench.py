@@ -3,6 +3,7 @@
 The experiments are checked on their error measurements — against closed forms, a second exact
 method, and known perturbations — never on their timings. The page is checked in the built book.
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -14,18 +15,29 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from sitegen.accuracy.experiments import (
+    CHAIN_T,
+    bubble_problem,
+    case_errors,
+    chain_by_eigh,
+    chain_error,
+    chain_exact,
+    collapse_errors,
+    extrema,
+    run_chain_ivp,
+    run_verlet,
+    skip_reason,
+    solve_case,
+    verlet_steps,
+)
+from sitegen.accuracy.resolution import LINES, interpolation_error, resolution_experiment
 from sitegen.build import BuildConfig, build
+from sitegen.cli import main
+from sitegen.content.bench_results import BENCH_NAME, load_results
 from sitegen.errors import BuildFailed
 from sitegen.registry import builtin_registry
 from sitegen.site.report import report_parts, summary
-from sitegen.accuracy.experiments import (
-    CHAIN_T, bubble_problem, case_errors, chain_by_eigh, chain_error, chain_exact, collapse_errors, extrema,
-    run_chain_ivp, run_verlet, skip_reason, solve_case, verlet_steps,
-)
 from sitegen.site.report.html import sci
-from sitegen.accuracy.resolution import LINES, interpolation_error, resolution_experiment
-from sitegen.cli import main
-from sitegen.content.bench_results import BENCH_NAME, load_results
 
 MODELS = builtin_registry().models
 
@@ -111,9 +123,24 @@ def test_driven_bubble_extrema_are_the_reference_readouts():
 
 @pytest.mark.parametrize(
     "case, method, rtol, skipped",
-    [("C", "RK45", 1e-9, True), ("C", "DOP853", 1e-12, True), ("C", "RK45", 1e-6, False), ("C", "LSODA", 1e-12, False),
-     ("B", "Radau", 1e-12, True), ("B", "Radau", 1e-9, False), ("B", "DOP853", 1e-12, False)],
-    ids=["C-RK45-1e-9", "C-DOP853-1e-12", "C-RK45-1e-6", "C-LSODA-1e-12", "B-Radau-1e-12", "B-Radau-1e-9", "B-DOP853-1e-12"],
+    [
+        ("C", "RK45", 1e-9, True),
+        ("C", "DOP853", 1e-12, True),
+        ("C", "RK45", 1e-6, False),
+        ("C", "LSODA", 1e-12, False),
+        ("B", "Radau", 1e-12, True),
+        ("B", "Radau", 1e-9, False),
+        ("B", "DOP853", 1e-12, False),
+    ],
+    ids=[
+        "C-RK45-1e-9",
+        "C-DOP853-1e-12",
+        "C-RK45-1e-6",
+        "C-LSODA-1e-12",
+        "B-Radau-1e-12",
+        "B-Radau-1e-9",
+        "B-DOP853-1e-12",
+    ],
 )
 def test_hopeless_combinations_are_skipped_with_a_reason(case, method, rtol, skipped):
     """Explicit methods on stiff C beyond two tolerances and Radau beyond 1e-10 on B are skipped, with a reason."""
@@ -143,8 +170,13 @@ def test_two_node_line_in_e_misses_the_parabola_by_its_sagitta():
 
 @pytest.mark.parametrize(
     "line, axis, nodes, expected",
-    [("v1f", "linear", 17, 0.11), ("v1f", "log", 65, 4.9e-4), ("dv", "linear", 65, 1.29), ("dv", "log", 65, 3.6e-3),
-     ("MA", "linear", 65, 51.0)],
+    [
+        ("v1f", "linear", 17, 0.11),
+        ("v1f", "log", 65, 4.9e-4),
+        ("dv", "linear", 65, 1.29),
+        ("dv", "log", 65, 3.6e-3),
+        ("MA", "linear", 65, 51.0),
+    ],
     ids=["v1f-linear-17", "v1f-log-65", "dv-linear-65", "dv-log-65", "MA-linear-65"],
 )
 def test_plain_axes_reproduce_the_measured_table(line, axis, nodes, expected):
@@ -163,7 +195,10 @@ def test_every_stop_row_stores_each_stop_at_four_bytes():
 
 
 def _runs(points, method="m"):
-    return [{"method": method, "rtol": 10.0**-k, "error": e, "time_s": t, "status": "ok"} for k, (t, e) in enumerate(points, 3)]
+    return [
+        {"method": method, "rtol": 10.0**-k, "error": e, "time_s": t, "status": "ok"}
+        for k, (t, e) in enumerate(points, 3)
+    ]
 
 
 def test_per_digit_cost_of_a_second_order_method_is_root_ten():
@@ -180,8 +215,17 @@ def test_pareto_front_keeps_only_runs_nothing_beats():
 
 @pytest.mark.parametrize(
     "value, text",
-    [(2.1e-7, "2.1 × 10<sup>−7</sup>"), (1e-12, "10<sup>−12</sup>"), (3.6e4, "3.6 × 10<sup>4</sup>"), (1.333, "1.3"),
-     (51.3, "51"), (267.0, "270"), (0.0832, "0.083"), (0.0, "0"), (None, "—")],
+    [
+        (2.1e-7, "2.1 × 10<sup>−7</sup>"),
+        (1e-12, "10<sup>−12</sup>"),
+        (3.6e4, "3.6 × 10<sup>4</sup>"),
+        (1.333, "1.3"),
+        (51.3, "51"),
+        (267.0, "270"),
+        (0.0832, "0.083"),
+        (0.0, "0"),
+        (None, "—"),
+    ],
     ids=["mantissa", "power", "large", "one", "tens", "hundreds", "hundredths", "zero", "missing"],
 )
 def test_numbers_are_written_as_the_captions_write_them(value, text):
@@ -197,8 +241,9 @@ def test_quick_bench_writes_strict_json_with_the_expected_keys(tmp_path):
     root = tmp_path / "book"
     (root / "content").mkdir(parents=True)
     (root / "book.toml").write_text("")
-    (root / "content" / "index.md").write_text('+++\ntitle = "Try"\n+++\n\n```scene\nmodel: impulse\nid: pulse\n'
-                                               "slider m: 1..4 step 1 default 2\n```\n")
+    (root / "content" / "index.md").write_text(
+        '+++\ntitle = "Try"\n+++\n\n```scene\nmodel: impulse\nid: pulse\nslider m: 1..4 step 1 default 2\n```\n'
+    )
     out = tmp_path / "bench.json"
     assert main(["bench", "--quick", "--root", str(root), "--out", str(out)]) == 0
     text = out.read_text()
@@ -218,8 +263,18 @@ def test_committed_bench_results_cover_every_experiment():
     data = load_results(ROOT / "content" / BENCH_NAME)
     assert data is not None, "run `make bench` to write content/accuracy/bench.json"
     assert {r["N"] for r in data["chain"]["runs"]} == {64, 256} and set(data["bubble"]) == {"A", "B", "C"}
-    assert {r["method"] for r in data["bubble"]["B"]["runs"]} == {"RK45", "DOP853", "Radau", "BDF", "LSODA", "compiled-DOP853", "compiled-Radau"}
-    bubble_scenes = {f"newtons-laws-examples#{s}" for s in ("rayleigh-collapse", "driven-bubble", "driven-map", "blake-threshold")}
+    assert {r["method"] for r in data["bubble"]["B"]["runs"]} == {
+        "RK45",
+        "DOP853",
+        "Radau",
+        "BDF",
+        "LSODA",
+        "compiled-DOP853",
+        "compiled-Radau",
+    }
+    bubble_scenes = {
+        f"newtons-laws-examples#{s}" for s in ("rayleigh-collapse", "driven-bubble", "driven-map", "blake-threshold")
+    }
     assert set(data["digits"]) == bubble_scenes
     for sweep in data["digits"].values():  # at the chosen setting no shown value is wrong at any stop
         assert next(r for r in sweep["runs"] if r["rtol"] == sweep["chosen"])["wrong"] == 0
@@ -243,11 +298,16 @@ def test_unknown_report_part_is_an_author_error_at_its_line(tmp_path):
         build(_book_with(tmp_path, "show: nope"), progress=None)
     parts = ", ".join(report_parts(MODELS))
     assert "chain, bubble-A, bubble-B, bubble-C" in parts  # declared by the chain and bubble models
-    assert [str(e) for e in failure.value.errors] == [f"content/accuracy.md:8: accuracy-report: unknown part 'nope'; parts: {parts}"]
+    assert [str(e) for e in failure.value.errors] == [
+        f"content/accuracy.md:8: accuracy-report: unknown part 'nope'; parts: {parts}"
+    ]
 
 
-@pytest.mark.parametrize("part, text", [("chain", "No benchmark results yet"), ("scenes", "No numerical scenes were checked")],
-                         ids=["chain-without-bench", "scenes-without-records"])
+@pytest.mark.parametrize(
+    "part, text",
+    [("chain", "No benchmark results yet"), ("scenes", "No numerical scenes were checked")],
+    ids=["chain-without-bench", "scenes-without-records"],
+)
 def test_report_blocks_say_clearly_when_there_is_nothing_to_show(tmp_path, part, text):
     """Without bench.json a bench part says how to get one; with no records the scene table says so."""
     config = _book_with(tmp_path, f"show: {part}")
@@ -270,9 +330,18 @@ def test_accuracy_page_is_built_and_linked_from_the_home_page(built_site):
 def test_accuracy_page_has_each_diagram_with_its_numbers(built_site, figure):
     """Each diagram: an inline SVG with a label, a caption and a table of the numbers behind it."""
     html = (built_site / "accuracy.html").read_text()
-    found = re.search(rf'<figure class="report-figure" id="fig-{figure}">(.*?)</figure>\s*<details class="report-data">(.*?)</details>',
-                      html, re.S)
-    assert found and '<svg' in found[1] and 'role="img"' in found[1] and "<figcaption>" in found[1] and "<table" in found[2]
+    found = re.search(
+        rf'<figure class="report-figure" id="fig-{figure}">(.*?)</figure>\s*<details class="report-data">(.*?)</details>',
+        html,
+        re.S,
+    )
+    assert (
+        found
+        and "<svg" in found[1]
+        and 'role="img"' in found[1]
+        and "<figcaption>" in found[1]
+        and "<table" in found[2]
+    )
     if figure != "resolution":
         assert "chosen:" in found[1], "the chosen setting is marked"
 
@@ -281,7 +350,11 @@ def test_every_checked_scene_has_its_row_and_its_caption_links_to_it(built_site)
     """Each caption link to accuracy.html#acc-… lands on a table row of the accuracy page, and each row is linked."""
     accuracy = (built_site / "accuracy.html").read_text()
     rows = set(re.findall(r'<tr id="(acc-[^"]+)"', accuracy))
-    links = {anchor for page in built_site.glob("*.html") for anchor in re.findall(r'href="accuracy\.html#(acc-[^"]+)"', page.read_text())}
+    links = {
+        anchor
+        for page in built_site.glob("*.html")
+        for anchor in re.findall(r'href="accuracy\.html#(acc-[^"]+)"', page.read_text())
+    }
     assert rows and rows == links
 
 

@@ -1,4 +1,5 @@
 """The in-build accuracy check: declared numerical settings, measured errors, tolerances that fail the build."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -6,16 +7,16 @@ from types import SimpleNamespace
 
 import pytest
 
-from sitegen.compute.check import caption_sentence, check_scenes, sample_stops
 from sitegen.build import BuildConfig, build
+from sitegen.compute.check import caption_sentence, check_scenes, sample_stops
 from sitegen.compute.scenes import resolve_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import BuildFailed, SourceLoc
-from sitegen.registry import builtin_registry
 from sitegen.models.bubble.model import Bubble
-from sitegen.models.bubble.presets import PRESETS
 from sitegen.models.bubble.point import SOLVER_LABELS
+from sitegen.models.bubble.presets import PRESETS
 from sitegen.physics.numerics import Numerics, configure
+from sitegen.registry import builtin_registry
 
 MODELS = builtin_registry().models
 
@@ -42,8 +43,11 @@ effects: gas, vapour, surface_tension, viscosity, ramp
 fix kappa: 1
 fix R0: 1
 readouts: ramp_R_max"""
-BUBBLE_SCENES = [pytest.param(COLLAPSE, id="collapse-DOP853"), pytest.param(DRIVEN, id="driven-DOP853"),
-                 pytest.param(BLAKE, id="blake-LSODA")]
+BUBBLE_SCENES = [
+    pytest.param(COLLAPSE, id="collapse-DOP853"),
+    pytest.param(DRIVEN, id="driven-DOP853"),
+    pytest.param(BLAKE, id="blake-LSODA"),
+]
 
 
 def _scene(text: str):
@@ -88,7 +92,11 @@ def test_tolerance_below_the_error_is_reported_with_the_worst_stop():
 
 def test_loosened_tolerance_fails_the_build(tmp_path):
     """A throwaway book whose scene declares rtol 1e-2 with tolerance 1e-8 fails, naming file:line, scene and stop."""
-    page = "+++\ntitle = \"Loose\"\n+++\n\nText.\n\n```scene\n" + COLLAPSE + "\nnumerics: method DOP853, rtol 1e-2, tolerance 1e-8\n```\n"
+    page = (
+        '+++\ntitle = "Loose"\n+++\n\nText.\n\n```scene\n'
+        + COLLAPSE
+        + "\nnumerics: method DOP853, rtol 1e-2, tolerance 1e-8\n```\n"
+    )
     config = _book(tmp_path, {"loose": page})
     with pytest.raises(BuildFailed) as failure:
         build(config, progress=None)
@@ -100,7 +108,7 @@ def test_loosened_tolerance_fails_the_build(tmp_path):
 
 def test_checked_scene_caption_states_the_error_and_links_only_when_the_page_exists(tmp_path):
     """The caption ends with the measured error; the link to its row appears once content/accuracy.md exists."""
-    page = "+++\ntitle = \"Chain\"\n+++\n\n```scene\nmodel: chain\nslider N: 4, 8 default 8\ncaption: Beads.\n```\n"
+    page = '+++\ntitle = "Chain"\n+++\n\n```scene\nmodel: chain\nslider N: 4, 8 default 8\ncaption: Beads.\n```\n'
     config = _book(tmp_path, {"beads": page})
     report = build(config, progress=None)
     (record,) = report.accuracy
@@ -129,16 +137,23 @@ def test_no_op_rebuild_runs_no_check_solves(tmp_path):
 
 def test_sample_is_deterministic_and_holds_defaults_and_corners():
     """The sampled stops are the same on every call and include the defaults and both extreme corners."""
-    scene = _scene("model: chain\nslider N: 1, 2, 4, 8, 16 default 8\nslider t: 0..2 step 0.1 default 0.5\nchoice launch: right-moving | split default split")
+    scene = _scene(
+        "model: chain\nslider N: 1, 2, 4, 8, 16 default 8\nslider t: 0..2 step 0.1 default 0.5\nchoice launch: right-moving | split default split"
+    )
     stops = sample_stops(scene)
     assert stops == sample_stops(scene) and len(stops) == len(set(stops)) == 16
     assert stops[:3] == [scene.default_stops, (0, 0, 0), (4, 20, 1)]
 
 
-@pytest.mark.parametrize("model, effects", [
-    pytest.param("chain", (), id="chain-DST"), pytest.param("work", (), id="work-closed-form"),
-    pytest.param("kinetic", (), id="kinetic-counting"), pytest.param("lever", ("rotation_dynamics",), id="lever-elliptic"),
-])
+@pytest.mark.parametrize(
+    "model, effects",
+    [
+        pytest.param("chain", (), id="chain-DST"),
+        pytest.param("work", (), id="work-closed-form"),
+        pytest.param("kinetic", (), id="kinetic-counting"),
+        pytest.param("lever", ("rotation_dynamics",), id="lever-elliptic"),
+    ],
+)
 def test_every_numerical_model_meets_its_declared_tolerance_at_its_defaults(model, effects):
     """Chain, work, kinetic and lever (rotating) each measure an error within their declared tolerance."""
     instance = MODELS[model]()
@@ -146,12 +161,15 @@ def test_every_numerical_model_meets_its_declared_tolerance_at_its_defaults(mode
     assert instance.measure_error({}, effects).error <= instance.numerics.tolerance
 
 
-@pytest.mark.parametrize("preset, rtol, label", [
-    pytest.param("stiff", None, SOLVER_LABELS[2], id="stiff-default"),
-    pytest.param("stiff", "1e-10", "compiled-Radau, at the scene's rtol", id="stiff-rtol-1e-10"),
-    pytest.param("B", None, SOLVER_LABELS[1], id="driven-default"),
-    pytest.param("A", None, "analytic (betaincinv)", id="rayleigh-analytic"),
-])
+@pytest.mark.parametrize(
+    "preset, rtol, label",
+    [
+        pytest.param("stiff", None, SOLVER_LABELS[2], id="stiff-default"),
+        pytest.param("stiff", "1e-10", "compiled-Radau, at the scene's rtol", id="stiff-rtol-1e-10"),
+        pytest.param("B", None, SOLVER_LABELS[1], id="driven-default"),
+        pytest.param("A", None, "analytic (betaincinv)", id="rayleigh-analytic"),
+    ],
+)
 def test_automatic_method_switches_to_implicit_for_stiff_terms(preset, rtol, label):
     """`method auto` picks the compiled Radau where 4µT/ρR0² > 10³, the compiled DOP853 for the driven bubble, the
     closed form for Rayleigh; the labels name the method and its rtol."""
@@ -162,13 +180,20 @@ def test_automatic_method_switches_to_implicit_for_stiff_terms(preset, rtol, lab
     assert SOLVER_LABELS[int(out[f"{prefix}_solver"])] == label
 
 
-@pytest.mark.parametrize("changes, message", [
-    ({"method": "Euler"}, "unknown method 'Euler'; this model offers auto, RK45, DOP853, Radau, BDF, LSODA, compiled-DOP853, compiled-Radau"),
-    ({"steps": "10"}, "unknown setting 'steps'; numerics take method, rtol, atol, nodes, tolerance"),
-    ({"nodes": "32"}, "method auto has no setting 'nodes'; it takes rtol, atol and tolerance"),
-    ({"rtol": "2"}, "rtol '2' must lie in [1e-14, 1)"),
-    ({"tolerance": "-1"}, "tolerance '-1' must be a number >= 0"),
-], ids=["method", "key", "not-taken", "rtol-range", "negative-tolerance"])
+@pytest.mark.parametrize(
+    "changes, message",
+    [
+        (
+            {"method": "Euler"},
+            "unknown method 'Euler'; this model offers auto, RK45, DOP853, Radau, BDF, LSODA, compiled-DOP853, compiled-Radau",
+        ),
+        ({"steps": "10"}, "unknown setting 'steps'; numerics take method, rtol, atol, nodes, tolerance"),
+        ({"nodes": "32"}, "method auto has no setting 'nodes'; it takes rtol, atol and tolerance"),
+        ({"rtol": "2"}, "rtol '2' must lie in [1e-14, 1)"),
+        ({"tolerance": "-1"}, "tolerance '-1' must be a number >= 0"),
+    ],
+    ids=["method", "key", "not-taken", "rtol-range", "negative-tolerance"],
+)
 def test_invalid_settings_say_what_is_allowed(changes, message):
     """configure rejects what a model does not take, listing what it does."""
     with pytest.raises(ValueError) as problem:
@@ -181,22 +206,32 @@ def test_switching_method_takes_the_new_methods_defaults():
     methods = {"stepper": {"rtol": 1e-3}, "quadrature": {"nodes": 32}}
     default = Numerics("stepper", tolerance=1.0, rtol=1e-3)
     assert configure(default, methods, {"method": "quadrature"}) == Numerics("quadrature", tolerance=1.0, nodes=32)
-    assert configure(Bubble.numerics, Bubble.methods, {"method": "Radau", "atol": "1e-9"}).text() == \
-        "method Radau, rtol 1e-6, atol 1e-9, tolerance 1e-5"
+    assert (
+        configure(Bubble.numerics, Bubble.methods, {"method": "Radau", "atol": "1e-9"}).text()
+        == "method Radau, rtol 1e-6, atol 1e-9, tolerance 1e-5"
+    )
 
 
 def test_settings_take_part_in_the_cache_key():
     """Changing rtol changes the scene's key; changing only the tolerance does not (the tables are the same)."""
     from sitegen.compute.cache import scene_key
 
-    keys = [scene_key(_scene(COLLAPSE + extra), ["collapse_R_min"]).spec
-            for extra in ("", "\nnumerics: rtol 1e-8", "\nnumerics: tolerance 1e-2")]
+    keys = [
+        scene_key(_scene(COLLAPSE + extra), ["collapse_R_min"]).spec
+        for extra in ("", "\nnumerics: rtol 1e-8", "\nnumerics: tolerance 1e-2")
+    ]
     assert keys[0] != keys[1] and keys[0] == keys[2]
 
 
-@pytest.mark.parametrize("error, expected", [
-    (3.1e-8, "Measured error 3.1\u00a0×\u00a010<sup>−8</sup>"), (1e-12, "Measured error 10<sup>−12</sup>"), (0.0, "Measured error 0 "),
-], ids=["mantissa", "power", "zero"])
+@pytest.mark.parametrize(
+    "error, expected",
+    [
+        (3.1e-8, "Measured error 3.1\u00a0×\u00a010<sup>−8</sup>"),
+        (1e-12, "Measured error 10<sup>−12</sup>"),
+        (0.0, "Measured error 0 "),
+    ],
+    ids=["mantissa", "power", "zero"],
+)
 def test_caption_sentence_writes_powers_of_ten(error, expected):
     """The caption's number and the reference's tolerance are written as powers of ten."""
     record = SimpleNamespace(error=error, metric="max |ΔR|/R₀", reference="Radau at rtol 1e-12", anchor="acc-p-s")
@@ -211,4 +246,3 @@ def _book(tmp_path: Path, pages: dict[str, str]) -> BuildConfig:
     for name, text in {"index": HOME, **pages}.items():
         (content / f"{name}.md").write_text(text, encoding="utf-8")
     return BuildConfig(tmp_path, content, tmp_path / "build", cache=tmp_path / ".cache")
-

@@ -1,4 +1,5 @@
 """K5 (acoustic energy bookkeeping): closed-form averages, the local balance, the standing-wave limit and the effects."""
+
 from __future__ import annotations
 
 import json
@@ -13,18 +14,18 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
-from sitegen.registry import builtin_registry
 from sitegen.models.acoustic_energy.model import (
-    C,
     INVALID,
     RHO,
     VALID,
     AcousticEnergy,
+    C,
     balance_terms_si,
     fields_si,
     incident_energy_density,
     standing_factor,
 )
+from sitegen.registry import builtin_registry
 from sitegen.site.assemble import readout_text
 from sitegen.site.payload import scene_payload
 
@@ -64,8 +65,15 @@ def _sample_points(seed: int, n: int = 64):
 
 @pytest.mark.parametrize(
     "output, expected",
-    [("P", "1.41757"), ("wavelength", "0.3432"), ("e_avg", "7.0850"), ("I_avg", "2.4316"), ("L_I", "93.86"),
-     ("transport", "1.000"), ("ek_share", "50.0")],
+    [
+        ("P", "1.41757"),
+        ("wavelength", "0.3432"),
+        ("e_avg", "7.0850"),
+        ("I_avg", "2.4316"),
+        ("L_I", "93.86"),
+        ("transport", "1.000"),
+        ("ek_share", "50.0"),
+    ],
     ids=["P", "wavelength", "e_avg-uJ", "I_avg-mW", "L_I", "transport", "ek_share"],
 )
 def test_defaults_display_the_spec_readouts(output, expected):
@@ -120,8 +128,15 @@ def test_standing_wave_level_is_minus_infinity_and_marked_special():
 
 def _energy_scene(extra: str = ""):
     """A small scene (SPL × R_r) resolved and tabulated as the build would."""
-    lines = ["model: acoustic_energy", "slider SPL: 90..94 step 1 default 94", "slider R_r: 0..1 step 0.25 default 1",
-             "slider wt: 0..90 step 30 default 90", "effects: reflection", "readouts: I_avg L_I ek_share", extra]
+    lines = [
+        "model: acoustic_energy",
+        "slider SPL: 90..94 step 1 default 94",
+        "slider R_r: 0..1 step 0.25 default 1",
+        "slider wt: 0..90 step 30 default 90",
+        "effects: reflection",
+        "readouts: I_avg L_I ek_share",
+        extra,
+    ]
     spec, errors = parse_scene_block(lines, SourceLoc("try.md", 1))
     assert not errors
     scene, errors = resolve_scene(spec, MODELS)
@@ -136,7 +151,9 @@ def test_standing_wave_level_is_shown_as_a_dash_and_the_json_is_valid():
     assert "Infinity" not in text and "NaN" not in text
     json.loads(text)  # strict JSON
     assert readout_text(tables["L_I"], "dB", scene.default_stops) == "—"
-    assert readout_text(tables["I_avg"], "mW/m²", scene.default_stops) == "0 mW/m²"  # exactly zero, shown without digits it does not have
+    assert (
+        readout_text(tables["I_avg"], "mW/m²", scene.default_stops) == "0 mW/m²"
+    )  # exactly zero, shown without digits it does not have
 
 
 @pytest.mark.parametrize(
@@ -221,6 +238,7 @@ def test_local_balance_with_analytic_derivatives(R):
 
 def _central_differences(x, t, f, R, dx, dt, flux=None):
     """∂e/∂t and ∂I/∂x by central differences of the SI fields (flux: an alternative intensity to test)."""
+
     def energy(x, t):
         fields = fields_si(x, t, 94.0, f, R)
         return fields["e_k"] + fields["e_p"]
@@ -307,7 +325,14 @@ def test_mismatched_steps_catch_a_wrong_intensity():
 @pytest.mark.parametrize(
     "R, x_probe, wt",
     [(0.0, 0.0, 90.0), (0.0, -0.25, 0.0), (0.0, -0.5, 270.0), (1.0, 0.0, 90.0), (1.0, -0.25, 0.0), (0.5, 0.0, 270.0)],
-    ids=["R=0-x=0-90deg", "R=0-x=-0.25-0deg", "R=0-x=-0.5-270deg", "R=1-x=0-90deg", "R=1-x=-0.25-0deg", "R=0.5-x=0-270deg"],
+    ids=[
+        "R=0-x=0-90deg",
+        "R=0-x=-0.25-0deg",
+        "R=0-x=-0.5-270deg",
+        "R=1-x=0-90deg",
+        "R=1-x=-0.25-0deg",
+        "R=0.5-x=0-270deg",
+    ],
 )
 def test_kinetic_share_is_undefined_where_both_energies_vanish(R, x_probe, wt):
     """Where p' = u = 0 exactly (a node at that instant) the share is +∞, shown "—" (no 0/0, no tolerance)."""
@@ -361,8 +386,12 @@ BASE_VECTORS = ("ek_x", "ep_x", "Ic_x", "ek_avg_x", "ep_avg_x", "dedt_x", "neg_d
 def _random_inputs(seed: int, n: int = 200):
     rng = np.random.default_rng(seed)
     return {
-        "SPL": rng.uniform(0, 140, n), "f": 10 ** rng.uniform(1.3, 4.3, n), "wt": rng.integers(0, 24, n) * 15.0,
-        "x_probe": rng.integers(-20, 1, n) * 0.05, "alpha": rng.uniform(0, 0.1, n), "d": rng.uniform(0, 500, n),
+        "SPL": rng.uniform(0, 140, n),
+        "f": 10 ** rng.uniform(1.3, 4.3, n),
+        "wt": rng.integers(0, 24, n) * 15.0,
+        "x_probe": rng.integers(-20, 1, n) * 0.05,
+        "alpha": rng.uniform(0, 0.1, n),
+        "d": rng.uniform(0, 500, n),
         "r": 10 ** rng.uniform(-2, 3, n),
     }
 
@@ -455,8 +484,18 @@ def test_spherical_far_field_tends_to_the_plane_wave(output):
 
 @pytest.mark.parametrize(
     "inputs",
-    [{"f": 0.0}, {"f": -1.0}, {"R_r": -0.05}, {"R_r": 1.05}, {"alpha": -1e-3}, {"d": -1.0}, {"r": 0.0},
-     {"SPL": float("nan")}, {"wt": float("inf")}, {"x_probe": float("nan")}],
+    [
+        {"f": 0.0},
+        {"f": -1.0},
+        {"R_r": -0.05},
+        {"R_r": 1.05},
+        {"alpha": -1e-3},
+        {"d": -1.0},
+        {"r": 0.0},
+        {"SPL": float("nan")},
+        {"wt": float("inf")},
+        {"x_probe": float("nan")},
+    ],
     ids=["f=0", "f<0", "R<0", "R>1", "alpha<0", "d<0", "r=0", "SPL=nan", "wt=inf", "x_probe=nan"],
 )
 def test_invalid_input_raises_naming_the_parameter(inputs):

@@ -1,4 +1,5 @@
 """Broken pages give exact `file:line: message` errors, all of them in one run."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -9,8 +10,8 @@ import pytest
 from sitegen.build import BuildConfig, build
 from sitegen.errors import BuildFailed
 from sitegen.physics import Model, Output, Param
-from sitegen.render.style import new_figure
 from sitegen.registry import builtin_registry
+from sitegen.render.style import new_figure
 
 HERE = Path(__file__).parent
 INVALID = HERE / "invalid"
@@ -101,8 +102,10 @@ def test_effect_of_another_model_lists_what_this_model_offers(tmp_path):
 
 def test_parameter_replaced_by_an_enabled_effect_is_an_error_at_its_control(tmp_path):
     """With the spring–dashpot contact, e comes from the contact: a slider on e is an error at its line."""
-    page = ('+++\ntitle = "Contact"\n+++\n\n```scene\nmodel: collision\neffects: contact_spring_dashpot\n'
-            'slider e: 0..1 step 0.5 default 1\n```\n')
+    page = (
+        '+++\ntitle = "Contact"\n+++\n\n```scene\nmodel: collision\neffects: contact_spring_dashpot\n'
+        "slider e: 0..1 step 0.5 default 1\n```\n"
+    )
     assert build_errors(make_book(tmp_path, {"contact": page})) == [
         "content/contact.md:8: scene 'collision': parameter 'e' is not used with effect 'contact_spring_dashpot', "
         "which takes its place; remove its control"
@@ -111,7 +114,7 @@ def test_parameter_replaced_by_an_enabled_effect_is_an_error_at_its_control(tmp_
 
 def test_restitution_above_one_names_the_effect_that_allows_it(tmp_path):
     """e > 1 is outside the domain unless the scene enables `explosive`; the error says so, and with the effect it builds."""
-    block = '```scene\nmodel: collision\n{effects}slider e: 0..1.5 step 0.5 default 1\n```\n'
+    block = "```scene\nmodel: collision\n{effects}slider e: 0..1.5 step 0.5 default 1\n```\n"
     page = '+++\ntitle = "Explosive"\n+++\n\n' + block.format(effects="")
     (tmp_path / "without").mkdir()
     (tmp_path / "with").mkdir()
@@ -119,7 +122,10 @@ def test_restitution_above_one_names_the_effect_that_allows_it(tmp_path):
         "content/explosive.md:7: scene 'collision': slider 'e' max 1.5 exceeds the model's bound 1.0 "
         "(effect 'explosive' allows larger values)"
     ]
-    config = make_book(tmp_path / "with", {"explosive": page.replace(block.format(effects=""), block.format(effects="effects: explosive\n"))})
+    config = make_book(
+        tmp_path / "with",
+        {"explosive": page.replace(block.format(effects=""), block.format(effects="effects: explosive\n"))},
+    )
     build(config, progress=None)
 
 

@@ -3,6 +3,7 @@
 an unknown figure, whose list of names grows with the book), and how `sitegen build` reports
 each kind of failure — file:line errors, an exit status, and no Python traceback unless --debug.
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -50,11 +51,17 @@ class _Figure:
 
 def _model(name: str, evaluate) -> type[Model]:
     """A one-parameter model whose evaluation is `evaluate(x)`."""
-    return type(name.title(), (Model,), {
-        "name": name, "title": name, "params": (Param("x", "x", "", 1.0, 0.0, 10.0),),
-        "outputs": (Output("y", "y", "", ("x",)),),
-        "_evaluate": lambda self, x, wanted, effects: {"y": evaluate(x["x"])},
-    })
+    return type(
+        name.title(),
+        (Model,),
+        {
+            "name": name,
+            "title": name,
+            "params": (Param("x", "x", "", 1.0, 0.0, 10.0),),
+            "outputs": (Output("y", "y", "", ("x",)),),
+            "_evaluate": lambda self, x, wanted, effects: {"y": evaluate(x["x"])},
+        },
+    )
 
 
 def _raise(error):
@@ -124,8 +131,10 @@ def test_model_returning_infinity_reports_the_stop(tmp_path, register_model):
 def test_value_too_large_to_show_exactly(tmp_path):
     """A finite value too large to count in units of its last digit (exactly, in the page's
     JavaScript) fails the build at the stop, instead of showing a wrapped-around number."""
-    page = ('+++\ntitle = "Huge"\n+++\n\n```scene\nmodel: collision\n'
-            "slider m1: 1e20..3e20 step 1e20 default 1e20\nreadouts: p_before\n```\n")
+    page = (
+        '+++\ntitle = "Huge"\n+++\n\n```scene\nmodel: collision\n'
+        "slider m1: 1e20..3e20 step 1e20 default 1e20\nreadouts: p_before\n```\n"
+    )
     assert build_errors(make_book(tmp_path, {"huge": page})) == [
         "content/huge.md:5: scene 'collision': output 'p_before' is 3e+20 at m1=1E+20, too large to show "
         "with 2 decimals (at most 9.0072e+13); narrow the sliders' ranges"
@@ -167,13 +176,22 @@ def run_cli(root: Path, capsys, *extra: str) -> tuple[int, str]:
 
 def test_every_error_of_every_page_in_one_run(tmp_path, capsys):
     """The command prints every author error of the book, sorted, then a summary; exit 1."""
-    pages = {name: (ROOT / "tests" / "invalid" / f"{name}.md").read_text(encoding="utf-8")
-             for name in ("not-finite-or-reversed", "front-matter-types", "bad-tex")}
+    pages = {
+        name: (ROOT / "tests" / "invalid" / f"{name}.md").read_text(encoding="utf-8")
+        for name in ("not-finite-or-reversed", "front-matter-types", "bad-tex")
+    }
     make_book(tmp_path, pages)
     status, err = run_cli(tmp_path, capsys)
-    expected = [line for name in sorted(pages) for line in (ROOT / "tests" / "invalid" / f"{name}.expected").read_text().splitlines()]
+    expected = [
+        line
+        for name in sorted(pages)
+        for line in (ROOT / "tests" / "invalid" / f"{name}.expected").read_text().splitlines()
+    ]
     assert status == 1
-    assert err.splitlines() == [*expected, f"build failed: {len(expected)} error(s); {tmp_path / 'build'} was left as it was"]
+    assert err.splitlines() == [
+        *expected,
+        f"build failed: {len(expected)} error(s); {tmp_path / 'build'} was left as it was",
+    ]
 
 
 def test_missing_content_folder(tmp_path, capsys):
@@ -199,7 +217,11 @@ def test_internal_error_is_reported_without_traceback(tmp_path, register_model, 
     make_book(tmp_path, {"bug": SCENE.format(name="buggy")})
     assert cli.main(["build", "--root", str(tmp_path), "--no-cache"]) == 3
     err = capsys.readouterr().err
-    assert "sitegen: content/bug.md:5: scene 'buggy': " in err and "KeyError: 'oops' (while tabulating)" in err and "internal error" not in err
+    assert (
+        "sitegen: content/bug.md:5: scene 'buggy': " in err
+        and "KeyError: 'oops' (while tabulating)" in err
+        and "internal error" not in err
+    )
     assert "--debug" in err and "Traceback" not in err
     assert not (tmp_path / "build").exists()
     with pytest.raises(KeyError):

@@ -1,5 +1,6 @@
 """A book is a folder with book.toml: its keys, its mistakes, the commands that find it from inside it
 or through --root, and the theme folder that overrides templates and adds CSS."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -17,29 +18,49 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def test_every_key_sets_its_part(tmp_path):
     """Folders are relative to the book's folder; texts are taken as written."""
-    (tmp_path / "book.toml").write_text('title = "T"\nauthor = "A"\nlanguage = "de"\nbase_url = "https://x.org/b/"\n'
-                                        'footer = "F"\ncontent = "pages"\nmodels = "py"\ntheme = "look"\n'
-                                        'output = "site"\ngoldens = "figs"\n')
+    (tmp_path / "book.toml").write_text(
+        'title = "T"\nauthor = "A"\nlanguage = "de"\nbase_url = "https://x.org/b/"\n'
+        'footer = "F"\ncontent = "pages"\nmodels = "py"\ntheme = "look"\n'
+        'output = "site"\ngoldens = "figs"\n'
+    )
     book = read_book(tmp_path)
-    assert (book.title, book.author, book.language, book.base_url, book.footer) == ("T", "A", "de", "https://x.org/b/", "F")
-    assert [getattr(book, k) for k in ("content", "models", "theme", "output", "goldens")] == \
-        [tmp_path.resolve() / name for name in ("pages", "py", "look", "site", "figs")]
+    assert (book.title, book.author, book.language, book.base_url, book.footer) == (
+        "T",
+        "A",
+        "de",
+        "https://x.org/b/",
+        "F",
+    )
+    assert [getattr(book, k) for k in ("content", "models", "theme", "output", "goldens")] == [
+        tmp_path.resolve() / name for name in ("pages", "py", "look", "site", "figs")
+    ]
 
 
 def test_an_empty_book_toml_means_every_default(tmp_path):
     """Every key is optional: content/, models/, theme/, build/, goldens/, English, the standard footer."""
     (tmp_path / "book.toml").write_text("")
     book = read_book(tmp_path)
-    assert (book.content, book.output, book.language, book.footer) == (tmp_path.resolve() / "content", tmp_path.resolve() / "build",
-                                                                       "en", DEFAULT_FOOTER)
+    assert (book.content, book.output, book.language, book.footer) == (
+        tmp_path.resolve() / "content",
+        tmp_path.resolve() / "build",
+        "en",
+        DEFAULT_FOOTER,
+    )
 
 
-@pytest.mark.parametrize("text, message", [
-    ('titel = "x"\n', "book.toml: unknown key 'titel'; did you mean 'title'? Keys: title, author, language, base_url, "
-                      "footer, content, models, theme, output, goldens"),
-    ("language = 2\n", "book.toml: 'language' must be a string, e.g. language = \"...\""),
-    ('title = "x\n', "book.toml: Illegal character '\\n' (at line 1, column 11)"),
-], ids=["unknown-key", "not-a-string", "not-toml"])
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        (
+            'titel = "x"\n',
+            "book.toml: unknown key 'titel'; did you mean 'title'? Keys: title, author, language, base_url, "
+            "footer, content, models, theme, output, goldens",
+        ),
+        ("language = 2\n", "book.toml: 'language' must be a string, e.g. language = \"...\""),
+        ('title = "x\n', "book.toml: Illegal character '\\n' (at line 1, column 11)"),
+    ],
+    ids=["unknown-key", "not-a-string", "not-toml"],
+)
 def test_a_wrong_book_toml_says_what_is_wrong(tmp_path, text, message):
     """Mistakes in book.toml name the key and what would be right."""
     (tmp_path / "book.toml").write_text(text)
@@ -78,7 +99,9 @@ def test_a_theme_overrides_a_template_and_adds_css(tiny_book):
 
 def test_the_default_theme_reads_language_author_footer_and_base_url(tiny_book):
     """The page's lang, author, canonical address and footer come from book.toml."""
-    (tiny_book.root / "book.toml").write_text('language = "fr"\nauthor = "Émilie"\nfooter = "Fin."\nbase_url = "https://ex.org/livre"\n')
+    (tiny_book.root / "book.toml").write_text(
+        'language = "fr"\nauthor = "Émilie"\nfooter = "Fin."\nbase_url = "https://ex.org/livre"\n'
+    )
     build(BuildConfig.at(tiny_book.root), progress=None)
     html = (tiny_book.out / "mechanics.html").read_text()
     assert '<html lang="fr">' in html and '<meta name="author" content="Émilie">' in html
@@ -97,5 +120,6 @@ def test_models_prints_a_models_declarations(capsys):
 
 def test_the_models_reference_in_the_docs_is_up_to_date():
     """docs/models.md is what `sitegen models --builtin` prints; rewrite it with that command after a change."""
-    assert (ROOT / "docs" / "models.md").read_text() == models_reference(builtin_registry()), \
+    assert (ROOT / "docs" / "models.md").read_text() == models_reference(builtin_registry()), (
         "docs/models.md is out of date: run `sitegen models --builtin > docs/models.md`"
+    )

@@ -18,6 +18,7 @@ needs its own browser settings opens a fresh page. DOM reads are batched in one 
 Loading is tested from disk and over http; keyboard, random-state, expression, layer and animation
 tests run over file:// only (the script works on the same inline tables either way).
 """
+
 from __future__ import annotations
 
 import json
@@ -28,7 +29,6 @@ from pathlib import Path
 from urllib.parse import unquote, urljoin, urlparse
 
 import pytest
-
 from browser import (
     BROKEN_TEXT,
     BookScene,
@@ -38,9 +38,9 @@ from browser import (
     expected_control_text,
     expected_readouts,
     front,
-    load,
     layer_deps,
     layer_problems,
+    load,
     move,
     move_many,
     move_value,
@@ -54,10 +54,11 @@ from browser import (
     spread,
     stop_inputs,
 )
+
 from sitegen.compute.grid import CHOICE, RANGE
 from sitegen.compute.proof import proof_stops
-from sitegen.compute.structure import structured_pieces
 from sitegen.compute.quantize import fmt
+from sitegen.compute.structure import structured_pieces
 
 PAGES, SCENES = book()
 PAGE_NAMES = [p.output_name for p in PAGES]
@@ -113,9 +114,12 @@ class PageLog:
 
     def trouble_since(self, mark: tuple[int, int]) -> list:
         """Page errors and console errors/warnings logged after `mark`."""
-        console = [(t, text) for t, text, loc in self.console[mark[1]:] if t in ("error", "warning")
-                   and not loc.get("url", "").endswith("/favicon.ico")]
-        return self.errors[mark[0]:] + console
+        console = [
+            (t, text)
+            for t, text, loc in self.console[mark[1] :]
+            if t in ("error", "warning") and not loc.get("url", "").endswith("/favicon.ico")
+        ]
+        return self.errors[mark[0] :] + console
 
 
 def _open_logged(chromium, url: str, javascript: bool = True, **options):
@@ -255,7 +259,9 @@ def test_page_loads_cleanly(built_site, loaded, site_server, name, transport):
     origin = site_server.origin if transport == "http" else None
     outside = [u for u in log.requests if not _inside_site(u, transport, built_site, origin)]
     assert not outside, f"requests leaving the site: {outside}"
-    bad_status = [(u, s) for u, s in log.responses if transport == "http" and s != 200 and not u.endswith("/favicon.ico")]
+    bad_status = [
+        (u, s) for u, s in log.responses if transport == "http" and s != 200 and not u.endswith("/favicon.ico")
+    ]
     assert not bad_status, bad_status
     assert any(u.endswith("assets/sitegen.js") for u in log.requests)
     assert any(u.endswith("assets/sitegen.css") for u in log.requests)
@@ -263,7 +269,9 @@ def test_page_loads_cleanly(built_site, loaded, site_server, name, transport):
     source = next(p for p in PAGES if p.output_name == name)
     maths = page.locator("math").count()
     if source.found.maths:
-        assert maths >= len(source.found.maths), f"{len(source.found.maths)} formulas in the source, {maths} <math> elements"
+        assert maths >= len(source.found.maths), (
+            f"{len(source.found.maths)} formulas in the source, {maths} <math> elements"
+        )
         assert any(u.endswith("assets/latinmodern-math.woff2") for u in log.requests), "math font not requested"
         assert page.evaluate("""document.fonts.check('16px "Latin Modern Math"')""")
         # fonts.check() is also true when the family is installed locally (it is, on Debian with
@@ -332,7 +340,12 @@ def _choice_keys(count: int):
     """Arrow keys within a radio group: next/previous option, wrapping around the ends."""
     right = lambda b, a: a == (b + 1) % count  # noqa: E731
     left = lambda b, a: a == (b - 1) % count  # noqa: E731
-    return [("ArrowRight", right)] * count + [("ArrowDown", right), ("ArrowLeft", left), ("ArrowUp", left), ("ArrowLeft", left)]
+    return [("ArrowRight", right)] * count + [
+        ("ArrowDown", right),
+        ("ArrowLeft", left),
+        ("ArrowUp", left),
+        ("ArrowLeft", left),
+    ]
 
 
 @pytest.mark.parametrize("scene,param,transport", _control_params(("file",)))
@@ -355,9 +368,11 @@ def test_control_by_keyboard(scene_page, scene, param, transport):
         page.keyboard.press(key)
         state = read_state(page, scene)
         after = state.stops[i]
-        assert after is not None and as_expected(before, after), f"key {n} {key}: stop {before} -> {after} of {axis.count}"
-        others = state.stops[:i] + state.stops[i + 1:]
-        assert others == scene.defaults[:i] + scene.defaults[i + 1:], f"{key} moved another control: {state.stops}"
+        assert after is not None and as_expected(before, after), (
+            f"key {n} {key}: stop {before} -> {after} of {axis.count}"
+        )
+        others = state.stops[:i] + state.stops[i + 1 :]
+        assert others == scene.defaults[:i] + scene.defaults[i + 1 :], f"{key} moved another control: {state.stops}"
         if axis.kind == CHOICE:  # focus moves with the checked radio
             assert [r["focused"] for r in state.control(param).radios] == [k == after for k in range(axis.count)], key
         problems += [f"after {key}: {p}" for p in scene_problems(scene, state)]
@@ -419,7 +434,9 @@ def test_singular_stops_show_words(scene_page, scene, transport):
     rng = random.Random(scene.key)
     checks = []  # (output, stops)
     for output, stops_found in found.items():
-        picks = {stops_found[0], stops_found[-1], *rng.sample(stops_found, min(4, len(stops_found)))} if stops_found else ()
+        picks = (
+            {stops_found[0], stops_found[-1], *rng.sample(stops_found, min(4, len(stops_found)))} if stops_found else ()
+        )
         checks += [(output, stops) for stops in sorted(picks)]
     states = move_many(page, scene, [dict(zip(scene.params, stops)) for _, stops in checks])
     problems = []
@@ -437,7 +454,10 @@ def test_known_singular_stops():
     """The singular stops are where the physics says: the lever's pivot at the end (x_p = 2: the
     mechanical advantage is infinite) and a perfect reflector (R_r = 1: no net intensity, L_I is
     -inf). Guards the search of test_singular_stops_show_words against finding nothing."""
-    expected = {("newtons-laws-lever", "MA"): ("x_p", "2"), ("newtons-laws-examples-acoustic-energy", "L_I"): ("R_r", "1")}
+    expected = {
+        ("newtons-laws-lever", "MA"): ("x_p", "2"),
+        ("newtons-laws-examples-acoustic-energy", "L_I"): ("R_r", "1"),
+    }
     for (key, output), (param, value) in expected.items():
         scene = next((s for s in SCENES if s.key == key), None)
         if scene is None:
@@ -464,7 +484,7 @@ def test_random_scene_states(scene_page, scene, transport):
     wanted = [tuple(rng.randrange(a.count) for a in scene.axes) for _ in range(RANDOM_STATES)]
     states = []
     for start in range(0, len(wanted), 25):  # 25 states per round trip; each control still gets its own events
-        states += move_many(page, scene, [dict(zip(scene.params, w)) for w in wanted[start:start + 25]])
+        states += move_many(page, scene, [dict(zip(scene.params, w)) for w in wanted[start : start + 25]])
     for state_wanted, state in zip(wanted, states):
         assert state.stops == state_wanted, f"set {state_wanted}, controls read {state.stops}"
         failures += scene_problems(scene, state)
@@ -492,7 +512,7 @@ def test_expressions_at_the_proofs_stops(scene_page, scene, transport):
     corners = [tuple(int(k) for k in s) for s in stops if all(k in (0, a.count - 1) for k, a in zip(s, scene.axes))]
     failures = []
     for start in range(0, len(corners + chosen), 25):
-        batch = (corners + chosen)[start:start + 25]
+        batch = (corners + chosen)[start : start + 25]
         for state in move_many(page, scene, [dict(zip(scene.params, w)) for w in batch]):
             failures += scene_problems(scene, state)
     assert not failures, f"{len(failures)} mismatches, e.g.:\n" + "\n".join(failures[:10])
@@ -544,11 +564,23 @@ LAYER_RESPONSES = {
         "e": {"body-1", "body-2", "K-after", "K-lost"},
     },
     "lever": {"x_p": {"fulcrum", "pivot", "arm-left", "arm-right", "bar"}, "m_L": {"balance-line", "bar"}},
-    "ossicles": {"ell": {"pivot", "gain"}, "A_TM": {"eardrum", "gain"}, "A_FP": {"footplate"}, "load": {"T-without", "T-with"}},
+    "ossicles": {
+        "ell": {"pivot", "gain"},
+        "A_TM": {"eardrum", "gain"},
+        "A_FP": {"footplate"},
+        "load": {"T-without", "T-with"},
+    },
     "euler_slab": {"phi": {"wave", "faces", "a-point"}, "dx_l": {"slab", "faces", "a-slab"}},
-    "acoustic_energy": {"wt": {"ep", "ek", "rate", "convergence"}, "R_r": {"ek-average", "ep-average", "I-average"}, "x_probe": {"probe"}},
-    "kinetic": {"N": {"impulse-train", "velocity-histogram"}, "t_w": {"impulse-train", "running-mean"},
-                "sampling": {"velocity-histogram"}},
+    "acoustic_energy": {
+        "wt": {"ep", "ek", "rate", "convergence"},
+        "R_r": {"ek-average", "ep-average", "I-average"},
+        "x_probe": {"probe"},
+    },
+    "kinetic": {
+        "N": {"impulse-train", "velocity-histogram"},
+        "t_w": {"impulse-train", "running-mean"},
+        "sampling": {"velocity-histogram"},
+    },
 }
 
 
@@ -688,7 +720,9 @@ def test_animation_plays_and_pauses(scene_page, scene, transport):
     param, i = scene.animate, scene.params.index(scene.animate)
     axis = scene.axis(param)
     page.locator(f"#{scene.dom_id}").scroll_into_view_if_needed()
-    page.evaluate(f"([sceneId, arg]) => {{ const root = document.getElementById(sceneId); {_RECORD_JS} }}", [scene.dom_id, param])
+    page.evaluate(
+        f"([sceneId, arg]) => {{ const root = document.getElementById(sceneId); {_RECORD_JS} }}", [scene.dom_id, param]
+    )
     button = _button(page, scene)
     button.click()
     assert read_state(page, scene).button == {"animate": param, "pressed": "true", "text": "Pause"}
@@ -705,7 +739,9 @@ def test_animation_plays_and_pauses(scene_page, scene, transport):
     steps = [(b - a) % axis.count for a, b in zip([scene.defaults[i]] + path, path)]
     assert set(steps) == {1}, f"the animated slider went {path}"
     assert set(path) == set(range(axis.count)), "the animation skipped stops"
-    assert all(s[:i] + s[i + 1:] == scene.defaults[:i] + scene.defaults[i + 1:] for s in stops), "other controls moved"
+    assert all(s[:i] + s[i + 1 :] == scene.defaults[:i] + scene.defaults[i + 1 :] for s in stops), (
+        "other controls moved"
+    )
     problems = []
     for frame, s in zip(frames, stops):
         want = expected_readouts(scene, s)
@@ -787,7 +823,9 @@ def test_animation_never_autoplays(watched, site_url, scene, motion, transport):
     i = scene.params.index(scene.animate)
     default_text = expected_control_text(scene, scene.animate, scene.defaults[i])
     changes = page.evaluate("window.__motion")
-    changes = [c for c in changes if c[3] == scene.dom_id]  # another scene on the page may animate a slider of the same name
+    changes = [
+        c for c in changes if c[3] == scene.dom_id
+    ]  # another scene on the page may animate a slider of the same name
     pressed = [c for c in changes if c[0] == "aria-pressed" and c[1] != "false"]
     assert not pressed, f"the play button was pressed by the page itself: {pressed}"
     moved = [c[1] for c in changes if c[0] == "aria-valuetext" and c[2] == scene.animate and c[1] != default_text]
@@ -812,7 +850,7 @@ def test_animation_pauses_out_of_view(scene_page, scene, transport):
     _button(page, scene).click()
     assert _pressed(page, scene) == "true"
     page.wait_for_function(
-        "([id, param, v]) => document.querySelector(`#${id} [data-param=\"${param}\"]`).value !== v",
+        '([id, param, v]) => document.querySelector(`#${id} [data-param="${param}"]`).value !== v',
         arg=[scene.dom_id, scene.animate, read_state(page, scene).control(scene.animate).value],
         timeout=10_000,
     )
@@ -849,7 +887,9 @@ def test_animation_pauses_out_of_view(scene_page, scene, transport):
 def test_home_links_to_chapters(built_site, open_page):
     """The contents on the home page link to every chapter, and the links work from disk."""
     home, _ = open_page("index.html", "file")
-    hrefs = home.eval_on_selector_all('article nav[aria-label="Contents"] a[href]:not(.anchor)', "els => els.map(e => e.getAttribute('href'))")
+    hrefs = home.eval_on_selector_all(
+        'article nav[aria-label="Contents"] a[href]:not(.anchor)', "els => els.map(e => e.getAttribute('href'))"
+    )
     chapters = [p for p in PAGES if p.slug != "index"]
     assert "newtons-laws.html" in hrefs
     assert sorted(hrefs) == sorted(p.output_name for p in chapters)
@@ -879,7 +919,9 @@ def test_links_resolve_to_files(built_site, loaded, name, transport):
             path = Path(unquote(target.path))
             assert path.is_file() and path.resolve().is_relative_to(built_site.resolve()), href
         else:
-            targets.setdefault(absolute.partition("#")[0], href)  # each file once, however many of its anchors are linked
+            targets.setdefault(
+                absolute.partition("#")[0], href
+            )  # each file once, however many of its anchors are linked
     for absolute, href in targets.items():
         response = page.request.get(absolute)
         assert response.status == 200, (href, response.status)

@@ -3,6 +3,7 @@
 scipy's solvers stay the reference; the compiled DOP853 and Radau follow the same algorithms, so on the
 same problem at the same rtol they must end the same way and agree far below the tolerance.
 """
+
 from __future__ import annotations
 
 import ast
@@ -18,8 +19,8 @@ import pytest
 from sitegen.build import BuildConfig, resolve_book
 from sitegen.models.bubble import kernel_terms as kernel
 from sitegen.models.bubble.model import ALL
-from sitegen.models.bubble.presets import preset_problem
 from sitegen.models.bubble.point import compose, read_run
+from sitegen.models.bubble.presets import preset_problem
 from sitegen.models.bubble.solve import COMPILED, EXPLICIT, IMPLICIT, STIFF, integrate, method_for
 from sitegen.models.bubble.terms import RADIATION, make_rhs
 from sitegen.physics import compiled
@@ -66,10 +67,17 @@ def _agreement(mine, theirs) -> float:
     return float(np.max(np.abs(mine.r[both] - theirs.r[both])))
 
 
-@pytest.mark.parametrize("preset, scipy_method, compiled_method, rtol, bound", [
-    ("A", "DOP853", EXPLICIT, 1e-8, 1e-12), ("B", "DOP853", EXPLICIT, 1e-8, 1e-9), ("C", "DOP853", EXPLICIT, 1e-8, 1e-8),
-    ("A", "Radau", IMPLICIT, 1e-8, 1e-9), ("stiff", "Radau", IMPLICIT, 1e-8, 1e-8), ("C", "Radau", IMPLICIT, 1e-8, 1e-7),
-])
+@pytest.mark.parametrize(
+    "preset, scipy_method, compiled_method, rtol, bound",
+    [
+        ("A", "DOP853", EXPLICIT, 1e-8, 1e-12),
+        ("B", "DOP853", EXPLICIT, 1e-8, 1e-9),
+        ("C", "DOP853", EXPLICIT, 1e-8, 1e-8),
+        ("A", "Radau", IMPLICIT, 1e-8, 1e-9),
+        ("stiff", "Radau", IMPLICIT, 1e-8, 1e-8),
+        ("C", "Radau", IMPLICIT, 1e-8, 1e-7),
+    ],
+)
 def test_compiled_stepper_follows_scipys(preset, scipy_method, compiled_method, rtol, bound):
     """Same algorithm, same problem, same rtol: the same status and the sampled curves within `bound`
     (far below rtol's error; scipy's Radau differentiates numerically, the compiled one analytically)."""

@@ -1,5 +1,6 @@
 """K4 hard cases (physics.md K4 "Hard cases" and §14), one test each with the stated tolerance, and
 the guards: every solve has terminal events and an evaluation cap (no wall-time cap: results never depend on the clock)."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -11,14 +12,16 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from sitegen.models.bubble.model import Bubble
-from sitegen.models.bubble.presets import PRESETS, preset_problem
 from sitegen.models.bubble.point import FLAGS, compose, read_run
+from sitegen.models.bubble.presets import PRESETS, preset_problem
 from sitegen.models.bubble.run import CAP_NFEV, CORE, FAILED, KM_STOP, MACH, OK, Caps
 from sitegen.models.bubble.scipy_path import SOLVERS
 from sitegen.models.bubble.solve import choose_method, integrate, method_for, solve
 from sitegen.models.bubble.terms import EPSILON, make_rhs, rayleigh_radius, rayleigh_tau
 
-A_STOPS = list(itertools.product((100, 200, 500, 1000, 2000, 5000, 10000), (0.25, 0.5, 1, 2, 5, 10), (0, 1e-4, 1e-3, 1e-2, 1e-1)))
+A_STOPS = list(
+    itertools.product((100, 200, 500, 1000, 2000, 5000, 10000), (0.25, 0.5, 1, 2, 5, 10), (0, 1e-4, 1e-3, 1e-2, 1e-1))
+)
 A_EFFECTS = ("inertia", "vapour", "step", "gas")
 
 
@@ -90,8 +93,11 @@ def test_keller_miksis_empty_collapse_stops_at_0_9_c(method):
 def test_preset_A_grid_evaluates_with_caps_respected():
     """The model over preset A's 210 stops: no cap or failure flag, no NaN readout."""
     r0, p_inf, content = (np.array(v, float) for v in zip(*A_STOPS))
-    out = Bubble().evaluate({"R0": r0, "p_inf": p_inf, "gas_content": content, "kappa": 1.4},
-                            wanted=["collapse_flag", "collapse_R_min", "collapse_mach", "t_c", "collapse_curve_y"], effects=A_EFFECTS)
+    out = Bubble().evaluate(
+        {"R0": r0, "p_inf": p_inf, "gas_content": content, "kappa": 1.4},
+        wanted=["collapse_flag", "collapse_R_min", "collapse_mach", "t_c", "collapse_curve_y"],
+        effects=A_EFFECTS,
+    )
     assert set(np.unique(out["collapse_flag"])) <= {0, 1, 2}
     assert not any(np.isnan(out[name]).any() for name in ("collapse_flag", "collapse_R_min", "collapse_mach", "t_c"))
 
@@ -185,15 +191,19 @@ def test_equilibrium_without_surface_tension_in_the_gas_pressure_collapses():
 # --- van der Waals hard core ------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("method, rtol, reached", [("BDF", 0.3, True), ("compiled-DOP853", 0.3, True), ("DOP853", 1e-6, False),
-                                                  ("compiled-DOP853", 1e-6, False)],
-                         ids=["BDF-0.3:core", "compiled-DOP853-0.3:core", "DOP853-1e-6:clear", "compiled-DOP853-1e-6:clear"])
+@pytest.mark.parametrize(
+    "method, rtol, reached",
+    [("BDF", 0.3, True), ("compiled-DOP853", 0.3, True), ("DOP853", 1e-6, False), ("compiled-DOP853", 1e-6, False)],
+    ids=["BDF-0.3:core", "compiled-DOP853-0.3:core", "DOP853-1e-6:clear", "compiled-DOP853-1e-6:clear"],
+)
 def test_reaching_the_hard_core_reports_a_loose_tolerance(method, rtol, reached):
     """R = h(1 + 1e-6) is a terminal event: a loose solve reaches it and is flagged; at rtol 1e-6 R_min/h = 1.56."""
     pb, scales = preset_problem("B")
     run = solve(pb, method, rtol)
     assert (run.status == CORE) == reached
-    assert (_flag("B", run, pb, scales) == "tolerance too loose: the solution reached the van der Waals hard core") == reached
+    assert (
+        _flag("B", run, pb, scales) == "tolerance too loose: the solution reached the van der Waals hard core"
+    ) == reached
     assert np.all(np.isfinite(run.r[: np.isfinite(run.r).sum()]))
 
 
@@ -256,8 +266,15 @@ def test_peak_mach_number_comes_from_event_detection():
     pb, scales = preset_problem("B")
     event_value = read_run(solve(pb), pb, scales, PRESETS["B"][0])["mach"]
     period = pb.tau_end / 2
-    sol = solve_ivp(make_rhs(pb), (0.0, period), [1.0, 0.0], method="DOP853", rtol=1e-6, atol=1e-9,
-                    t_eval=np.linspace(0.0, period, 20001))
+    sol = solve_ivp(
+        make_rhs(pb),
+        (0.0, period),
+        [1.0, 0.0],
+        method="DOP853",
+        rtol=1e-6,
+        atol=1e-9,
+        t_eval=np.linspace(0.0, period, 20001),
+    )
     sampled = np.max(np.abs(sol.y[1])) / pb.sound
     assert f"{event_value:.4f}" == "0.4578"
     assert sampled < 0.97 * event_value

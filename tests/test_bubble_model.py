@@ -1,5 +1,6 @@
 """K4 (Rayleigh–Plesset bubble): analytic references, the presets' readouts, effect composition and
 the vanishing limit of every effect. The hard cases are in test_bubble_hard_cases.py."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -12,21 +13,31 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.special import betainc, betaincinv
 
 from sitegen.compute.quantize import fmt
-from sitegen.models.bubble.model import Bubble
-from sitegen.models.bubble.presets import PRESETS, preset_problem, run_preset
 from sitegen.models.bubble import kernel_read
+from sitegen.models.bubble.model import Bubble
 from sitegen.models.bubble.point import BLAKE_LABELS, FLAGS, MISSING, SOLVER_LABELS, compose, read_run
+from sitegen.models.bubble.presets import PRESETS, preset_problem, run_preset
 from sitegen.models.bubble.run import CAP_NFEV, CORE, FAILED, KM_STOP, MACH, OK, POINT, STATUS_CODES, UNBOUNDED_GROWTH
 from sitegen.models.bubble.solve import ANALYTIC, EXPLICIT, IMPLICIT, choose_method, integrate, solve
 from sitegen.models.bubble.terms import (
-    P0, WATER, Problem, blake, energy, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau,
+    P0,
+    WATER,
+    Problem,
+    blake,
+    energy,
+    mach_one_radius,
+    rayleigh_fraction,
+    rayleigh_radius,
+    rayleigh_tau,
 )
 
 
 def _evaluate(preset: str, wanted, effects=None, **changes) -> dict:
     """The model's outputs for a preset (its effects unless given), with some parameters changed."""
     preset_effects, values = PRESETS[preset]
-    out = Bubble().evaluate({**values, **changes}, wanted=wanted, effects=preset_effects if effects is None else effects)
+    out = Bubble().evaluate(
+        {**values, **changes}, wanted=wanted, effects=preset_effects if effects is None else effects
+    )
     return {name: float(value) for name, value in out.items()}
 
 
@@ -49,6 +60,7 @@ def _rayleigh_time_by_quadrature(r: float, delta_p: float = 1.0) -> float:
 
     r' = 1 − s² removes the inverse-square-root singularity at the start, where ṙ = 0.
     """
+
     def integrand(s):
         x = 1.0 - s * s
         return 2.0 * s / math.sqrt(2.0 * delta_p / 3.0 * (1.0 - x**3) / x**3) if s else 2.0 / math.sqrt(2.0 * delta_p)
@@ -104,9 +116,15 @@ def test_dop853_collapse_matches_the_analytic_curve():
 
 @pytest.mark.parametrize(
     "output, shown",
-    [("t_c", "91.853"), ("R_mach", "0.0311"), ("t_mach", "0.99991"), ("collapse_mach", "1.0000"), ("collapse_R_min", "—"),
-     ("collapse_flag", "incompressible model invalid: the wall reaches |Ṙ| = c, where the curve ends"),
-     ("collapse_solver", "analytic (betaincinv)")],
+    [
+        ("t_c", "91.853"),
+        ("R_mach", "0.0311"),
+        ("t_mach", "0.99991"),
+        ("collapse_mach", "1.0000"),
+        ("collapse_R_min", "—"),
+        ("collapse_flag", "incompressible model invalid: the wall reaches |Ṙ| = c, where the curve ends"),
+        ("collapse_solver", "analytic (betaincinv)"),
+    ],
     ids=["t_c", "R_mach", "t_mach", "mach_max", "R_min", "flag", "solver"],
 )
 def test_preset_A_defaults_show_the_reference_readouts(output, shown):
@@ -195,16 +213,25 @@ def test_blake_threshold_is_the_minimum_of_the_quasi_static_pressure():
     """p_Blake = min over R of p_v + K/R³ − 2σ/R (K = p_g0 R0³), at R = R_B, to 1e-9 rel (R0 = 1 µm)."""
     pb, _ = preset_problem("C")
     r_b, p_blake = blake(pb.gas, pb.sigma, pb.vapour)
-    best = minimize_scalar(lambda r: pb.vapour + pb.gas / r**3 - 2 * pb.sigma / r, bounds=(1.0, 10.0), method="bounded",
-                           options={"xatol": 1e-12})
+    best = minimize_scalar(
+        lambda r: pb.vapour + pb.gas / r**3 - 2 * pb.sigma / r,
+        bounds=(1.0, 10.0),
+        method="bounded",
+        options={"xatol": 1e-12},
+    )
     assert float(p_blake) == pytest.approx(best.fun, rel=1e-9)
     assert float(r_b) == pytest.approx(best.x, rel=1e-5)
 
 
 @pytest.mark.parametrize(
     "output, shown",
-    [("two_sigma_R0", "145.6"), ("R_B", "2.2449"), ("p_blake", "\u221240.9"), ("ramp_growth", BLAKE_LABELS[0]),
-     ("ramp_solver", SOLVER_LABELS[2])],
+    [
+        ("two_sigma_R0", "145.6"),
+        ("R_B", "2.2449"),
+        ("p_blake", "\u221240.9"),
+        ("ramp_growth", BLAKE_LABELS[0]),
+        ("ramp_solver", SOLVER_LABELS[2]),
+    ],
     ids=["2sigma/R0", "R_B", "p_Blake", "settles", "solver"],
 )
 def test_preset_C_defaults_show_the_reference_readouts(output, shown):
@@ -212,7 +239,9 @@ def test_preset_C_defaults_show_the_reference_readouts(output, shown):
     assert _shown("C", output) == shown
 
 
-@pytest.mark.parametrize("depth, status", [(0.99, OK), (1.01, UNBOUNDED_GROWTH)], ids=["0.99:bounded", "1.01:unbounded"])
+@pytest.mark.parametrize(
+    "depth, status", [(0.99, OK), (1.01, UNBOUNDED_GROWTH)], ids=["0.99:bounded", "1.01:unbounded"]
+)
 def test_ramp_across_the_blake_threshold(depth, status):
     """R0 = 1 µm: bounded (R < R_B throughout) at depth 0.99; R reaches 10 R_B at depth 1.01."""
     pb, _ = preset_problem("C", depth=depth)
@@ -236,10 +265,36 @@ def test_depth_one_puts_the_far_field_at_the_blake_threshold():
 
 @pytest.mark.parametrize(
     "output, shown",
-    [("driven_R_max", "6.8115"), ("driven_t_Rmax", "0.42824"), ("driven_R_min", "0.17624"), ("driven_t_Rmin", "0.51661"),
-     ("driven_mach", "0.4578"), ("driven_pg_peak", "1.30"), ("driven_Tg_peak", "11553"), ("driven_Rmin_h", "1.56"),
-     ("driven_R_max2", "6.8389"), ("driven_R_min2", "0.17587"), ("driven_flag", "valid"), ("driven_solver", SOLVER_LABELS[1]), ("f0", "893.5")],
-    ids=["R_max", "t_Rmax", "R_min", "t_Rmin", "mach", "p_g", "T_g", "R_min/h", "R_max2", "R_min2", "flag", "solver", "f0"],
+    [
+        ("driven_R_max", "6.8115"),
+        ("driven_t_Rmax", "0.42824"),
+        ("driven_R_min", "0.17624"),
+        ("driven_t_Rmin", "0.51661"),
+        ("driven_mach", "0.4578"),
+        ("driven_pg_peak", "1.30"),
+        ("driven_Tg_peak", "11553"),
+        ("driven_Rmin_h", "1.56"),
+        ("driven_R_max2", "6.8389"),
+        ("driven_R_min2", "0.17587"),
+        ("driven_flag", "valid"),
+        ("driven_solver", SOLVER_LABELS[1]),
+        ("f0", "893.5"),
+    ],
+    ids=[
+        "R_max",
+        "t_Rmax",
+        "R_min",
+        "t_Rmin",
+        "mach",
+        "p_g",
+        "T_g",
+        "R_min/h",
+        "R_max2",
+        "R_min2",
+        "flag",
+        "solver",
+        "f0",
+    ],
 )
 def test_preset_B_defaults_show_the_reference_readouts(output, shown):
     """Preset B (4.5 µm, p_a = 1.30 p0, 26.5 kHz, KM, argon): the reference digits of physics.md (T_g 1.16e4 K, f0 893.5 kHz)."""
@@ -251,7 +306,12 @@ def test_preset_B_defaults_show_the_reference_readouts(output, shown):
 
 @pytest.mark.parametrize(
     "effects, gas",
-    [(("gas",), 1.0), (("gas", "surface_tension"), "1+2S"), (("gas", "vapour"), "1-Pv"), (("gas", "vapour", "surface_tension"), "1-Pv+2S")],
+    [
+        (("gas",), 1.0),
+        (("gas", "surface_tension"), "1+2S"),
+        (("gas", "vapour"), "1-Pv"),
+        (("gas", "vapour", "surface_tension"), "1-Pv+2S"),
+    ],
     ids=["gas", "gas+sigma", "gas+vapour", "gas+vapour+sigma"],
 )
 def test_equilibrium_gas_pressure_includes_only_enabled_terms(effects, gas):
@@ -279,11 +339,24 @@ def test_parameters_of_disabled_effects_are_never_used(param, value):
 
 @pytest.mark.parametrize(
     "preset, changes, effects, method",
-    [("A", {}, None, ANALYTIC), ("A", {}, ("vapour", "step", "gas"), ANALYTIC),
-     ("A", {"gas_content": 0.01}, ("vapour", "step", "gas"), EXPLICIT), ("A", {}, ("vapour", "step", "keller_miksis"), EXPLICIT),
-     ("B", {}, None, EXPLICIT), ("C", {}, None, IMPLICIT), ("C", {"R0": 10.0}, None, EXPLICIT)],
-    ids=["A:inertia+vapour->analytic", "A:gas-content-0->analytic", "A:gas->DOP853", "A:KM->DOP853", "B->DOP853",
-         "C-1um:stiff->Radau", "C-10um->DOP853"],
+    [
+        ("A", {}, None, ANALYTIC),
+        ("A", {}, ("vapour", "step", "gas"), ANALYTIC),
+        ("A", {"gas_content": 0.01}, ("vapour", "step", "gas"), EXPLICIT),
+        ("A", {}, ("vapour", "step", "keller_miksis"), EXPLICIT),
+        ("B", {}, None, EXPLICIT),
+        ("C", {}, None, IMPLICIT),
+        ("C", {"R0": 10.0}, None, EXPLICIT),
+    ],
+    ids=[
+        "A:inertia+vapour->analytic",
+        "A:gas-content-0->analytic",
+        "A:gas->DOP853",
+        "A:KM->DOP853",
+        "B->DOP853",
+        "C-1um:stiff->Radau",
+        "C-10um->DOP853",
+    ],
 )
 def test_solver_follows_from_the_composed_terms(preset, changes, effects, method):
     """Analytic when only inertia (+ vapour) act, the compiled Radau when 4µT/ρR0² > 1e3, the compiled DOP853 otherwise."""
@@ -293,9 +366,13 @@ def test_solver_follows_from_the_composed_terms(preset, changes, effects, method
 
 @pytest.mark.parametrize(
     "effects, message",
-    [(("step", "drive"), "one pressure history"), (("gas", "radiation", "keller_miksis"), "exclude each other"),
-     (("gas", "surface_tension", "step", "ramp"), "one pressure history"), (("vdw_hard_core",), "needs `gas`"),
-     (("thermal_damping",), "needs `gas`")],
+    [
+        (("step", "drive"), "one pressure history"),
+        (("gas", "radiation", "keller_miksis"), "exclude each other"),
+        (("gas", "surface_tension", "step", "ramp"), "one pressure history"),
+        (("vdw_hard_core",), "needs `gas`"),
+        (("thermal_damping",), "needs `gas`"),
+    ],
     ids=["step+drive", "radiation+KM", "step+ramp", "core-without-gas", "thermal-without-gas"],
 )
 def test_incompatible_effect_sets_raise(effects, message):
@@ -304,8 +381,11 @@ def test_incompatible_effect_sets_raise(effects, message):
         Bubble().evaluate({}, wanted=["t_c"], effects=effects)
 
 
-@pytest.mark.parametrize("inputs", [{"R0": 0.0}, {"kappa": 0.9}, {"h_frac": 1.0}, {"f": 0.0}, {"R0": float("nan")}],
-                         ids=["R0=0", "kappa<1", "h=R0", "f=0", "R0=nan"])
+@pytest.mark.parametrize(
+    "inputs",
+    [{"R0": 0.0}, {"kappa": 0.9}, {"h_frac": 1.0}, {"f": 0.0}, {"R0": float("nan")}],
+    ids=["R0=0", "kappa<1", "h=R0", "f=0", "R0=nan"],
+)
 def test_invalid_parameters_raise_naming_the_parameter(inputs):
     """Values outside the domain raise ValueError naming the parameter."""
     (name,) = inputs
@@ -322,14 +402,35 @@ VANISHING = [
     pytest.param("B", _MILD_B, _B_EFFECTS, {"h_frac": 1e-4}, ("vdw_hard_core",), id="h->0"),
     pytest.param("B", {"f": 50.0}, _B_EFFECTS, {"p_a": 1e-13}, ("drive",), id="p_a->0"),
     pytest.param("B", _MILD_B, _B_EFFECTS, {"c": 1e12}, ("keller_miksis",), id="KM:c->inf"),
-    pytest.param("B", _MILD_B, ("gas", "surface_tension", "viscosity", "drive", "radiation"), {"c": 1e12}, ("radiation",), id="radiation:c->inf"),
-    pytest.param("B", _MILD_B, ("gas", "surface_tension", "viscosity", "thermal_damping", "drive"), {"D_g": 1e-20}, ("thermal_damping",),
-                 id="thermal:D->0"),
-    pytest.param("B", _MILD_B, ("gas", "surface_tension", "drive", "step"), {"p_inf": 1.0, "gas_content": 1.0 + 2 * 0.0728 / (P0 * 4.5e-6)},
-                 ("step",), id="step:p_inf->p0"),
+    pytest.param(
+        "B",
+        _MILD_B,
+        ("gas", "surface_tension", "viscosity", "drive", "radiation"),
+        {"c": 1e12},
+        ("radiation",),
+        id="radiation:c->inf",
+    ),
+    pytest.param(
+        "B",
+        _MILD_B,
+        ("gas", "surface_tension", "viscosity", "thermal_damping", "drive"),
+        {"D_g": 1e-20},
+        ("thermal_damping",),
+        id="thermal:D->0",
+    ),
+    pytest.param(
+        "B",
+        _MILD_B,
+        ("gas", "surface_tension", "drive", "step"),
+        {"p_inf": 1.0, "gas_content": 1.0 + 2 * 0.0728 / (P0 * 4.5e-6)},
+        ("step",),
+        id="step:p_inf->p0",
+    ),
     pytest.param("C", {"R0": 5.0, "depth": 0.9}, _C_EFFECTS, {"p_v": 1e-9}, ("vapour",), id="C:p_v->0"),
     pytest.param("C", {"R0": 5.0, "depth": 0.9}, _C_EFFECTS, {"mu": 1e-12}, ("viscosity",), id="C:mu->0"),
-    pytest.param("A", {}, ("vapour", "step", "surface_tension"), {"sigma": 1e-12}, ("surface_tension",), id="A:sigma->0"),
+    pytest.param(
+        "A", {}, ("vapour", "step", "surface_tension"), {"sigma": 1e-12}, ("surface_tension",), id="A:sigma->0"
+    ),
     pytest.param("A", {}, ("vapour", "step", "viscosity"), {"mu": 1e-12}, ("viscosity",), id="A:mu->0"),
 ]
 
@@ -340,7 +441,9 @@ def test_effect_vanishing_limit_reproduces_the_reduced_model(preset, base, effec
     point = _point(preset, **base, **tiny)
     with_effect, _ = compose(point, effects)
     reduced, _ = compose(point, tuple(e for e in effects if e not in removed))
-    runs = [solve(pb) if pb.is_rayleigh else integrate(pb, (1.0, 0.0), "DOP853", 1e-10) for pb in (with_effect, reduced)]
+    runs = [
+        solve(pb) if pb.is_rayleigh else integrate(pb, (1.0, 0.0), "DOP853", 1e-10) for pb in (with_effect, reduced)
+    ]
     if preset == "A":  # the collapse is compared up to where both stop (|Ṙ| = c)
         assert runs[0].status == runs[1].status == MACH
     reached = np.isfinite(runs[0].r) & np.isfinite(runs[1].r)
@@ -363,9 +466,16 @@ def test_thermal_damping_limits_are_adiabatic_and_isothermal():
 
 def test_scale_free_collapse_is_solved_once_per_nondimensional_problem():
     """Preset A without σ and µ: R0 does not enter the problem, so the 210 stops are 30 distinct problems."""
-    stops = [(r0, p, g) for r0 in (100, 200, 500, 1000, 2000, 5000, 10000) for p in (0.25, 0.5, 1, 2, 5, 10)
-             for g in (0, 1e-4, 1e-3, 1e-2, 1e-1)]
-    problems = {compose(_point("A", R0=r0, p_inf=p, gas_content=g, kappa=1.4), ("vapour", "step", "gas"))[0] for r0, p, g in stops}
+    stops = [
+        (r0, p, g)
+        for r0 in (100, 200, 500, 1000, 2000, 5000, 10000)
+        for p in (0.25, 0.5, 1, 2, 5, 10)
+        for g in (0, 1e-4, 1e-3, 1e-2, 1e-1)
+    ]
+    problems = {
+        compose(_point("A", R0=r0, p_inf=p, gas_content=g, kappa=1.4), ("vapour", "step", "gas"))[0]
+        for r0, p, g in stops
+    }
     assert len(problems) == 30
 
 
@@ -386,18 +496,32 @@ def test_read_run_never_returns_nan_outside_the_curve_padding():
         assert not any(np.isnan(v) for name, v in values.items() if np.ndim(v) == 0), preset
 
 
-@pytest.mark.parametrize("status, phrase", [
-    (OK, "valid"), (MACH, "the wall reaches |Ṙ| = c"), (KM_STOP, "stopped at |Ṙ| = 0.9c"), (POINT, "collapses to a point"),
-    (CORE, "van der Waals hard core"), (UNBOUNDED_GROWTH, "unbounded growth"), (CAP_NFEV, "evaluation cap hit"),
-    (FAILED, "solver failed"),
-])
+@pytest.mark.parametrize(
+    "status, phrase",
+    [
+        (OK, "valid"),
+        (MACH, "the wall reaches |Ṙ| = c"),
+        (KM_STOP, "stopped at |Ṙ| = 0.9c"),
+        (POINT, "collapses to a point"),
+        (CORE, "van der Waals hard core"),
+        (UNBOUNDED_GROWTH, "unbounded growth"),
+        (CAP_NFEV, "evaluation cap hit"),
+        (FAILED, "solver failed"),
+    ],
+)
 def test_the_compiled_reading_flags_each_end_of_a_run_by_its_phrase(status, phrase):
     """The compiled reading's flag for a run's status indexes the phrase that names it."""
     assert phrase in FLAGS[kernel_read.flag_of_code(STATUS_CODES[status])]
 
 
-@pytest.mark.parametrize("reason, phrase", [(kernel_read.NO_GAS, "no gas"), (kernel_read.NO_CORE, "no van der Waals hard core"),
-                                            (kernel_read.NOT_REACHED, "not reached")])
+@pytest.mark.parametrize(
+    "reason, phrase",
+    [
+        (kernel_read.NO_GAS, "no gas"),
+        (kernel_read.NO_CORE, "no van der Waals hard core"),
+        (kernel_read.NOT_REACHED, "not reached"),
+    ],
+)
 def test_the_compiled_reading_says_why_a_value_is_missing_by_its_phrase(reason, phrase):
     """The reasons the compiled reading gives beyond how the run ended index the phrases that say them."""
     assert MISSING[reason].startswith(phrase)

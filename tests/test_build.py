@@ -1,4 +1,5 @@
 """The built site as a whole: determinism, budgets, self-containment, and the command line."""
+
 from __future__ import annotations
 
 import io
@@ -26,7 +27,10 @@ def _cli_build(out: Path, seed: str, root: Path = ROOT, *options: str) -> subpro
     env = {**os.environ, "PYTHONHASHSEED": seed}
     return subprocess.run(
         [sys.executable, "-m", "sitegen.cli", "build", "--root", str(root), "--out", str(out), *options],
-        capture_output=True, text=True, env=env, check=False,
+        capture_output=True,
+        text=True,
+        env=env,
+        check=False,
     )
 
 
@@ -56,6 +60,7 @@ def test_the_work_ahead_gives_the_bytes_of_work_done_here(tmp_path, tiny_site, m
     tabulated and the report's diagrams drawn in this process, as their pages need them) gives the bytes of
     the session's build."""
     from conftest import copy_book
+
     from sitegen.build import build
     from sitegen.compute.executors import Beside
 
@@ -184,9 +189,14 @@ def test_progress_inside_a_scene_is_a_line_in_a_log_and_replaced_on_a_terminal(t
     progress("[1/2] page#scene      48 stops    6.00 s  computed: new")
     text = stream.getvalue()
     if not tty:
-        assert text.splitlines() == ["  page#scene           16 of 48 stops, 8 stops/s", "  page#scene           32 of 48 stops, 8 stops/s",
-                                     "[1/2] page#scene      48 stops    6.00 s  computed"]
+        assert text.splitlines() == [
+            "  page#scene           16 of 48 stops, 8 stops/s",
+            "  page#scene           32 of 48 stops, 8 stops/s",
+            "[1/2] page#scene      48 stops    6.00 s  computed",
+        ]
     else:
         shown = text.split("\r\x1b[2K")
         assert shown[1] == "  page#scene           32 of 48 stops, 8 stops/s"  # the second update replaced the first
-        assert shown[2].startswith("[1/2] page#scene      48 stops    6.00 s  computed\n[") and shown[2].endswith("1/2 scenes")
+        assert shown[2].startswith("[1/2] page#scene      48 stops    6.00 s  computed\n[") and shown[2].endswith(
+            "1/2 scenes"
+        )

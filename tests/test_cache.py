@@ -1,4 +1,5 @@
 """The content-addressed cache: what it reuses, what it recomputes, and why it says so."""
+
 from __future__ import annotations
 
 import shutil
@@ -174,7 +175,9 @@ def test_changed_default_redraws_the_figure(built, tmp_path):
     assert warm.computed == 0  # the tables do not depend on the default
     fresh = BuildConfig(built.root, built.content, tmp_path / "fresh", cache=None)
     build(fresh, progress=None)
-    assert (built.out / CHAPTER.replace(".md", ".html")).read_bytes() == (fresh.out / CHAPTER.replace(".md", ".html")).read_bytes()
+    assert (built.out / CHAPTER.replace(".md", ".html")).read_bytes() == (
+        fresh.out / CHAPTER.replace(".md", ".html")
+    ).read_bytes()
 
 
 def test_a_scene_key_reads_its_own_model_and_not_the_others():
@@ -187,5 +190,11 @@ def test_a_scene_key_reads_its_own_model_and_not_the_others():
 
     chain = builtin_registry().models["chain"].__module__
     modules = set(source_hashes(frozenset({chain, TABULATOR})))
-    assert {chain, "sitegen.physics.base", "sitegen.physics.numerics", "sitegen.compute.grid", "sitegen.compute.table"} <= modules
+    assert {
+        chain,
+        "sitegen.physics.base",
+        "sitegen.physics.numerics",
+        "sitegen.compute.grid",
+        "sitegen.compute.table",
+    } <= modules
     assert not [m for m in modules for other in ("ossicles", "bubble", "collision") if other in m]

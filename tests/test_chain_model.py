@@ -1,5 +1,6 @@
 """I5 (chain of N masses): the exact modal solution against a dense matrix exponential, the continuum
 string, the comparison integrators' hard cases, each effect's vanishing limit and the page's readouts."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -7,12 +8,20 @@ import pytest
 import scipy.linalg
 
 from sitegen.compute.quantize import fmt
+from sitegen.models.chain.integrators import integrate_ivp, stability_limit, velocity_verlet
 from sitegen.models.chain.model import Chain
 from sitegen.models.chain.modes import (
-    RESOLVED, RIGHT_MOVING, SPLIT, UNDER_RESOLVED, Terms, mass_and_stiffness, mode_frequencies, positions, spacing,
+    RESOLVED,
+    RIGHT_MOVING,
+    SPLIT,
+    UNDER_RESOLVED,
+    Terms,
+    mass_and_stiffness,
+    mode_frequencies,
+    positions,
+    spacing,
 )
 from sitegen.models.chain.motion import chain_motion, continuum, deviation, energy, evolve, initial_state
-from sitegen.models.chain.integrators import integrate_ivp, stability_limit, velocity_verlet
 
 EPS = np.finfo(float).eps
 LAUNCHES = [pytest.param(RIGHT_MOVING, id="right-moving"), pytest.param(SPLIT, id="split")]
@@ -141,9 +150,18 @@ def test_chain_converges_to_the_string_as_a_squared():
 @pytest.mark.parametrize(
     "n, t, measured, unit",
     [
-        (16, 0.5, 0.44, 0.01), (32, 0.5, 0.175, 0.001), (64, 0.5, 0.056, 0.001), (128, 0.5, 0.0141, 1e-4),
-        (256, 0.5, 3.5e-3, 1e-4), (512, 0.5, 8.9e-4, 1e-5), (16, 2.0, 0.33, 0.01), (32, 2.0, 0.49, 0.01),
-        (64, 2.0, 0.21, 0.01), (128, 2.0, 0.058, 0.001), (256, 2.0, 0.0141, 1e-4), (512, 2.0, 3.5e-3, 1e-4),
+        (16, 0.5, 0.44, 0.01),
+        (32, 0.5, 0.175, 0.001),
+        (64, 0.5, 0.056, 0.001),
+        (128, 0.5, 0.0141, 1e-4),
+        (256, 0.5, 3.5e-3, 1e-4),
+        (512, 0.5, 8.9e-4, 1e-5),
+        (16, 2.0, 0.33, 0.01),
+        (32, 2.0, 0.49, 0.01),
+        (64, 2.0, 0.21, 0.01),
+        (128, 2.0, 0.058, 0.001),
+        (256, 2.0, 0.0141, 1e-4),
+        (512, 2.0, 3.5e-3, 1e-4),
     ],
     ids=lambda v: None,
 )
@@ -218,7 +236,9 @@ def test_verlet_error_falls_as_the_square_of_the_step():
     a = spacing(n)
     u0, v0 = initial_state(positions(n), 0.05, RIGHT_MOVING, amplitude=1.0)
     exact, _ = chain_motion(n, 0.05, 2.0, RIGHT_MOVING, amplitude=1.0)
-    errors = [np.max(np.abs(velocity_verlet(u0, v0, nu * a, int(round(2.0 / (nu * a)))).u[-1] - exact)) for nu in (0.1, 0.05)]
+    errors = [
+        np.max(np.abs(velocity_verlet(u0, v0, nu * a, int(round(2.0 / (nu * a)))).u[-1] - exact)) for nu in (0.1, 0.05)
+    ]
     assert 3.6 <= errors[0] / errors[1] <= 4.4
 
 
@@ -281,7 +301,11 @@ def _critical_mode_state(gamma_factor: float):
     return evolve(u0, v0, 0.9, Terms(gamma=gamma_factor * 2 * omega))
 
 
-@pytest.mark.parametrize("side", [1 - 1e-13, 1 + 1e-13, 1 - 4 * EPS, 1 + 4 * EPS], ids=["below-1e-13", "above-1e-13", "below-4eps", "above-4eps"])
+@pytest.mark.parametrize(
+    "side",
+    [1 - 1e-13, 1 + 1e-13, 1 - 4 * EPS, 1 + 4 * EPS],
+    ids=["below-1e-13", "above-1e-13", "below-4eps", "above-4eps"],
+)
 def test_damping_is_continuous_across_critical(side):
     """ω_n = γ/2: the under- and overdamped branches meet the critical value within 1e−12 rel (u and v)."""
     critical, near = _critical_mode_state(1.0), _critical_mode_state(side)
@@ -307,7 +331,10 @@ def test_heavily_overdamped_chain_stays_finite_at_long_times():
 
 @pytest.mark.parametrize(
     "terms, bound",
-    [pytest.param(Terms(gamma=1e-12), 1e-11, id="gamma=1e-12:1e-11"), pytest.param(Terms(omega0=1e-6), 1e-11, id="omega0=1e-6:1e-11")],
+    [
+        pytest.param(Terms(gamma=1e-12), 1e-11, id="gamma=1e-12:1e-11"),
+        pytest.param(Terms(omega0=1e-6), 1e-11, id="omega0=1e-6:1e-11"),
+    ],
 )
 def test_effects_vanish_in_their_limit(terms, bound):
     """γ → 0 and ω0 → 0 recover the bare chain: N = 64, t = 2, |Δu| ≤ bound × max|u0| (the change is O(γt), O(ω0²t²))."""
@@ -333,8 +360,14 @@ def test_other_ends_converge_to_their_string(ends):
     assert 3.6 <= ratio <= 4.4, f"ratio {ratio:.3f}"
 
 
-@pytest.mark.parametrize("terms", [pytest.param(Terms(ends="free"), id="free"), pytest.param(Terms(ends="periodic"), id="periodic"),
-                                   pytest.param(Terms(omega0=20.0), id="omega0=20")])
+@pytest.mark.parametrize(
+    "terms",
+    [
+        pytest.param(Terms(ends="free"), id="free"),
+        pytest.param(Terms(ends="periodic"), id="periodic"),
+        pytest.param(Terms(omega0=20.0), id="omega0=20"),
+    ],
+)
 def test_conservative_effects_conserve_energy(terms):
     """Undamped effects keep E(t)/E(0) − 1 within 1e−12 for N = 64 up to t = 1e2."""
     u, v = chain_motion(64, 0.05, np.array([0.0, 0.37, 2.0, 1e2]), RIGHT_MOVING, terms, amplitude=1.0)
@@ -355,8 +388,15 @@ def test_damped_energy_decays_monotonically():
 @pytest.mark.parametrize(
     "output, expected",
     [
-        ("a", "0.015385"), ("m", "0.015385"), ("kappa", "65.000"), ("c", "1.000"), ("omega_max", "130.0"),
-        ("sigma_over_a", "3.25"), ("dev", "0.0564"), ("E_chain", "17.620"), ("E_continuum", "17.725"),
+        ("a", "0.015385"),
+        ("m", "0.015385"),
+        ("kappa", "65.000"),
+        ("c", "1.000"),
+        ("omega_max", "130.0"),
+        ("sigma_over_a", "3.25"),
+        ("dev", "0.0564"),
+        ("E_chain", "17.620"),
+        ("E_continuum", "17.725"),
         ("E_chain_mJ", "1.762"),
     ],
     ids=lambda v: v if isinstance(v, str) and not v[0].isdigit() else None,
@@ -404,11 +444,16 @@ def test_damping_effect_in_the_model_decays_the_energy_readout():
     """With onsite_damping at γ = 1: E_now(t = 2) = E(0)·(≤ 1) and equals the engine's damped energy."""
     out = _evaluate(["E_now", "E_chain"], effects=("onsite_damping",), gamma=1.0, t=2.0)
     u, v = chain_motion(64, 0.05, 2.0, RIGHT_MOVING, Terms(gamma=1.0), amplitude=1.0)
-    assert out["E_now"] < out["E_chain"] and out["E_now"] == pytest.approx(float(energy(u, v, Terms(gamma=1.0))), rel=1e-14)
+    assert out["E_now"] < out["E_chain"] and out["E_now"] == pytest.approx(
+        float(energy(u, v, Terms(gamma=1.0))), rel=1e-14
+    )
 
 
-@pytest.mark.parametrize("effect, inputs", [("onsite_damping", {"gamma": 0.0}), ("onsite_spring", {"omega0": 0.0}), ("boundary", {"ends": 0})],
-                         ids=["gamma=0", "omega0=0", "ends=fixed"])
+@pytest.mark.parametrize(
+    "effect, inputs",
+    [("onsite_damping", {"gamma": 0.0}), ("onsite_spring", {"omega0": 0.0}), ("boundary", {"ends": 0})],
+    ids=["gamma=0", "omega0=0", "ends=fixed"],
+)
 def test_enabled_effects_at_their_neutral_value_change_nothing(effect, inputs):
     """Enabling an effect at γ = 0, ω0 = 0 or fixed ends gives bitwise the bare model's dots and dev."""
     bare = _evaluate(["u_dots", "dev"], t=1.1)

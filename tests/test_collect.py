@@ -1,6 +1,7 @@
 """Garbage collection around builds (phases/collect.py): a build sets aside what the process held and
 collects after each page, and gives the collector back as it found it; a watcher keeps nothing of the
 builds it no longer uses."""
+
 from __future__ import annotations
 
 import gc
@@ -27,6 +28,7 @@ def test_a_build_gives_the_collector_back_as_it_found_it(tiny_book, own_threshol
     """During the build the process's objects are frozen and no automatic full collection runs; after it,
     even after one that failed, the thresholds are the process's and nothing stays frozen."""
     from sitegen.build import build
+    from sitegen.errors import BuildFailed
 
     seen = {}
 
@@ -38,7 +40,7 @@ def test_a_build_gives_the_collector_back_as_it_found_it(tiny_book, own_threshol
     assert seen["frozen"] > 10_000 and seen["thresholds"][2] > 10**6
     assert gc.get_threshold() == PROCESS_THRESHOLDS and gc.get_freeze_count() == 0
     (tiny_book.content / "index.md").write_text("```scene\nmodel: no-such-model\n```\n")
-    with pytest.raises(Exception):
+    with pytest.raises(BuildFailed):
         build(tiny_book, progress=None)
     assert gc.get_threshold() == PROCESS_THRESHOLDS and gc.get_freeze_count() == 0
 

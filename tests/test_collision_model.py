@@ -1,4 +1,5 @@
 """I2 (1-D collision with restitution): exact rationals, the cancellation hard cases and the energy ledger."""
+
 from __future__ import annotations
 
 from fractions import Fraction
@@ -295,8 +296,20 @@ def test_defaults_report_a_collision():
         {"e": float("nan")},
         {"e": np.array([0.5, 1.0 + 1e-15])},
     ],
-    ids=["m1=0", "m1<0", "m2=0", "m2<0", "e<0", "e>1", "m1=nan", "m2=nan", "v1i=nan", "v2i=nan", "e=nan",
-         "e-array-just-above-1"],
+    ids=[
+        "m1=0",
+        "m1<0",
+        "m2=0",
+        "m2<0",
+        "e<0",
+        "e>1",
+        "m1=nan",
+        "m2=nan",
+        "v1i=nan",
+        "v2i=nan",
+        "e=nan",
+        "e-array-just-above-1",
+    ],
 )
 def test_invalid_input_raises_naming_the_parameter(inputs):
     """m ≤ 0, e outside [0, 1] or NaN raise ValueError whose message names the parameter."""
@@ -343,8 +356,16 @@ def _integrate_contact(m1, m2, v1i, v2i, k_c, c_d):
 
     separated.terminal, separated.direction = True, -1
     period = 2 * np.pi * np.sqrt(m1 * m2 / (m1 + m2) / k)
-    solution = solve_ivp(rhs, (0.0, 10 * period), (0.0, 0.0, v1i, v2i), method="DOP853", rtol=1e-12,
-                         atol=1e-15 * max(abs(v1i), abs(v2i)) * period, events=separated, first_step=period * 1e-6)
+    solution = solve_ivp(
+        rhs,
+        (0.0, 10 * period),
+        (0.0, 0.0, v1i, v2i),
+        method="DOP853",
+        rtol=1e-12,
+        atol=1e-15 * max(abs(v1i), abs(v2i)) * period,
+        events=separated,
+        first_step=period * 1e-6,
+    )
     assert solution.status == 1, solution.message
     return solution.t_events[0][0], solution.y_events[0][0]
 
@@ -354,8 +375,9 @@ def test_integrated_contact_reproduces_the_restitution_law_with_its_e(m1, m2, v1
     """The ODE-integrated contact ends with the velocities of the restitution law at the model's e_contact,
     within 1e−9 of max(|v1i|, |v2i|), and after the model's contact time within 1e−9 rel."""
     t_end, (_, _, u1, u2) = _integrate_contact(m1, m2, v1i, v2i, k_c, c_d)
-    out = Collision().evaluate(_contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["v1f", "v2f", "e_contact", "t_contact"],
-                               effects=CONTACT)
+    out = Collision().evaluate(
+        _contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["v1f", "v2f", "e_contact", "t_contact"], effects=CONTACT
+    )
     law = _evaluate(m1, m2, v1i, v2i, float(out["e_contact"]), wanted=["v1f", "v2f"])
     scale = max(abs(v1i), abs(v2i))
     assert abs(u1 - float(law["v1f"])) <= 1e-9 * scale and abs(u2 - float(law["v2f"])) <= 1e-9 * scale
@@ -393,7 +415,9 @@ def test_undamped_contact_is_the_elastic_law_bitwise():
     names = ["v1f", "v2f", "p_after", "K_after", "K_lost", "K_kept_pct", "status"]
     m1, m2, v1i, v2i, e = _random_approaching(11, n=200, e=1.0)
     law = _evaluate(m1, m2, v1i, v2i, e, wanted=names)
-    spring = Collision().evaluate({"m1": m1, "m2": m2, "v1i": v1i, "v2i": v2i, "k_c": 7.0, "c_d": 0.0}, wanted=names, effects=CONTACT)
+    spring = Collision().evaluate(
+        {"m1": m1, "m2": m2, "v1i": v1i, "v2i": v2i, "k_c": 7.0, "c_d": 0.0}, wanted=names, effects=CONTACT
+    )
     assert all(np.array_equal(law[n], spring[n]) for n in names)
 
 
@@ -401,9 +425,17 @@ def test_undamped_contact_is_the_elastic_law_bitwise():
 def test_impulse_of_the_contact_is_the_area_under_its_force(m1, m2, v1i, v2i, k_c, c_d):
     """J = μ(1 + e)Δ equals quad of F(t) over the contact (1e−12 rel) and m2(v2f − v2i) (1e−13 rel)."""
     mu = m1 * m2 / (m1 + m2)
-    out = Collision().evaluate(_contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["J", "t_contact", "v2f"], effects=CONTACT)
-    area, _ = quad(lambda t: float(contact.force(t, mu, 1e3 * k_c, c_d, v1i - v2i)), 0.0, 1e-3 * float(out["t_contact"]),
-                   epsabs=0.0, epsrel=1e-13, limit=200)
+    out = Collision().evaluate(
+        _contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["J", "t_contact", "v2f"], effects=CONTACT
+    )
+    area, _ = quad(
+        lambda t: float(contact.force(t, mu, 1e3 * k_c, c_d, v1i - v2i)),
+        0.0,
+        1e-3 * float(out["t_contact"]),
+        epsabs=0.0,
+        epsrel=1e-13,
+        limit=200,
+    )
     J = float(out["J"])
     assert abs(area - J) <= 1e-12 * J
     assert abs(m2 * (float(out["v2f"]) - v2i) - J) <= 1e-13 * (J + m2 * abs(v2i))
@@ -414,11 +446,17 @@ def test_contact_ends_where_the_overlap_closes_with_the_dashpot_pulling(m1, m2, 
     """The stated criterion: at t_c the overlap is 0 (to 1e−12 of its largest value) and the force is the
     dashpot's pull, F(t_c) = −c_d e Δ (tensile when damped)."""
     mu, k, delta = m1 * m2 / (m1 + m2), 1e3 * k_c, v1i - v2i
-    out = Collision().evaluate(_contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["t_contact", "e_contact"], effects=CONTACT)
+    out = Collision().evaluate(
+        _contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["t_contact", "e_contact"], effects=CONTACT
+    )
     t_c, e = 1e-3 * float(out["t_contact"]), float(out["e_contact"])
     samples = np.linspace(0.0, t_c, 2001)
-    assert abs(float(contact.overlap(t_c, mu, k, c_d, delta))) <= 1e-12 * np.max(contact.overlap(samples, mu, k, c_d, delta))
-    assert float(contact.force(t_c, mu, k, c_d, delta)) == pytest.approx(-c_d * e * delta, rel=1e-9, abs=1e-9 * k * delta / np.sqrt(k / mu))
+    assert abs(float(contact.overlap(t_c, mu, k, c_d, delta))) <= 1e-12 * np.max(
+        contact.overlap(samples, mu, k, c_d, delta)
+    )
+    assert float(contact.force(t_c, mu, k, c_d, delta)) == pytest.approx(
+        -c_d * e * delta, rel=1e-9, abs=1e-9 * k * delta / np.sqrt(k / mu)
+    )
 
 
 @pytest.mark.parametrize("m1, m2, v1i, v2i, k_c, c_d", CONTACT_CASES)
@@ -428,12 +466,18 @@ def test_peak_contact_force_is_the_maximum_of_the_force(m1, m2, v1i, v2i, k_c, c
     from scipy.optimize import minimize_scalar
 
     mu, k, delta = m1 * m2 / (m1 + m2), 1e3 * k_c, v1i - v2i
-    out = Collision().evaluate(_contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["t_contact", "F_max"], effects=CONTACT)
+    out = Collision().evaluate(
+        _contact_inputs(m1, m2, v1i, v2i, k_c, c_d), wanted=["t_contact", "F_max"], effects=CONTACT
+    )
     t_c, peak = 1e-3 * float(out["t_contact"]), float(out["F_max"])
     forces = contact.force(np.linspace(0.0, t_c, 20001), mu, k, c_d, delta)
     assert np.max(forces) <= peak * (1 + 1e-12)
-    best = minimize_scalar(lambda t: -float(contact.force(t, mu, k, c_d, delta)), bounds=(0.0, t_c), method="bounded",
-                           options={"xatol": 1e-14 * t_c})
+    best = minimize_scalar(
+        lambda t: -float(contact.force(t, mu, k, c_d, delta)),
+        bounds=(0.0, t_c),
+        method="bounded",
+        options={"xatol": 1e-14 * t_c},
+    )
     assert max(-best.fun, float(forces[0])) == pytest.approx(peak, rel=1e-9)
 
 
@@ -441,7 +485,9 @@ def test_peak_contact_force_is_the_maximum_of_the_force(m1, m2, v1i, v2i, k_c, c
 def test_overdamped_contact_never_ends_and_the_bodies_move_together(c_d):
     """ζ ≥ 1: the overlap never closes, so t_c = ∞ (shown as a phrase), e = 0 and v1f == v2f bitwise;
     just below critical damping e is continuous with 0."""
-    out = Collision().evaluate({"k_c": 10.0, "c_d": c_d}, wanted=["t_contact", "e_contact", "v1f", "v2f", "contact_F"], effects=CONTACT)
+    out = Collision().evaluate(
+        {"k_c": 10.0, "c_d": c_d}, wanted=["t_contact", "e_contact", "v1f", "v2f", "contact_F"], effects=CONTACT
+    )
     zeta = float(contact.damping_ratio(2 / 3, 1e4, c_d))
     if zeta >= 1:
         assert np.isinf(out["t_contact"]) and float(out["e_contact"]) == 0.0
@@ -459,7 +505,9 @@ def test_contact_time_does_not_depend_on_the_approach_speed():
 
 def test_separating_bodies_feel_no_contact_force():
     """v1i ≤ v2i: no impulse, no force, the velocities unchanged bitwise (the contact never starts)."""
-    out = Collision().evaluate({"v1i": -1.0, "v2i": 2.0, "c_d": 30.0}, wanted=["J", "F_max", "contact_F", "v1f", "v2f"], effects=CONTACT)
+    out = Collision().evaluate(
+        {"v1i": -1.0, "v2i": 2.0, "c_d": 30.0}, wanted=["J", "F_max", "contact_F", "v1f", "v2f"], effects=CONTACT
+    )
     assert float(out["J"]) == 0.0 and float(out["F_max"]) == 0.0 and np.all(out["contact_F"] == 0.0)
     assert (float(out["v1f"]), float(out["v2f"])) == (-1.0, 2.0)
 
@@ -467,7 +515,11 @@ def test_separating_bodies_feel_no_contact_force():
 def test_contact_defaults_display_the_seed_readouts():
     """With the contact and c_d = 0 the defaults show the elastic seed readouts −2.333, 1.667 and K lost 0.00."""
     out = Collision().evaluate(Collision.defaults(), wanted=["v1f", "v2f", "K_lost"], effects=CONTACT)
-    assert [fmt(float(out[n]), Collision.output(n).decimals) for n in ("v1f", "v2f", "K_lost")] == ["\u22122.333", "1.667", "0.00"]
+    assert [fmt(float(out[n]), Collision.output(n).decimals) for n in ("v1f", "v2f", "K_lost")] == [
+        "\u22122.333",
+        "1.667",
+        "0.00",
+    ]
 
 
 # --- effect `explosive`: e > 1 only when the scene asks for it -----------------------------------------------------
@@ -485,15 +537,20 @@ def test_restitution_above_one_needs_the_explosive_effect(e):
 def test_explosive_collision_gains_energy_and_keeps_momentum(e):
     """e > 1: momentum conserved (4ε), K_lost = −½μ(e² − 1)Δ² < 0 (8ε rel), velocities from the same law (exact rationals)."""
     m1, m2, v1i, v2i, _ = _random_approaching(12, n=300, e=0.0)
-    out = Collision().evaluate({"m1": m1, "m2": m2, "v1i": v1i, "v2i": v2i, "e": e}, effects=("explosive",),
-                               wanted=["v1f", "p_before", "p_after", "K_lost"])
+    out = Collision().evaluate(
+        {"m1": m1, "m2": m2, "v1i": v1i, "v2i": v2i, "e": e},
+        effects=("explosive",),
+        wanted=["v1f", "p_before", "p_after", "K_lost"],
+    )
     scaled = np.abs(out["p_after"] - out["p_before"]) / (4 * EPS * (m1 * np.abs(v1i) + m2 * np.abs(v2i)))
     assert np.max(scaled) <= 1.0
     assert np.all(out["K_lost"] < 0)
     for i in range(0, 300, 37):
         exact = _exact(m1[i], m2[i], v1i[i], v2i[i], e)
         assert abs(Fraction(float(out["K_lost"][i])) - exact["K_lost"]) <= 8 * EPS * abs(exact["K_lost"])
-        assert abs(Fraction(float(out["v1f"][i])) - exact["v1f"]) <= Fraction(4 * EPS) * Fraction(max(abs(v1i[i]), abs(v2i[i]))) * Fraction(e)
+        assert abs(Fraction(float(out["v1f"][i])) - exact["v1f"]) <= Fraction(4 * EPS) * Fraction(
+            max(abs(v1i[i]), abs(v2i[i]))
+        ) * Fraction(e)
 
 
 def test_explosive_within_the_usual_range_is_the_base_law_bitwise():

@@ -1,6 +1,7 @@
 """Same sources, same bytes, whatever the load and the CPU: a small book of bubble scenes built beside a busy
 CPU, and with its kernels compiled (beside the build) for the host CPU instead of the portable target, against
 a quiet build."""
+
 from __future__ import annotations
 
 import os
@@ -70,8 +71,13 @@ def _book(folder: Path, compiled: Path = ROOT / ".cache" / "compiled") -> Path:
 
 
 def _build(root: Path, out: Path, *options: str, **env: str) -> str:
-    done = subprocess.run([sys.executable, "-m", "sitegen.cli", "build", "--root", str(root), "--out", str(out), "--no-cache",
-                           *options], capture_output=True, text=True, env={**os.environ, **env}, check=False)
+    done = subprocess.run(
+        [sys.executable, "-m", "sitegen.cli", "build", "--root", str(root), "--out", str(out), "--no-cache", *options],
+        capture_output=True,
+        text=True,
+        env={**os.environ, **env},
+        check=False,
+    )
     assert done.returncode == 0, done.stderr
     return done.stdout
 
@@ -90,7 +96,9 @@ def quiet(tmp_path_factory) -> tuple[Path, str]:
 def test_a_build_beside_a_busy_cpu_is_byte_identical_to_a_quiet_one(quiet, tmp_path):
     """Every core kept busy by spinning processes while a build runs: no output depends on the clock."""
     root, _ = quiet
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 2  # ours, not the host's
+    cores = (
+        len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 2
+    )  # ours, not the host's
     spinners = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(cores)]
     try:
         _build(root, tmp_path / "busy")
@@ -109,8 +117,15 @@ def test_kernels_compiled_for_the_host_cpu_show_the_same_bytes_as_the_portable_o
     root, generic = quiet
     fresh = _book(tmp_path / "book", compiled=tmp_path / "compiled")
     home = tmp_path / "home"  # where compiled code would go if a process were not told the book's folder
-    host = _build(fresh, tmp_path / "host", "--jobs", "2", SITEGEN_COMPILE_TARGET="host", SITEGEN_COMPILED_CACHE="",
-                  HOME=str(home))
+    host = _build(
+        fresh,
+        tmp_path / "host",
+        "--jobs",
+        "2",
+        SITEGEN_COMPILE_TARGET="host",
+        SITEGEN_COMPILED_CACHE="",
+        HOME=str(home),
+    )
     assert "compile   bubble" in generic
     assert "compile   bubble: compiling in 2 processes beside the build" in host, host
     assert "compile   bubble: compiled in" in host and "then loaded" in host, host

@@ -2,6 +2,7 @@
 folder of this repository (or, for a path inside a book, of the book `sitegen new` writes); every
 `sitegen ...` command is a real subcommand with real options; every `make ...` is a Makefile target.
 Nothing points outside the repository (`../`, absolute machine paths)."""
+
 from __future__ import annotations
 
 import re
@@ -16,7 +17,14 @@ ROOT = Path(__file__).resolve().parents[1]
 DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 # Where a relative path may be found: the repository, a book made by `sitegen new`, and the plugin book of the tests.
 PLACES = (ROOT, STARTER, ROOT / "tests" / "plugins" / "book")
-MADE_BY_TOOLS = ("build/", "build-review/", ".cache/", ".venv/", "node_modules/", "goldens/")  # written by a build or set-up
+MADE_BY_TOOLS = (
+    "build/",
+    "build-review/",
+    ".cache/",
+    ".venv/",
+    "node_modules/",
+    "goldens/",
+)  # written by a build or set-up
 PLACEHOLDER = re.compile(r"[<>*{}$]|\.\.\.|…")
 FILE_LIKE = re.compile(r"^[\w.~/-]+$")
 CODE_SPAN = re.compile(r"(?<!`)`([^`\n]+)`(?!`)")
@@ -55,7 +63,11 @@ def _named_paths(text: str) -> list[str]:
     spans, _ = _code(text)
     paths = [s.strip() for s in spans if _looks_like_path(s.strip()) or s.strip().startswith(("../", "/"))]
     prose = CODE_SPAN.sub("", FENCED.sub("", text))
-    paths += [link.split("#")[0] for link in LINK.findall(prose) if "://" not in link and not link.startswith(("#", "mailto:"))]
+    paths += [
+        link.split("#")[0]
+        for link in LINK.findall(prose)
+        if "://" not in link and not link.startswith(("#", "mailto:"))
+    ]
     return [p for p in paths if p]
 
 
@@ -86,7 +98,11 @@ def _command_problems(line: str, subcommands: dict, targets: set) -> list[str]:
             if name not in subcommands:
                 problems.append(f"'sitegen {name}' is no subcommand ({', '.join(subcommands)})")
         options = [w.split("=")[0] for w in words[1:] if w.startswith("--")]
-        problems += [f"'sitegen {words[0]} {o}' is no option" for o in options if words[0] in subcommands and o not in subcommands[words[0]]]
+        problems += [
+            f"'sitegen {words[0]} {o}' is no option"
+            for o in options
+            if words[0] in subcommands and o not in subcommands[words[0]]
+        ]
     for target in MAKE.findall(line):
         if target not in targets:
             problems.append(f"'make {target}' is no Makefile target ({', '.join(sorted(targets))})")
@@ -103,7 +119,11 @@ def test_every_named_path_exists(doc):
 @pytest.mark.parametrize("doc", DOCS, ids=lambda p: p.relative_to(ROOT).as_posix())
 def test_every_command_is_real(doc):
     subcommands, targets = _subcommands(), _make_targets()
-    problems = [f"{line.strip()}: {p}" for line in _commands(doc.read_text()) for p in _command_problems(line, subcommands, targets)]
+    problems = [
+        f"{line.strip()}: {p}"
+        for line in _commands(doc.read_text())
+        for p in _command_problems(line, subcommands, targets)
+    ]
     assert not problems, "\n".join(problems)
 
 
@@ -115,11 +135,15 @@ def test_the_checker_catches_what_it_should():
     assert _path_problem("/home/someone/node_modules") == "points outside the repository"
     assert _path_problem("models/pendulum/model.py") is None and _path_problem("src/sitegen/cli.py") is None
     assert _named_paths("see `docs/nothing.md` and [x](docs/gone.md)") == ["docs/nothing.md", "docs/gone.md"]
-    assert _command_problems("sitegen preview", subcommands, targets) == ["'sitegen preview' is no subcommand (" + ", ".join(subcommands) + ")"]
+    assert _command_problems("sitegen preview", subcommands, targets) == [
+        "'sitegen preview' is no subcommand (" + ", ".join(subcommands) + ")"
+    ]
     assert _command_problems(".venv/bin/sitegen serve --watch --bind 0.0.0.0", subcommands, targets) == []
     assert _command_problems("sitegen serve --live", subcommands, targets) == ["'sitegen serve --live' is no option"]
     assert _command_problems("make preview", subcommands, targets)[0].startswith("'make preview' is no Makefile target")
-    assert _command_problems("sitegen build|serve|nope", subcommands, targets)[0].startswith("'sitegen nope' is no subcommand")
+    assert _command_problems("sitegen build|serve|nope", subcommands, targets)[0].startswith(
+        "'sitegen nope' is no subcommand"
+    )
 
 
 def test_the_readme_names_two_set_up_commands():
@@ -143,6 +167,11 @@ def test_every_directive_and_math_feature_the_book_uses_is_explained():
     assert not missing, f"directives without a row in docs/writing-pages.md: {missing}"
     sources = "".join(path.read_text() for path in (ROOT / "content").glob("*.md"))
     listed = re.search(r"^slider \w+: [-\d.]+, ", sources, re.M)
-    features = {"{#eq-": "`{#eq-name}`", "(@eq-": "`(@eq-name)`", r"\begin{aligned}": r"`\begin{aligned}", r"\qquad": r"`\qquad`"}
+    features = {
+        "{#eq-": "`{#eq-name}`",
+        "(@eq-": "`(@eq-name)`",
+        r"\begin{aligned}": r"`\begin{aligned}",
+        r"\qquad": r"`\qquad`",
+    }
     assert listed and "`slider NAME: V1, V2, V3 ... default V`" in guide
     assert not [shown for markup, shown in features.items() if markup in sources and shown not in guide]

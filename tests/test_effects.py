@@ -6,6 +6,7 @@ are what the tabulation uses, and enabling or disabling an effect changes the ca
 only. The vanishing limits of the effects are in test_properties.py (§0.4 rule 2) and in the models'
 own test files.
 """
+
 from __future__ import annotations
 
 import inspect
@@ -22,16 +23,16 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import plan_scene, tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
-from sitegen.physics import contact
+from sitegen.models.bubble import kernel_terms as kernel_terms
 from sitegen.models.bubble import model as bubble
 from sitegen.models.bubble import point as bubble_point
 from sitegen.models.bubble import solve as bubble_solve
 from sitegen.models.bubble import terms as bubble_terms
+from sitegen.models.bubble.terms import make_rhs
 from sitegen.models.chain import motion
 from sitegen.models.impulse import pulses
+from sitegen.physics import contact
 from sitegen.registry import builtin_registry
-from sitegen.models.bubble import kernel_terms as kernel_terms
-from sitegen.models.bubble.terms import make_rhs
 
 MODELS = builtin_registry().models
 
@@ -91,7 +92,9 @@ def test_pulse_shapes_are_never_evaluated_without_the_shape_effect(shape_spy):
 def test_pulse_shapes_evaluate_only_the_shapes_present(shape_spy):
     """With `shape` on and a grid of half-sine and rectangle points, only those two shapes are evaluated, once each."""
     model = MODELS["impulse"]()
-    model.evaluate({"shape": np.array([2.0, 3.0, 2.0]), "F_pk": np.array([1.0, 2.0, 3.0])}, wanted=["pulse_F"], effects=("shape",))
+    model.evaluate(
+        {"shape": np.array([2.0, 3.0, 2.0]), "F_pk": np.array([1.0, 2.0, 3.0])}, wanted=["pulse_F"], effects=("shape",)
+    )
     evaluated = {name for name, n in shape_spy.calls.items() if n}
     assert evaluated == {"half_sine-force", "rectangle-force"}
     assert shape_spy.calls["half_sine-force"] == 1
@@ -100,8 +103,10 @@ def test_pulse_shapes_evaluate_only_the_shapes_present(shape_spy):
 def test_impulse_scene_without_effects_never_touches_shapes_or_the_contact(shape_spy, monkeypatch):
     """Tabulating the chapter's impulse scene (no effects) calls no shape function and nothing of the contact."""
     contact_spy = _spy_module(monkeypatch, contact)
-    scene = _scene("model: impulse\nslider F_pk: 0..50 step 2 default 12\nslider tau: 0.05..1 step 0.05 default 0.2\n"
-                   "slider m: 0.5..10 step 0.5 default 2\nreadouts: J dp dv")
+    scene = _scene(
+        "model: impulse\nslider F_pk: 0..50 step 2 default 12\nslider tau: 0.05..1 step 0.05 default 0.2\n"
+        "slider m: 0.5..10 step 0.5 default 2\nreadouts: J dp dv"
+    )
     tabulate_scene(scene, needed_outputs(scene))
     assert shape_spy.total() == 0 and contact_spy.total() == 0
 
@@ -121,8 +126,11 @@ def _spy_module(monkeypatch, module) -> Counter:
 COLLISION_BLOCK = "model: collision\nslider m1: 0.5..5 step 0.5 default 1\nslider v1i: -4.5..4.5 step 1 default 2.5\n"
 
 
-@pytest.mark.parametrize("effects", ["", "effects: restitution_law\n", "effects: explosive\n"],
-                         ids=["no-effects", "restitution_law", "explosive"])
+@pytest.mark.parametrize(
+    "effects",
+    ["", "effects: restitution_law\n", "effects: explosive\n"],
+    ids=["no-effects", "restitution_law", "explosive"],
+)
 def test_collision_contact_is_never_evaluated_unless_named(monkeypatch, effects):
     """A collision scene without `contact_spring_dashpot` calls no function of the contact module."""
     spy = _spy_module(monkeypatch, contact)
@@ -163,10 +171,14 @@ def test_chain_damping_and_free_ends_are_never_evaluated_unless_named(chain_spy)
     assert all(np.array_equal(out[k], bare[k], equal_nan=True) for k in out)
 
 
-@pytest.mark.parametrize("effect, fixed, counted", [
-    ("onsite_damping", "fix gamma: 2\n", "damping"),
-    ("boundary", "choice ends: fixed | free default free\n", "free-ends"),
-], ids=["onsite_damping", "boundary"])
+@pytest.mark.parametrize(
+    "effect, fixed, counted",
+    [
+        ("onsite_damping", "fix gamma: 2\n", "damping"),
+        ("boundary", "choice ends: fixed | free default free\n", "free-ends"),
+    ],
+    ids=["onsite_damping", "boundary"],
+)
 def test_chain_scene_evaluates_an_effect_only_when_it_names_it(chain_spy, effect, fixed, counted):
     """Tabulating a chain scene: the term is not evaluated without its effect, and is with it."""
     scene = _scene(CHAIN_BLOCK + "readouts: dev")
@@ -206,7 +218,14 @@ def _term_lines(path: str) -> dict[str, tuple[str, int]]:
     for function in functions:
         lines, start = inspect.getsourcelines(function)
         name = "rhs" if function is make_rhs else function.__name__
-        found.update({term: (name, start + i) for term, text in terms.items() for i, line in enumerate(lines) if line.strip().startswith(text)})
+        found.update(
+            {
+                term: (name, start + i)
+                for term, text in terms.items()
+                for i, line in enumerate(lines)
+                if line.strip().startswith(text)
+            }
+        )
     assert set(found) == set(terms), "a term's statement changed: update BUBBLE_TERMS or KERNEL_TERMS"
     return found
 
@@ -278,10 +297,17 @@ class _RecordingPoint(dict):
         return super().__getitem__(key)
 
 
-@pytest.mark.parametrize("effect, param", [
-    ("vapour", "p_v"), ("surface_tension", "sigma"), ("viscosity", "mu"), ("vdw_hard_core", "h_frac"),
-    ("thermal_damping", "D_g"),
-], ids=["vapour", "surface_tension", "viscosity", "vdw_hard_core", "thermal_damping"])
+@pytest.mark.parametrize(
+    "effect, param",
+    [
+        ("vapour", "p_v"),
+        ("surface_tension", "sigma"),
+        ("viscosity", "mu"),
+        ("vdw_hard_core", "h_frac"),
+        ("thermal_damping", "D_g"),
+    ],
+    ids=["vapour", "surface_tension", "viscosity", "vdw_hard_core", "thermal_damping"],
+)
 def test_bubble_initial_state_never_reads_a_parameter_of_an_effect_left_out(monkeypatch, effect, param):
     """Composing the problem (terms and the equilibrium initial state) reads an effect's parameter only when
     the scene names the effect."""
@@ -298,16 +324,27 @@ def test_bubble_initial_state_never_reads_a_parameter_of_an_effect_left_out(monk
 # --- effect-dependent dependencies -------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("model, output, effects, expected", [
-    ("lever", "t_stop", (), ("m_L", "m_R", "x_p", "theta_s")),
-    ("lever", "t_stop", ("bar_mass",), ("m_L", "m_R", "x_p", "theta_s", "m_b")),
-    ("collision", "v1f", (), ("m1", "m2", "v1i", "v2i", "e")),
-    ("collision", "v1f", ("contact_spring_dashpot",), ("m1", "m2", "v1i", "v2i", "k_c", "c_d")),
-    ("impulse", "J", (), ("F_pk", "tau")),
-    ("impulse", "J", ("shape",), ("F_pk", "tau", "shape")),
-    ("impulse", "J", ("contact_from_collision",), ("m", "m_hit", "v_rel", "k_c", "c_d")),
-], ids=["lever-plain", "lever-bar_mass", "collision-law", "collision-contact", "impulse-plain", "impulse-shape",
-        "impulse-contact"])
+@pytest.mark.parametrize(
+    "model, output, effects, expected",
+    [
+        ("lever", "t_stop", (), ("m_L", "m_R", "x_p", "theta_s")),
+        ("lever", "t_stop", ("bar_mass",), ("m_L", "m_R", "x_p", "theta_s", "m_b")),
+        ("collision", "v1f", (), ("m1", "m2", "v1i", "v2i", "e")),
+        ("collision", "v1f", ("contact_spring_dashpot",), ("m1", "m2", "v1i", "v2i", "k_c", "c_d")),
+        ("impulse", "J", (), ("F_pk", "tau")),
+        ("impulse", "J", ("shape",), ("F_pk", "tau", "shape")),
+        ("impulse", "J", ("contact_from_collision",), ("m", "m_hit", "v_rel", "k_c", "c_d")),
+    ],
+    ids=[
+        "lever-plain",
+        "lever-bar_mass",
+        "collision-law",
+        "collision-contact",
+        "impulse-plain",
+        "impulse-shape",
+        "impulse-contact",
+    ],
+)
 def test_deps_follow_the_scene_effects(model, output, effects, expected):
     """deps_of adds what an effect brings in (m_b, k_c, c_d, shape) and drops what it replaces (e, F_pk, τ)."""
     assert MODELS[model].deps_of(output, effects) == expected
@@ -315,12 +352,16 @@ def test_deps_follow_the_scene_effects(model, output, effects, expected):
 
 def test_tabulation_groups_outputs_by_their_deps_under_the_effects():
     """A lever scene with bar_mass and rotation_dynamics tabulates t_stop over m_b too; without bar_mass, not."""
-    block = ("model: lever\nslider m_L: 1..3 step 1 default 2\nslider x_p: 0..2 step 0.5 default 1.5\n"
-             "slider m_b: 0..2 step 1 default 1\n")
+    block = (
+        "model: lever\nslider m_L: 1..3 step 1 default 2\nslider x_p: 0..2 step 0.5 default 1.5\n"
+        "slider m_b: 0..2 step 1 default 1\n"
+    )
     with_bar = _scene(block + "effects: bar_mass rotation_dynamics\nreadouts: t_stop")
     units = plan_scene(with_bar, ["t_stop"])
     assert {with_bar.axes[a].param for unit in units for a in unit.axes} == {"m_L", "x_p", "m_b"}
-    without = _scene(block.replace("slider m_b: 0..2 step 1 default 1\n", "") + "effects: rotation_dynamics\nreadouts: t_stop")
+    without = _scene(
+        block.replace("slider m_b: 0..2 step 1 default 1\n", "") + "effects: rotation_dynamics\nreadouts: t_stop"
+    )
     assert {without.axes[a].param for unit in plan_scene(without, ["t_stop"]) for a in unit.axes} == {"m_L", "x_p"}
 
 

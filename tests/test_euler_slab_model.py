@@ -1,5 +1,6 @@
 """K3 (Euler's equation for a slab of air): 50-digit references, the cancellation hard case, Δx = λ,
 the linear-acoustics flag, the effects' vanishing limits and the readouts at the defaults."""
+
 from __future__ import annotations
 
 from decimal import Decimal, localcontext
@@ -12,7 +13,6 @@ from sitegen.models.euler_slab.model import (
     C_AIR,
     CONDUCTIVITY_AIR,
     CP_AIR,
-    G,
     GAMMA_AIR,
     LINEAR,
     NONLINEAR,
@@ -21,6 +21,7 @@ from sitegen.models.euler_slab.model import (
     VISCOSITY_AIR,
     WAVE_X,
     EulerSlab,
+    G,
     classical_absorption,
     sin_pi,
 )
@@ -65,7 +66,7 @@ def _d_pressure(spl: float) -> Decimal:
     """P = √2 · 20 µPa · 10^(SPL/20) in 50-digit arithmetic."""
     with localcontext() as ctx:
         ctx.prec = DIGITS + 10
-        return Decimal(2).sqrt() * Decimal(float(20e-6)) * Decimal(10) ** (Decimal(float(spl)) / 20)
+        return Decimal(2).sqrt() * Decimal(20e-6) * Decimal(10) ** (Decimal(float(spl)) / 20)
 
 
 def _d_net_force(spl: float, dx_l: float, phi: float) -> Decimal:
@@ -190,8 +191,17 @@ SPL_MACH_LIMIT = 20 * np.log10(0.01 * RHO_AIR * C_AIR**2 / (np.sqrt(2) * 20e-6))
         (191.0, NONLINEAR),
         (200.0, NONLINEAR),
     ],
-    ids=["0dB", "94dB", "140dB", "just-below-U/c=0.01", "just-above-U/c=0.01", "160dB", "180dB-P>0.1p0", "191dB-P>p0",
-         "200dB"],
+    ids=[
+        "0dB",
+        "94dB",
+        "140dB",
+        "just-below-U/c=0.01",
+        "just-above-U/c=0.01",
+        "160dB",
+        "180dB-P>0.1p0",
+        "191dB-P>p0",
+        "200dB",
+    ],
 )
 def test_linear_acoustics_flag(spl, expected):
     """The regime is NONLINEAR exactly when U/c > 0.01 or P > 0.1 p₀."""
@@ -282,8 +292,9 @@ POINTS = [
 ]
 
 
-@pytest.mark.parametrize("output", ["P", "wavelength", "net_force", "slab_mass", "a_slab", "a_point", "U", "xi", "mach",
-                                    "shock_distance"])
+@pytest.mark.parametrize(
+    "output", ["P", "wavelength", "net_force", "slab_mass", "a_slab", "a_point", "U", "xi", "mach", "shock_distance"]
+)
 @pytest.mark.parametrize("spl, f, dx_l, phi", POINTS)
 def test_readouts_within_1e14_of_closed_forms(spl, f, dx_l, phi, output):
     """Each readout within 1e−14 rel of its closed form evaluated in 50-digit arithmetic."""
@@ -400,7 +411,9 @@ def test_absorption_at_one_kilohertz():
     with localcontext() as ctx:
         ctx.prec = DIGITS
         omega = 2 * PI * 1000
-        losses = Decimal(4) / 3 * Decimal(VISCOSITY_AIR) + (Decimal(GAMMA_AIR) - 1) * Decimal(CONDUCTIVITY_AIR) / Decimal(CP_AIR)
+        losses = Decimal(4) / 3 * Decimal(VISCOSITY_AIR) + (Decimal(GAMMA_AIR) - 1) * Decimal(
+            CONDUCTIVITY_AIR
+        ) / Decimal(CP_AIR)
         neper = omega**2 / (2 * Decimal(RHO_AIR) * Decimal(C_AIR) ** 3) * losses
         exact = 1000 * 20 * neper / Decimal(10).ln()
     value = float(_evaluate(["alpha"], effects=["absorption"])["alpha"])
@@ -445,8 +458,16 @@ def test_shock_distance_at_140_dB():
 
 @pytest.mark.parametrize(
     "inputs",
-    [{"f": 0.0}, {"f": -20.0}, {"dx_l": 0.0}, {"dx_l": 1.5}, {"spl": 201.0}, {"spl": float("nan")},
-     {"phi": float("inf")}, {"dx_l": np.array([0.05, -1e-300])}],
+    [
+        {"f": 0.0},
+        {"f": -20.0},
+        {"dx_l": 0.0},
+        {"dx_l": 1.5},
+        {"spl": 201.0},
+        {"spl": float("nan")},
+        {"phi": float("inf")},
+        {"dx_l": np.array([0.05, -1e-300])},
+    ],
     ids=["f=0", "f<0", "dx=0", "dx>lambda", "spl>200", "spl=nan", "phi=inf", "dx-array-negative"],
 )
 def test_invalid_input_raises_naming_the_parameter(inputs):

@@ -1,6 +1,7 @@
 """Tabulation through an Executor: serial, local processes, a Dask cluster — the same bytes from each; the
 scenes of models with compiled code tabulated ahead in a forked process beside the build; and one call run
 beside the build in a process of its own (how a first build compiles the bubble's kernels)."""
+
 from __future__ import annotations
 
 import math
@@ -19,9 +20,9 @@ from sitegen.build import BuildConfig, build
 from sitegen.compute.executors import Background, BackgroundFailed, Beside
 from sitegen.compute.tabulate import plan_scene
 from sitegen.errors import BuildFailed
+from sitegen.models.collision.model import Collision
 from sitegen.physics import Model, Output, Param
 from sitegen.registry import builtin_registry
-from sitegen.models.collision.model import Collision
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGE = """+++
@@ -70,8 +71,9 @@ def test_dask_cluster_gives_the_serial_bytes(tmp_path):
     distributed = pytest.importorskip("distributed", reason="the Dask extra is part of the test install")
     serial = _book(tmp_path, "serial")
     build(serial, progress=None)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None,
-                                  processes=True) as cluster:
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None, processes=True
+    ) as cluster:
         report = build(_book(tmp_path, "dask", scheduler=cluster.scheduler_address), progress=None)
     assert report.computed == report.scenes == 2
     assert _tree(serial.out) == _tree(tmp_path / "dask")
@@ -143,7 +145,9 @@ class _ExplodesCompiled(_Explodes):
         return 0.0, False
 
 
-BUBBLE_PAGE = PAGE + """
+BUBBLE_PAGE = (
+    PAGE
+    + """
 ```scene
 model: bubble
 id: collapse
@@ -156,6 +160,7 @@ readouts: t_c R_mach t_mach collapse_R_min collapse_flag
 numerics: method auto, rtol 1e-6, tolerance 2e-5
 ```
 """
+)
 
 
 def _no_other_thread() -> None:
@@ -196,14 +201,19 @@ def test_a_table_on_two_pages_is_tabulated_ahead_once(tmp_path, bubble_kernels):
 
     share_compiled(tmp_path)
     _no_other_thread()
-    bubble = BUBBLE_PAGE[BUBBLE_PAGE.index("```scene\nmodel: bubble"):]
-    pages = {"index.md": (ROOT / "content" / "index.md").read_text(), "one.md": PAGE + bubble,
-             "two.md": PAGE.replace('title = "Scenes"', 'title = "Two"') + bubble}
+    bubble = BUBBLE_PAGE[BUBBLE_PAGE.index("```scene\nmodel: bubble") :]
+    pages = {
+        "index.md": (ROOT / "content" / "index.md").read_text(),
+        "one.md": PAGE + bubble,
+        "two.md": PAGE.replace('title = "Scenes"', 'title = "Two"') + bubble,
+    }
     lines: list[str] = []
     build(_chapters(tmp_path, "out", pages), progress=lines.append)
     assert "ahead     bubble: 1 scene tabulating in a process beside the build; pages with them are built last" in lines
-    assert [line.rsplit("  ", 1)[-1] for line in _steady(lines) if "#collapse " in line and line.startswith("[")] == \
-        ["computed: new", "cached"]
+    assert [line.rsplit("  ", 1)[-1] for line in _steady(lines) if "#collapse " in line and line.startswith("[")] == [
+        "computed: new",
+        "cached",
+    ]
 
 
 def test_a_model_failing_beside_the_build_is_reported_from_here(tmp_path, register):
@@ -212,9 +222,14 @@ def test_a_model_failing_beside_the_build_is_reported_from_here(tmp_path, regist
     import multiprocessing
 
     _no_other_thread()
-    register({"explodes_compiled": _ExplodesCompiled}, {"explodes_compiled": type(builtin_registry().figures["impulse"])(), "bare": _Bare()})
-    page = ('+++\ntitle = "Boom"\n+++\n\n```scene\nmodel: explodes_compiled\nslider x: 0..1 step 0.25 default 0\n'
-            'readouts: y\nfigure: bare\n```\n')
+    register(
+        {"explodes_compiled": _ExplodesCompiled},
+        {"explodes_compiled": type(builtin_registry().figures["impulse"])(), "bare": _Bare()},
+    )
+    page = (
+        '+++\ntitle = "Boom"\n+++\n\n```scene\nmodel: explodes_compiled\nslider x: 0..1 step 0.25 default 0\n'
+        "readouts: y\nfigure: bare\n```\n"
+    )
     lines: list[str] = []
     with pytest.raises(BuildFailed) as failure:
         build(_book(tmp_path, "out", page=page), progress=lines.append)
@@ -356,11 +371,15 @@ def test_a_call_beside_does_not_run_the_callers_script_again(tmp_path):
     """The process beside is a fresh interpreter given the call: a script without a __main__ guard runs once,
     and a file in the current folder named like a module it needs does not shadow that module."""
     script = tmp_path / "script.py"
-    script.write_text("import math\nfrom sitegen.compute.executors import Background\n"
-                      "print('script ran', flush=True)\nprint(Background(math.factorial, 5).result())\n")
+    script.write_text(
+        "import math\nfrom sitegen.compute.executors import Background\n"
+        "print('script ran', flush=True)\nprint(Background(math.factorial, 5).result())\n"
+    )
     (work := tmp_path / "work").mkdir()
     (work / "pickle.py").write_text("raise ImportError('the folder the build was started from shadows pickle')\n")
-    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, check=True, timeout=60, cwd=work)
+    done = subprocess.run(
+        [sys.executable, str(script)], capture_output=True, text=True, check=True, timeout=60, cwd=work
+    )
     assert done.stdout.splitlines() == ["script ran", "120"]
 
 
@@ -401,9 +420,11 @@ readouts: W dU W_drag verdict
 ```
 """
 # The second chapter's scenes, each on a range of its own (a table shared by two pages is computed once).
-_OWN_RANGES = (("slider F_pk: 0..50 step 2", "slider F_pk: 0..48 step 2"),
-               ("slider e: 0..1 step 0.25", "slider e: 0..1 step 0.5"),
-               ("slider k: 1..2 step 1", "slider k: 1..3 step 1"))
+_OWN_RANGES = (
+    ("slider F_pk: 0..50 step 2", "slider F_pk: 0..48 step 2"),
+    ("slider e: 0..1 step 0.25", "slider e: 0..1 step 0.5"),
+    ("slider k: 1..2 step 1", "slider k: 1..3 step 1"),
+)
 
 
 def _chapters_of(page: str = PAGE + WORK, same: bool = False) -> dict[str, str]:
@@ -412,8 +433,11 @@ def _chapters_of(page: str = PAGE + WORK, same: bool = False) -> dict[str, str]:
     second = page.replace('title = "Scenes"', 'title = "Two"')
     for old, new in () if same else _OWN_RANGES:
         second = second.replace(old, new)
-    return {"index.md": (ROOT / "content" / "index.md").read_text(),
-            "one.md": page.replace('title = "Scenes"', 'title = "One"'), "two.md": second}
+    return {
+        "index.md": (ROOT / "content" / "index.md").read_text(),
+        "one.md": page.replace('title = "Scenes"', 'title = "One"'),
+        "two.md": second,
+    }
 
 
 def _built_here(config: BuildConfig):
@@ -471,13 +495,16 @@ def test_a_table_on_both_sides_is_not_split_even_when_cached(tmp_path):
     from sitegen.build import resolve_book
 
     _no_other_thread()
-    collision = PAGE[PAGE.index("```scene\nmodel: collision"):]
+    collision = PAGE[PAGE.index("```scene\nmodel: collision") :]
     on_both = collision.replace("model: collision", "model: collision\nid: shared").replace(
-        "slider e: 0..1 step 0.25", "slider e: 0..1 step 0.125")  # a table of its own, on both chapters
+        "slider e: 0..1 step 0.25", "slider e: 0..1 step 0.125"
+    )  # a table of its own, on both chapters
     pages = {name: text if name == "index.md" else f"{text}\n{on_both}" for name, text in _chapters_of().items()}
     config = _chapters(tmp_path, "out", pages)
     build(config, progress=None)
-    digests = {slug: {r.key.digest for r in resolve_book(config).scenes if r.page.slug == slug} for slug in ("one", "two")}
+    digests = {
+        slug: {r.key.digest for r in resolve_book(config).scenes if r.page.slug == slug} for slug in ("one", "two")
+    }
     shared = (digests["one"] & digests["two"]).pop()
     for entry in (config.cache / "tables").rglob("*.bin"):  # the shared table alone is cached, and damaged
         if entry.stem == shared:
@@ -487,8 +514,10 @@ def test_a_table_on_both_sides_is_not_split_even_when_cached(tmp_path):
     lines: list[str] = []
     report = build(config, progress=lines.append)
     assert not any(line.startswith("beside") for line in lines)
-    assert [line.rsplit("  ", 1)[-1] for line in _steady(lines) if "#shared " in line and line.startswith("[")] == \
-        ["computed: not in the cache", "cached"]
+    assert [line.rsplit("  ", 1)[-1] for line in _steady(lines) if "#shared " in line and line.startswith("[")] == [
+        "computed: not in the cache",
+        "cached",
+    ]
     assert sum("is damaged" in line for line in report.scene_lines) == 1
 
 
@@ -499,7 +528,7 @@ def test_an_author_error_in_a_page_built_beside_is_reported_from_here(tmp_path, 
 
     _no_other_thread()
     register({"explodes": _Explodes}, {"explodes": type(builtin_registry().figures["impulse"])(), "bare": _Bare()})
-    boom = '```scene\nmodel: explodes\nslider x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n'
+    boom = "```scene\nmodel: explodes\nslider x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n"
     pages = {**_chapters_of(), "two.md": _chapters_of()["two.md"] + "\n" + boom}
     lines: list[str] = []
     with pytest.raises(BuildFailed) as failure:
@@ -518,7 +547,7 @@ def test_after_an_author_error_here_the_pages_beside_are_built_here(tmp_path, re
     build without the fork."""
     _no_other_thread()
     register({"explodes": _Explodes}, {"explodes": type(builtin_registry().figures["impulse"])(), "bare": _Bare()})
-    boom = '```scene\nmodel: explodes\nslider x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n'
+    boom = "```scene\nmodel: explodes\nslider x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n"
     pages = {**_chapters_of(), "one.md": _chapters_of()["one.md"] + "\n" + boom}
     failures, logs = [], []
     for name in ("beside", "here"):
@@ -677,7 +706,9 @@ def test_a_call_beside_ends_when_its_caller_is_killed():
 def test_ctrl_c_at_the_terminal_reaches_the_caller_not_the_call_beside():
     """A Ctrl-C (SIGINT to the terminal's process group) interrupts the caller, which ends its calls beside;
     the call's own interpreter never sees it (at start-up it would print a traceback)."""
-    caller = subprocess.Popen([sys.executable, "-c", _CALLING], stdout=subprocess.PIPE, text=True, start_new_session=True)
+    caller = subprocess.Popen(
+        [sys.executable, "-c", _CALLING], stdout=subprocess.PIPE, text=True, start_new_session=True
+    )
     try:
         assert caller.stdout.readline() == "started\n"
         beside = _children(caller.pid)
@@ -694,9 +725,9 @@ def test_ctrl_c_at_the_terminal_reaches_the_caller_not_the_call_beside():
 _COMPILING_BOOK = {
     "index.md": '+++\ntitle = "Home"\n+++\n\nA page the build writes while the kernels compile.\n',
     "bubble.md": '+++\ntitle = "A bubble"\n+++\n\n```scene\nmodel: bubble\nid: driven\nfix R0: 4.5\n'
-                 'slider p_a: 0.5..1.5 step 0.5 default 1.5\nslider f: 10, 26.5 default 26.5\n'
-                 'effects: gas, vdw_hard_core, surface_tension, viscosity, drive, keller_miksis\n'
-                 'readouts: driven_R_max driven_flag\n```\n',
+    "slider p_a: 0.5..1.5 step 0.5 default 1.5\nslider f: 10, 26.5 default 26.5\n"
+    "effects: gas, vdw_hard_core, surface_tension, viscosity, drive, keller_miksis\n"
+    "readouts: driven_R_max driven_flag\n```\n",
 }
 
 
@@ -713,11 +744,16 @@ def test_sigterm_stops_a_build_as_ctrl_c_does(tmp_path):
     (root / "build" / "index.html").write_text("the last complete build")
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
     env.pop("SITEGEN_COMPILED_CACHE", None)  # the book's own .cache/compiled/, empty: its kernels compile
-    build_process = subprocess.Popen([sys.executable, "-m", "sitegen.cli", "build", "--root", str(root)], env=env,
-                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    build_process = subprocess.Popen(
+        [sys.executable, "-m", "sitegen.cli", "build", "--root", str(root)],
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     seen = []
     for line in build_process.stdout:  # to the build waiting for its kernels (not in a finalizer, where a signal's
-        seen.append(line)              # exception is only printed)
+        seen.append(line)  # exception is only printed)
         if "kernels still compiling beside the build" in line:
             break
     assert any("compiling in 2 processes beside the build" in line for line in seen), seen

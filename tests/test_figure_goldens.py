@@ -6,6 +6,7 @@ A mismatch writes NAME-changed.svg and NAME-changed.png (golden, new and the pix
 by side) next to the golden for a person to look at. Goldens are never rewritten by a test (nor in
 CI); `make accept-figures` rewrites them on purpose.
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -24,13 +25,15 @@ ACCEPT = "run `sitegen accept-figures`"
 
 
 def _source_scenes() -> list[str]:
-    """"<page>/<scene id>" for every scene of the book, read from content/ at collection time, and
+    """ "<page>/<scene id>" for every scene of the book, read from content/ at collection time, and
     "<page>/<scene id>.narrow" for its phone figure (every figure of the book draws one)."""
     names = []
     for path in discover_pages(ROOT / "content"):
         page, _ = read_page(path, ROOT)
         if page is not None:
-            names += [f"{page.slug}/{spec.id}{variant}" for spec in page.found.scenes for variant in ("", NARROW_SUFFIX)]
+            names += [
+                f"{page.slug}/{spec.id}{variant}" for spec in page.found.scenes for variant in ("", NARROW_SUFFIX)
+            ]
     return names
 
 
@@ -108,7 +111,11 @@ def scratch(tmp_path, figures, monkeypatch) -> tuple[Path, str, str]:
 def test_a_mismatch_leaves_the_new_figure_and_a_png_next_to_the_golden(scratch):
     """A changed figure fails with the size of the change and leaves -changed files; the golden stays."""
     goldens, name, svg = scratch
-    moved = svg.replace('stroke-width="2.2"', 'stroke-width="6"', 1) if 'stroke-width="2.2"' in svg else svg.replace("#1f63b5", "#c8541c", 1)
+    moved = (
+        svg.replace('stroke-width="2.2"', 'stroke-width="6"', 1)
+        if 'stroke-width="2.2"' in svg
+        else svg.replace("#1f63b5", "#c8541c", 1)
+    )
     assert moved != svg
     problem = check_figure(goldens, name, moved)
     changed_svg, changed_png = changed_paths(goldens, name)
@@ -124,7 +131,10 @@ def test_a_scene_without_a_golden_fails_with_what_to_run(scratch):
     """A new scene is a failure that says how to add its golden; nothing is written."""
     goldens, _, svg = scratch
     problem = check_figure(goldens, "page/new-scene", svg)
-    assert problem == f"figure 'page/new-scene' has no golden ({golden_path(goldens, 'page/new-scene')}); {ACCEPT} to add it"
+    assert (
+        problem
+        == f"figure 'page/new-scene' has no golden ({golden_path(goldens, 'page/new-scene')}); {ACCEPT} to add it"
+    )
     assert not golden_path(goldens, "page/new-scene").exists()
 
 

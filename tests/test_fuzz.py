@@ -6,16 +6,16 @@ resolver, the page reader and the whole build. Each must either succeed or repor
 are derandomized and keep no example database, so CI sees the same cases every time; the
 number of examples each property ran is printed (pytest -s or -rP) and recorded as a property.
 """
+
 from __future__ import annotations
 
 import re
 import tempfile
 from pathlib import Path
 
+from examples import examples
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
-
-from examples import examples
 
 from sitegen.build import BuildConfig, build
 from sitegen.compute.scenes import resolve_scene
@@ -48,24 +48,90 @@ _ALL_EFFECTS = sorted({e for m in MODELS.values() for e in m.effects})
 _ALL_CHOICES = sorted({c for m in MODELS.values() for p in m.params for c in p.choices})
 _JUNK = ["", "x", "colision", "m 1", "é", "M1", "m1m1", "_", "1abc", "a-b", "tau_", "NaN", "∞", "$x$", "#", "`", "::"]
 _NUMBERS = [
-    "0", "1", "-1", "0.5", "2", "3", "5", "10", "-5", "0.25", "0.1", "1e3", "1e-3", ".5", "5.", "+3", "007",
-    "1e999", "-1e999", "1e400", "1E-400", "1e-30", "nan", "NaN", "inf", "-inf", "Infinity", "1_000", "0x10", "½", "", "abc", "1..2",
+    "0",
+    "1",
+    "-1",
+    "0.5",
+    "2",
+    "3",
+    "5",
+    "10",
+    "-5",
+    "0.25",
+    "0.1",
+    "1e3",
+    "1e-3",
+    ".5",
+    "5.",
+    "+3",
+    "007",
+    "1e999",
+    "-1e999",
+    "1e400",
+    "1E-400",
+    "1e-30",
+    "nan",
+    "NaN",
+    "inf",
+    "-inf",
+    "Infinity",
+    "1_000",
+    "0x10",
+    "½",
+    "",
+    "abc",
+    "1..2",
 ]
 _CHARS = list(":.|,#`$ \t-+e0123456789{}\\\"'=[]") + ["\u00a0", "é", "\u0301", "\ufeff", "\u2212", "\x00", "\u202e"]
 
 line_text = st.text(alphabet=st.characters(exclude_characters="\n"), max_size=30)  # a line holds no newline
-numbers = st.sampled_from(_NUMBERS) | st.integers(-10**6, 10**6).map(str) | st.floats().map(repr) | st.decimals(allow_nan=True).map(str)
+numbers = (
+    st.sampled_from(_NUMBERS)
+    | st.integers(-(10**6), 10**6).map(str)
+    | st.floats().map(repr)
+    | st.decimals(allow_nan=True).map(str)
+)
 names = st.sampled_from(_ALL_PARAMS + _JUNK)
 idents = st.sampled_from(sorted(MODELS) + sorted(FIGURES) + _JUNK)
 options = st.sampled_from(_ALL_CHOICES + _JUNK)
 word_lists = st.lists(st.sampled_from(_ALL_OUTPUTS + _ALL_EFFECTS + _JUNK), max_size=5).map(" ".join)
-captions = st.sampled_from(["", "A caption.", "Mass $m$ and $\\frac{1}{2}mv^2$.", "Broken $\\frac{1}{2$ here.", "$$x$$", "*emph* [link](x.html)", "<b>raw</b> & <", "$\\unknownmacro$"])
+captions = st.sampled_from(
+    [
+        "",
+        "A caption.",
+        "Mass $m$ and $\\frac{1}{2}mv^2$.",
+        "Broken $\\frac{1}{2$ here.",
+        "$$x$$",
+        "*emph* [link](x.html)",
+        "<b>raw</b> & <",
+        "$\\unknownmacro$",
+    ]
+)
 
 
 @st.composite
 def scene_lines(draw) -> str:
     """One line of a scene block: well formed, nearly so, or junk."""
-    kind = draw(st.sampled_from(["model", "id", "slider", "list", "choice", "fix", "effects", "readouts", "figure", "caption", "animate", "junk", "comment", "blank"]))
+    kind = draw(
+        st.sampled_from(
+            [
+                "model",
+                "id",
+                "slider",
+                "list",
+                "choice",
+                "fix",
+                "effects",
+                "readouts",
+                "figure",
+                "caption",
+                "animate",
+                "junk",
+                "comment",
+                "blank",
+            ]
+        )
+    )
     if kind == "model":
         return f"model: {draw(idents)}"
     if kind == "id":
@@ -102,7 +168,9 @@ def mutate(draw, lines: list[str]) -> list[str]:
     doubled or swapped, a number or a name replaced."""
     lines = list(lines)
     for _ in range(draw(st.integers(0, 3))):
-        op = draw(st.sampled_from(["drop_char", "add_char", "drop_line", "dup_line", "swap", "number", "name", "truncate"]))
+        op = draw(
+            st.sampled_from(["drop_char", "add_char", "drop_line", "dup_line", "swap", "number", "name", "truncate"])
+        )
         if not lines:
             break
         i = draw(st.integers(0, len(lines) - 1))
@@ -151,37 +219,55 @@ def _block(body: list[str], closed: bool = True) -> str:
     return "\n".join(["```scene", *body, *(["```"] if closed else [])])
 
 
-front_matters = st.sampled_from([
-    '+++\ntitle = "A page"\n+++',
-    '+++\ntitle = "A page"\norder = 2\nparent = "index"\nsummary = "About it."\n+++',
-    '+++\ntitle = "Unclosed',
-    '+++\ntitle = "A page"',
-    "+++\n+++",
-    '+++\ntitle = 5\n+++',
-    '+++\ntitle = ""\n+++',
-    '+++\ntitle = "T"\norder = "first"\n+++',
-    '+++\ntitle = "T"\norder = 1.5\n+++',
-    '+++\ntitle = "T"\norder = nan\n+++',
-    '+++\ntitle = "T"\norder = inf\n+++',
-    '+++\ntitle = "T"\norder = 99999999999999999999\n+++',
-    '+++\ntitle = "T"\norder = true\n+++',
-    '+++\ntitle = "T"\nparent = 3\n+++',
-    '+++\ntitle = "T"\nparent = "nowhere"\n+++',
-    '+++\ntitle = "T"\nparent = "page"\n+++',
-    '+++\ntitle = ["T"]\n+++',
-    '+++\ntitle = "T"\nsummary = { a = 1 }\n+++',
-    '+++\n[title]\nx = 1\n+++',
-    '+++\ntitle = "T"\ntitle = "U"\n+++',
-    "---\ntitle: YAML\n---",
-    "",
-    "\ufeff+++\ntitle = \"BOM\"\n+++",
-    '+++\r\ntitle = "CRLF"\r\n+++',
-])
-prose = st.sampled_from([
-    "Some prose.", "Inline $x^2$ math.", "Broken $\\frac{1}{2$ math.", "$$\nE = mc^2\n$$", "$$\nE = mc^2 $$ {#eq-energy}",
-    "See (@eq-energy) and (@eq-missing).", "$$ unclosed display", "```\ncode $x$\n```", "~~~\nunclosed code", "```python\nx = 1",
-    "<div>raw <b>html</b></div>", "| a | b |\n|---|---|\n| 1 | 2 |", "# Heading {#id}", "[link](other.html#x)", "$", "$$", "\\$5 and $5",
-]) | st.text(max_size=40)
+front_matters = st.sampled_from(
+    [
+        '+++\ntitle = "A page"\n+++',
+        '+++\ntitle = "A page"\norder = 2\nparent = "index"\nsummary = "About it."\n+++',
+        '+++\ntitle = "Unclosed',
+        '+++\ntitle = "A page"',
+        "+++\n+++",
+        "+++\ntitle = 5\n+++",
+        '+++\ntitle = ""\n+++',
+        '+++\ntitle = "T"\norder = "first"\n+++',
+        '+++\ntitle = "T"\norder = 1.5\n+++',
+        '+++\ntitle = "T"\norder = nan\n+++',
+        '+++\ntitle = "T"\norder = inf\n+++',
+        '+++\ntitle = "T"\norder = 99999999999999999999\n+++',
+        '+++\ntitle = "T"\norder = true\n+++',
+        '+++\ntitle = "T"\nparent = 3\n+++',
+        '+++\ntitle = "T"\nparent = "nowhere"\n+++',
+        '+++\ntitle = "T"\nparent = "page"\n+++',
+        '+++\ntitle = ["T"]\n+++',
+        '+++\ntitle = "T"\nsummary = { a = 1 }\n+++',
+        "+++\n[title]\nx = 1\n+++",
+        '+++\ntitle = "T"\ntitle = "U"\n+++',
+        "---\ntitle: YAML\n---",
+        "",
+        '\ufeff+++\ntitle = "BOM"\n+++',
+        '+++\r\ntitle = "CRLF"\r\n+++',
+    ]
+)
+prose = st.sampled_from(
+    [
+        "Some prose.",
+        "Inline $x^2$ math.",
+        "Broken $\\frac{1}{2$ math.",
+        "$$\nE = mc^2\n$$",
+        "$$\nE = mc^2 $$ {#eq-energy}",
+        "See (@eq-energy) and (@eq-missing).",
+        "$$ unclosed display",
+        "```\ncode $x$\n```",
+        "~~~\nunclosed code",
+        "```python\nx = 1",
+        "<div>raw <b>html</b></div>",
+        "| a | b |\n|---|---|\n| 1 | 2 |",
+        "# Heading {#id}",
+        "[link](other.html#x)",
+        "$",
+        "$$",
+        "\\$5 and $5",
+    ]
+) | st.text(max_size=40)
 
 
 @st.composite
@@ -253,7 +339,9 @@ def test_scene_resolution_never_crashes(request):
         assert_author_errors(errors, PAGE, 10, 10 + len(body))
         assert (scene is None) == bool(errors)
         if scene is not None:  # what the build relies on once a scene resolves
-            assert all(axis.count >= 1 and axis.index_of(axis.stop(k)) == k for axis, k in zip(scene.axes, scene.default_stops))
+            assert all(
+                axis.count >= 1 and axis.index_of(axis.stop(k)) == k for axis, k in zip(scene.axes, scene.default_stops)
+            )
             assert all(scene.model.param(p).contains(v) for p, v in scene.fixed)
 
     run()
@@ -287,14 +375,65 @@ def test_page_reader_never_crashes(request, tmp_path):
 
 # Cheap models with small grids: the build fuzz evaluates, draws and writes every scene that resolves.
 _BUILD_SEEDS = [
-    ["model: impulse", "slider F_pk: 0..10 step 2 default 4", "slider tau: 0.1..0.5 step 0.1 default 0.2", "slider m: 1..3 step 1 default 2", "readouts: J dp dv", "caption: Impulse $J$."],
-    ["model: collision", "id: carts", "slider m1: 0.5..2 step 0.5 default 1", "slider v1i: -2..2 step 1 default 1", "fix v2i: 0", "effects: restitution_law", "slider e: 0..1 step 0.5 default 1", "readouts: v1f v2f status"],
-    ["model: lever", "slider m_L: 1..3 step 1 default 2", "slider x_p: 0..2 step 0.5 default 1", "fix balance_tolerance: 0.005", "readouts: tau_L tau_R state"],
-    ["model: ossicles", "choice load: water | cochlea default water", "slider SPL: 40..80 step 20 default 60", "effects: lever area_ratio load_model", "readouts: G T0"],
+    [
+        "model: impulse",
+        "slider F_pk: 0..10 step 2 default 4",
+        "slider tau: 0.1..0.5 step 0.1 default 0.2",
+        "slider m: 1..3 step 1 default 2",
+        "readouts: J dp dv",
+        "caption: Impulse $J$.",
+    ],
+    [
+        "model: collision",
+        "id: carts",
+        "slider m1: 0.5..2 step 0.5 default 1",
+        "slider v1i: -2..2 step 1 default 1",
+        "fix v2i: 0",
+        "effects: restitution_law",
+        "slider e: 0..1 step 0.5 default 1",
+        "readouts: v1f v2f status",
+    ],
+    [
+        "model: lever",
+        "slider m_L: 1..3 step 1 default 2",
+        "slider x_p: 0..2 step 0.5 default 1",
+        "fix balance_tolerance: 0.005",
+        "readouts: tau_L tau_R state",
+    ],
+    [
+        "model: ossicles",
+        "choice load: water | cochlea default water",
+        "slider SPL: 40..80 step 20 default 60",
+        "effects: lever area_ratio load_model",
+        "readouts: G T0",
+    ],
     ["model: euler_slab", "slider phi: 0..90 step 45 default 0", "slider spl: 60, 94 default 94", "animate: phi"],
-    ["model: acoustic_energy", "slider SPL: 80..100 step 10 default 90", "slider R_r: 0..1 step 0.5 default 0", "effects: reflection"],
+    [
+        "model: acoustic_energy",
+        "slider SPL: 80..100 step 10 default 90",
+        "slider R_r: 0..1 step 0.5 default 0",
+        "effects: reflection",
+    ],
 ]
-_SMALL_NUMBERS = ["0", "1", "-1", "0.5", "2", "3", "-2", "0.25", "1e20", "-1e20", "1e999", "nan", "inf", "1e-400", "", "x", "2..1"]
+_SMALL_NUMBERS = [
+    "0",
+    "1",
+    "-1",
+    "0.5",
+    "2",
+    "3",
+    "-2",
+    "0.25",
+    "1e20",
+    "-1e20",
+    "1e999",
+    "nan",
+    "inf",
+    "1e-400",
+    "",
+    "x",
+    "2..1",
+]
 
 
 @st.composite
@@ -323,7 +462,9 @@ def small_mutations(draw, lines: list[str]) -> list[str]:
             found = list(re.finditer(r"[A-Za-z_][A-Za-z0-9_]*", line))
             if found:
                 m = found[draw(st.integers(0, len(found) - 1))]
-                lines[i] = line[: m.start()] + draw(st.sampled_from(_ALL_PARAMS + _ALL_OUTPUTS[:40] + _JUNK)) + line[m.end() :]
+                lines[i] = (
+                    line[: m.start()] + draw(st.sampled_from(_ALL_PARAMS + _ALL_OUTPUTS[:40] + _JUNK)) + line[m.end() :]
+                )
         elif op == "swap_range":
             lines[i] = re.sub(r"(\S+)\.\.(\S+)", r"\2..\1", line)
     return lines
@@ -377,7 +518,11 @@ def test_build_of_fuzzed_books_succeeds_or_reports_author_errors(request, tmp_pa
             outcomes["failed"] += 1
             assert failure.errors
             for error in failure.errors:
-                lines = (root / error.loc.path).read_text(encoding="utf-8").count("\n") + 1 if error.loc.path.endswith(".md") else 1
+                lines = (
+                    (root / error.loc.path).read_text(encoding="utf-8").count("\n") + 1
+                    if error.loc.path.endswith(".md")
+                    else 1
+                )
                 assert_author_errors([error], error.loc.path, 1, lines)
             assert not config.out.exists()
         else:

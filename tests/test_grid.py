@@ -1,4 +1,5 @@
 """Slider grids: evenly spaced stops held exactly, including steps such as 1/60 that no decimal holds."""
+
 from __future__ import annotations
 
 from decimal import Decimal

@@ -5,6 +5,7 @@ parametrized cases; an id with [...] names one case). The ids are checked agains
 collects, so a renamed or deleted test, or an entry whose test has not been written yet, fails here by
 name.
 """
+
 from __future__ import annotations
 
 import os
@@ -169,10 +170,17 @@ def collected(collected_ids) -> tuple[set[str], set[str], str]:
         env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
         result = subprocess.run(
             [sys.executable, "-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider", "tests"],
-            cwd=ROOT, env=env, capture_output=True, text=True, timeout=600,
+            cwd=ROOT,
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=600,
         )
         nodes = {line.strip() for line in result.stdout.splitlines() if "::" in line and not line.startswith(" ")}
-        errors = "\n".join(line for line in result.stdout.splitlines() if line.startswith(("ERROR", "E "))) or result.stderr[-2000:]
+        errors = (
+            "\n".join(line for line in result.stdout.splitlines() if line.startswith(("ERROR", "E ")))
+            or result.stderr[-2000:]
+        )
         errors = errors if result.returncode else ""
     return nodes, {node.split("[", 1)[0] for node in nodes}, errors
 
@@ -183,6 +191,6 @@ def test_hard_case_is_covered_by_existing_tests(entry, collected):
     nodes, functions, errors = collected
     assert INDEX[entry], f"hard case '{entry}': no test listed"
     missing = [t for t in INDEX[entry] if t not in (nodes if "[" in t else functions)]
-    assert not missing, (
-        f"hard case '{entry}' is not covered: missing test(s) {missing}" + (f"\npytest could not collect:\n{errors}" if errors else "")
+    assert not missing, f"hard case '{entry}' is not covered: missing test(s) {missing}" + (
+        f"\npytest could not collect:\n{errors}" if errors else ""
     )

@@ -1,5 +1,6 @@
 """Hard cases of physics.md §14 that no model test covered: K4 resonance foldover, and K2's quantile default
 never touching NumPy's random streams. Tolerances are physics.md's (§12 for the foldover)."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -14,12 +15,12 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
-from sitegen.registry import builtin_registry
 from sitegen.models.bubble.model import Bubble
 from sitegen.models.bubble.point import compose
 from sitegen.models.bubble.solve import integrate
 from sitegen.models.kinetic.model import Kinetic
 from sitegen.models.kinetic.walls import QUANTILE, RANDOM, molecules
+from sitegen.registry import builtin_registry
 
 MODELS = builtin_registry().models
 
@@ -55,7 +56,9 @@ def test_resonance_response_jumps_between_adjacent_frequencies_so_interpolation_
     assert abs(_steady_r_max(FINE[1], 1e-10) - middle) <= 1e-6
     assert middle - low > 0.05, f"jump {middle - low:.4f}"
     interpolated = low + (high - low) * (math.log(FINE[1] / FINE[0]) / math.log(FINE[2] / FINE[0]))
-    assert abs(interpolated - middle) > 100 * DISPLAY_RESOLUTION, f"interpolation error {abs(interpolated - middle):.4f}"
+    assert abs(interpolated - middle) > 100 * DISPLAY_RESOLUTION, (
+        f"interpolation error {abs(interpolated - middle):.4f}"
+    )
 
 
 FOLD_SCENE = """\
@@ -70,7 +73,9 @@ readouts: driven_R_max
 
 
 def _scene():
-    spec, errors = parse_scene_block(FOLD_SCENE.format(effects=" ".join(FOLD_EFFECTS)).splitlines(), SourceLoc("test.md", 1))
+    spec, errors = parse_scene_block(
+        FOLD_SCENE.format(effects=" ".join(FOLD_EFFECTS)).splitlines(), SourceLoc("test.md", 1)
+    )
     assert not errors, errors
     scene, errors = resolve_scene(spec, MODELS)
     assert not errors, errors
@@ -85,7 +90,9 @@ def test_resonance_readout_is_tabulated_at_every_stop_never_interpolated():
     axis = scene.axes[scene.axis_index("f")]
     stops = np.array([float(s) for s in axis.stops])
     assert table.shape == (len(stops),) and len(stops) == 8
-    direct = Bubble().evaluate({**FOLD_POINT, "f": stops}, wanted=["driven_R_max"], effects=FOLD_EFFECTS)["driven_R_max"]
+    direct = Bubble().evaluate({**FOLD_POINT, "f": stops}, wanted=["driven_R_max"], effects=FOLD_EFFECTS)[
+        "driven_R_max"
+    ]
     expected = quantize(direct, Bubble.output("driven_R_max").decimals, special=True)
     assert [table.at((k,)) for k in range(len(stops))] == expected.tolist()
     assert "driven_R_max" in needed_outputs(scene)

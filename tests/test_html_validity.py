@@ -5,6 +5,7 @@ The checker runs once over the whole built site (one JVM start); each page is th
 Warnings and notes are shown when a page fails but do not fail it. `make test` installs Java
 (default-jre-headless) when it is missing.
 """
+
 from __future__ import annotations
 
 import json
@@ -13,8 +14,8 @@ import subprocess
 from pathlib import Path
 
 import pytest
-
 from browser import ROOT
+
 from sitegen.content.pages import discover_pages
 
 VNU = ROOT / "node_modules" / "vnu-jar" / "build" / "dist" / "vnu.jar"
@@ -30,9 +31,22 @@ def run_vnu(*targets: Path) -> list[dict]:
         pytest.fail(f"{VNU} is missing: run `make test` (npm ci installs vnu-jar)")
     # A short run: the quick compiler alone and the serial collector halve the JVM's work (same messages).
     done = subprocess.run(
-        [java, "-Xss8m", "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-jar", str(VNU), "--format", "json",
-         "--skip-non-html", *map(str, targets)],
-        capture_output=True, text=True, timeout=300, check=False,
+        [
+            java,
+            "-Xss8m",
+            "-XX:TieredStopAtLevel=1",
+            "-XX:+UseSerialGC",
+            "-jar",
+            str(VNU),
+            "--format",
+            "json",
+            "--skip-non-html",
+            *map(str, targets),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
     )
     if done.returncode not in (0, 1):  # 1: the checker found errors
         pytest.fail(f"vnu failed ({done.returncode}): {done.stderr[-2000:]}")

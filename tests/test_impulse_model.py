@@ -1,4 +1,5 @@
 """I1 (impulse of a triangular force pulse): closed forms against exact rationals, hard cases, helpers."""
+
 from __future__ import annotations
 
 from fractions import Fraction
@@ -218,8 +219,11 @@ def test_each_shape_has_the_same_peak_at_half_the_duration(shape):
     assert float(out["t_apex"]) == 0.5 * 0.73 and float(out["F_max"]) == 37.5
 
 
-@pytest.mark.parametrize("shape, tolerance", [("triangle", 1e-14), ("hann", 1e-14), ("rectangle", 1e-14), ("half_sine", 4e-4)],
-                         ids=["triangle", "hann", "rectangle", "half_sine"])
+@pytest.mark.parametrize(
+    "shape, tolerance",
+    [("triangle", 1e-14), ("hann", 1e-14), ("rectangle", 1e-14), ("half_sine", 4e-4)],
+    ids=["triangle", "hann", "rectangle", "half_sine"],
+)
 def test_area_of_the_drawn_pulse_is_the_impulse(shape, tolerance):
     """The trapezoid area of the drawn polygon equals J: exactly (1e−14) for the triangle, the rectangle and the
     Hann pulse (a full period of sin² on even samples), and within π²/12·(1/48)² < 4e−4 for the half-sine."""
@@ -246,10 +250,26 @@ def test_triangle_under_the_shape_effect_is_the_base_model_bitwise():
 def test_velocity_curve_is_the_running_integral_of_the_force(shape, v0):
     """v(t) at every drawn time is v0 + (1/m)∫₀ᵗ F dt' (quad of the shape's force) within 1e−12 of |v0| + J/m."""
     F_pk, tau, m = 37.5, 0.73, 3.3
-    out = _shaped(shape, ["pulse_t", "v_curve", "v_after", "J"], effects=("shape", "initial_velocity"), F_pk=F_pk, tau=tau, m=m, v0=v0)
+    out = _shaped(
+        shape,
+        ["pulse_t", "v_curve", "v_after", "J"],
+        effects=("shape", "initial_velocity"),
+        F_pk=F_pk,
+        tau=tau,
+        m=m,
+        v0=v0,
+    )
     scale = abs(v0) + float(out["J"]) / m
     for t, v in zip(out["pulse_t"], out["v_curve"]):
-        gained, _ = quad(shaped_force, 0.0, t, args=(F_pk, tau, shape), points=[tau / 2] if t > tau / 2 else None, epsabs=0.0, epsrel=1e-13)
+        gained, _ = quad(
+            shaped_force,
+            0.0,
+            t,
+            args=(F_pk, tau, shape),
+            points=[tau / 2] if t > tau / 2 else None,
+            epsabs=0.0,
+            epsrel=1e-13,
+        )
         assert abs(v - (v0 + gained / m)) <= 1e-12 * scale, f"t = {t}"
     assert abs(float(out["v_after"]) - (v0 + float(out["J"]) / m)) <= 2 * EPS * scale
 
@@ -257,7 +277,9 @@ def test_velocity_curve_is_the_running_integral_of_the_force(shape, v0):
 @pytest.mark.parametrize("F_pk, tau, m", STOPS)
 def test_velocity_curve_of_the_triangle_is_the_piecewise_quadratic(F_pk, tau, m):
     """For the default triangle the v(t) layer is physics.md's piecewise quadratic (`velocity`) within 4ε of its scale."""
-    out = Impulse().evaluate({"F_pk": F_pk, "tau": tau, "m": m, "v0": 1.5}, wanted=["pulse_t", "v_curve"], effects=("initial_velocity",))
+    out = Impulse().evaluate(
+        {"F_pk": F_pk, "tau": tau, "m": m, "v0": 1.5}, wanted=["pulse_t", "v_curve"], effects=("initial_velocity",)
+    )
     expected = velocity(out["pulse_t"], F_pk, tau, m, 1.5)
     scale = 1.5 + float(_exact_impulse(F_pk, tau) / Fraction(m))
     assert np.max(np.abs(out["v_curve"] - expected)) <= 4 * EPS * scale
@@ -284,10 +306,16 @@ CONTACTS = [
 @pytest.mark.parametrize("m_hit, m, v_rel, k_c, c_d", CONTACTS)
 def test_contact_impulse_is_that_of_the_collision(m_hit, m, v_rel, k_c, c_d):
     """J = μ(1 + e)Δ, and the impulse picture's F(t) is the collision's contact force (same curve, t in s vs ms)."""
-    out = Impulse().evaluate({"m_hit": m_hit, "m": m, "v_rel": v_rel, "k_c": k_c, "c_d": c_d},
-                             wanted=["J", "dv", "pulse_t", "pulse_F", "e_contact"], effects=("contact_from_collision",))
-    hit = Collision().evaluate({"m1": m_hit, "m2": m, "v1i": v_rel, "v2i": 0.0, "k_c": k_c, "c_d": c_d},
-                               wanted=["J", "v2f", "contact_t", "contact_F", "e_contact"], effects=("contact_spring_dashpot",))
+    out = Impulse().evaluate(
+        {"m_hit": m_hit, "m": m, "v_rel": v_rel, "k_c": k_c, "c_d": c_d},
+        wanted=["J", "dv", "pulse_t", "pulse_F", "e_contact"],
+        effects=("contact_from_collision",),
+    )
+    hit = Collision().evaluate(
+        {"m1": m_hit, "m2": m, "v1i": v_rel, "v2i": 0.0, "k_c": k_c, "c_d": c_d},
+        wanted=["J", "v2f", "contact_t", "contact_F", "e_contact"],
+        effects=("contact_spring_dashpot",),
+    )
     mu = m_hit * m / (m_hit + m)
     assert float(out["J"]) == pytest.approx(mu * (1 + float(out["e_contact"])) * v_rel, rel=4 * EPS)
     assert float(out["J"]) == pytest.approx(float(hit["J"]), rel=4 * EPS)
@@ -302,8 +330,11 @@ def test_contact_velocity_is_the_running_integral_of_the_contact_force(m_hit, m,
     from sitegen.physics import contact
 
     mu, v0 = m_hit * m / (m_hit + m), -0.8
-    out = Impulse().evaluate({"m_hit": m_hit, "m": m, "v_rel": v_rel, "k_c": k_c, "c_d": c_d, "v0": v0},
-                             wanted=["pulse_t", "v_curve", "v_after", "J"], effects=("contact_from_collision", "initial_velocity"))
+    out = Impulse().evaluate(
+        {"m_hit": m_hit, "m": m, "v_rel": v_rel, "k_c": k_c, "c_d": c_d, "v0": v0},
+        wanted=["pulse_t", "v_curve", "v_after", "J"],
+        effects=("contact_from_collision", "initial_velocity"),
+    )
     scale = abs(v0) + float(out["J"]) / m
     for t, v in zip(out["pulse_t"], out["v_curve"]):
         gained, _ = quad(lambda s: float(contact.force(s, mu, 1e3 * k_c, c_d, v_rel)), 0.0, t, epsabs=0.0, epsrel=1e-13)

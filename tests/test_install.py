@@ -1,6 +1,7 @@
 """The installed tool builds any book: Temml travels in the package (the bytes npm installs from
 package-lock.json), node on PATH is the one requirement outside Python, and installing the package
 (pip wheel ., pip install .) writes nothing into the source tree's build/, which is the book's site."""
+
 from __future__ import annotations
 
 import json
@@ -25,11 +26,15 @@ VENDORED = ROOT / "src" / "sitegen" / "content" / "temml"
 NPM_TEMML = ROOT / "node_modules" / "temml"
 
 
-@pytest.mark.parametrize("vendored, installed", [
-    ("temml.min.js", "dist/temml.min.js"),
-    ("Temml-Latin-Modern.css", "dist/Temml-Latin-Modern.css"),
-    ("LICENSE", "LICENSE"),
-], ids=["script", "stylesheet", "licence"])
+@pytest.mark.parametrize(
+    "vendored, installed",
+    [
+        ("temml.min.js", "dist/temml.min.js"),
+        ("Temml-Latin-Modern.css", "dist/Temml-Latin-Modern.css"),
+        ("LICENSE", "LICENSE"),
+    ],
+    ids=["script", "stylesheet", "licence"],
+)
 def test_the_vendored_temml_is_what_npm_installs_from_the_lock(vendored, installed):
     """Each vendored file equals the one `npm ci` installs, and that is the version package-lock.json pins."""
     lock = json.loads((ROOT / "package-lock.json").read_text())["packages"]["node_modules/temml"]["version"]
@@ -38,24 +43,38 @@ def test_the_vendored_temml_is_what_npm_installs_from_the_lock(vendored, install
     assert (VENDORED / vendored).read_bytes() == (NPM_TEMML / installed).read_bytes()
 
 
-FORMULAS = [(r"F = \frac{\mathrm{d}p}{\mathrm{d}t}", False), (r"\int_0^\tau F\,\mathrm{d}t = \Delta p \tag{2}", True),
-            (r"\sqrt{\tfrac{k}{m}}\,\vec v_{1}^{\prime}", False), (r"\begin{aligned} a &= b \\ c &= d \end{aligned}", True)]
+FORMULAS = [
+    (r"F = \frac{\mathrm{d}p}{\mathrm{d}t}", False),
+    (r"\int_0^\tau F\,\mathrm{d}t = \Delta p \tag{2}", True),
+    (r"\sqrt{\tfrac{k}{m}}\,\vec v_{1}^{\prime}", False),
+    (r"\begin{aligned} a &= b \\ c &= d \end{aligned}", True),
+]
 
 
 def test_the_browser_build_run_by_node_gives_the_packages_mathml():
     """The vendored browser build, run in node, writes the MathML of the npm package's CommonJS build."""
     ours, _ = tex.convert_math([MathItem(t, d, SourceLoc("x.md", 1)) for t, d in FORMULAS])
-    script = ("const t = require('temml'); const f = JSON.parse(require('fs').readFileSync(0, 'utf8'));"
-              "process.stdout.write(JSON.stringify(f.map(([x, d]) => t.renderToString(x, {displayMode: d, throwOnError: true, annotate: false}))));")
-    done = subprocess.run(["node", "-e", script], input=json.dumps(FORMULAS), capture_output=True, text=True,
-                          env={**os.environ, "NODE_PATH": str(ROOT / "node_modules")}, check=True)
+    script = (
+        "const t = require('temml'); const f = JSON.parse(require('fs').readFileSync(0, 'utf8'));"
+        "process.stdout.write(JSON.stringify(f.map(([x, d]) => t.renderToString(x, {displayMode: d, throwOnError: true, annotate: false}))));"
+    )
+    done = subprocess.run(
+        ["node", "-e", script],
+        input=json.dumps(FORMULAS),
+        capture_output=True,
+        text=True,
+        env={**os.environ, "NODE_PATH": str(ROOT / "node_modules")},
+        check=True,
+    )
     assert ours == json.loads(done.stdout)
 
 
 def test_without_node_the_build_says_what_to_install(monkeypatch, tmp_path):
     """node missing from PATH is a set-up error that names node, not a traceback."""
     monkeypatch.setenv("PATH", str(tmp_path))
-    with pytest.raises(tex.MathToolMissing, match="node is not on PATH: sitegen converts TeX to MathML with Temml, run by Node.js"):
+    with pytest.raises(
+        tex.MathToolMissing, match="node is not on PATH: sitegen converts TeX to MathML with Temml, run by Node.js"
+    ):
         tex.convert_math([MathItem("x", False, SourceLoc("x.md", 1))])
 
 
@@ -63,7 +82,9 @@ def test_without_node_the_build_says_what_to_install(monkeypatch, tmp_path):
 def source_copy(tmp_path_factory) -> Path:
     """The repository's tracked files, with a built site in build/ (one page and a marker)."""
     copy = tmp_path_factory.mktemp("repo") / "sitegen"
-    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout.decode().split("\0")
+    files = (
+        subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout.decode().split("\0")
+    )
     for name in filter(None, files):
         if (ROOT / name).is_file():
             (copy / name).parent.mkdir(parents=True, exist_ok=True)
@@ -79,8 +100,9 @@ def _tree(folder: Path) -> list[str]:
 
 
 def _pip(*args: str) -> None:
-    subprocess.run([sys.executable, "-m", "pip", "--disable-pip-version-check", "--quiet", *args], check=True,
-                   capture_output=True)
+    subprocess.run(
+        [sys.executable, "-m", "pip", "--disable-pip-version-check", "--quiet", *args], check=True, capture_output=True
+    )
 
 
 @pytest.fixture(scope="module")
@@ -90,7 +112,11 @@ def wheel(source_copy, tmp_path_factory) -> dict:
     out = tmp_path_factory.mktemp("wheel")
     before = (_tree(source_copy / "build"), _tree(source_copy))
     _pip("wheel", "--no-deps", "--no-build-isolation", "-w", str(out), str(source_copy))
-    return {"path": next(out.glob("sitegen-*.whl")), "before": before, "after": (_tree(source_copy / "build"), _tree(source_copy))}
+    return {
+        "path": next(out.glob("sitegen-*.whl")),
+        "before": before,
+        "after": (_tree(source_copy / "build"), _tree(source_copy)),
+    }
 
 
 @pytest.mark.parametrize("command", ["wheel", "install"])
@@ -111,9 +137,16 @@ def test_installing_writes_nothing_into_build(source_copy, tmp_path, request, co
 def test_the_wheel_carries_temml_templates_and_assets(wheel):
     """What a build needs besides Python code is inside the wheel."""
     names = zipfile.ZipFile(wheel["path"]).namelist()
-    for needed in ("sitegen/content/temml/temml.min.js", "sitegen/content/temml/Temml-Latin-Modern.css",
-                   "sitegen/content/temml/LICENSE", "sitegen/content/tex2mathml.js", "sitegen/site/templates/base.html",
-                   "sitegen/site/static/sitegen.js", "sitegen/site/static/latinmodern-math.woff2", "sitegen/models/chain/__init__.py"):
+    for needed in (
+        "sitegen/content/temml/temml.min.js",
+        "sitegen/content/temml/Temml-Latin-Modern.css",
+        "sitegen/content/temml/LICENSE",
+        "sitegen/content/tex2mathml.js",
+        "sitegen/site/templates/base.html",
+        "sitegen/site/static/sitegen.js",
+        "sitegen/site/static/latinmodern-math.woff2",
+        "sitegen/models/chain/__init__.py",
+    ):
         assert needed in names
     assert not [n for n in names if "__pycache__" in n or n.startswith(("tests/", "content/", "build/"))]
 
@@ -131,10 +164,14 @@ def installed(wheel, tmp_path_factory) -> dict:
     python = env_dir / "bin" / "python"
     site = next((env_dir / "lib").glob("python3*/site-packages"))
     libraries = next(Path(p) for p in sys.path if p.endswith("site-packages") and (Path(p) / "numpy").is_dir())
-    (site / "libraries.pth").write_text(f"{libraries}\n")  # numpy, scipy, matplotlib...: not sitegen (an editable .pth is not read from there)
+    (site / "libraries.pth").write_text(
+        f"{libraries}\n"
+    )  # numpy, scipy, matplotlib...: not sitegen (an editable .pth is not read from there)
     _pip("--python", str(python), "install", "--no-deps", "--no-index", *map(str, wheels.glob("*.whl")))
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "NODE_PATH")} | {"OPENBLAS_NUM_THREADS": "1"}
-    where = subprocess.run([python, "-c", "import sitegen; print(sitegen.__file__)"], capture_output=True, text=True, env=env)
+    where = subprocess.run(
+        [python, "-c", "import sitegen; print(sitegen.__file__)"], capture_output=True, text=True, env=env
+    )
     assert where.stdout.startswith(str(site)), where.stdout  # the wheel's sitegen, not this checkout's
     return {"sitegen": str(env_dir / "bin" / "sitegen"), "python": str(python), "env": env}
 
@@ -166,23 +203,36 @@ def test_a_new_book_builds_and_previews_with_the_installed_tool(installed, tmp_p
     from preview import WatchServer
 
     env = installed["env"]
-    made = subprocess.run([installed["sitegen"], "new", "mybook"], cwd=tmp_path, capture_output=True, text=True, env=env)
+    made = subprocess.run(
+        [installed["sitegen"], "new", "mybook"], cwd=tmp_path, capture_output=True, text=True, env=env
+    )
     assert made.returncode == 0, made.stderr
     book = tmp_path / "mybook"
     built = subprocess.run([installed["sitegen"], "build"], cwd=book, capture_output=True, text=True, env=env)
     assert built.returncode == 0, built.stderr
     page = (book / "build" / "pendulum.html").read_text()
-    period = 4 * math.sqrt(1 / 9.81) * quad(lambda phi: (1 - math.sin(phi) ** 2 / 4) ** -0.5, 0, math.pi / 2)[0]  # 60°, 1 m
+    period = (
+        4 * math.sqrt(1 / 9.81) * quad(lambda phi: (1 - math.sin(phi) ** 2 / 4) ** -0.5, 0, math.pi / 2)[0]
+    )  # 60°, 1 m
     assert 'data-scene="pendulum"' in page and f'data-out="T">{period:.3f} s<' in page and "<math" in page
-    tested = subprocess.run([installed["python"], "-m", "pytest", "-q", "-p", "no:cacheprovider", "tests"], cwd=book,
-                            capture_output=True, text=True, env=env)
+    tested = subprocess.run(
+        [installed["python"], "-m", "pytest", "-q", "-p", "no:cacheprovider", "tests"],
+        cwd=book,
+        capture_output=True,
+        text=True,
+        env=env,
+    )
     assert tested.returncode == 0 and " passed" in tested.stdout, tested.stdout + tested.stderr
     server = WatchServer(book, [installed["sitegen"], "serve", "--watch", "--port", "0"], env)
     try:
         view = chromium.new_page()
         view.goto(server.url("pendulum.html"))
-        (book / "content" / "pendulum.md").write_text((book / "content" / "pendulum.md").read_text() + "\nOne more line of prose.\n")
-        view.wait_for_function("document.body.innerText.includes('One more line of prose.')", timeout=10_000)  # a hang guard; bench/preview.py times it
+        (book / "content" / "pendulum.md").write_text(
+            (book / "content" / "pendulum.md").read_text() + "\nOne more line of prose.\n"
+        )
+        view.wait_for_function(
+            "document.body.innerText.includes('One more line of prose.')", timeout=10_000
+        )  # a hang guard; bench/preview.py times it
         view.close()
     finally:
         assert server.stop() == 0

@@ -8,6 +8,7 @@ after the build's staging folder appears. Each runs `sitegen build` in a subproc
 a small book (many pages, so writing takes a while; every page and one scene change between the
 two versions, so the new build computes and caches a table).
 """
+
 from __future__ import annotations
 
 import contextlib
@@ -40,7 +41,9 @@ def _book(title: str, masses: str) -> dict[str, str]:
         "```scene\nmodel: collision\nslider m1: 0.5..2 step 0.5 default 1\nslider e: 0..1 step 0.5 default 1\n```\n",
     }
     for n in range(CHAPTERS):
-        pages[f"chapter-{n:02d}"] = f'+++\ntitle = "Chapter {n}"\norder = {n + 2}\n+++\n\n' + f"Paragraph {n}. " * 400 + "\n"
+        pages[f"chapter-{n:02d}"] = (
+            f'+++\ntitle = "Chapter {n}"\norder = {n + 2}\n+++\n\n' + f"Paragraph {n}. " * 400 + "\n"
+        )
     return pages
 
 
@@ -92,7 +95,9 @@ def which(found: dict[str, bytes], old: dict[str, bytes], new: dict[str, bytes])
         return "old"
     if found == new:
         return "new"
-    mixed = sorted(n for n in set(found) | set(new) if found.get(n) not in (old.get(n), new.get(n)) or (n in found) != (n in new))
+    mixed = sorted(
+        n for n in set(found) | set(new) if found.get(n) not in (old.get(n), new.get(n)) or (n in found) != (n in new)
+    )
     return f"a mix: {len(found)} files, differing in {mixed[:5]}"
 
 
@@ -257,7 +262,9 @@ def test_write_without_atomic_exchange(tmp_path, monkeypatch):
 def test_recover_removes_only_dead_builds_folders(tmp_path):
     """Staging folders of dead builds go; those of a running build (here: our parent) stay."""
     dest = tmp_path / "build"
-    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True).stdout.strip()
+    dead = subprocess.run(
+        [sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True
+    ).stdout.strip()
     for name in (f".build.new-{dead}-abc", f".build.new-{os.getppid()}-def", ".build.old"):
         (tmp_path / name).mkdir()
         (tmp_path / name / "index.html").write_bytes(b"x")

@@ -1,4 +1,5 @@
 """The numpy JSON writer of table entries gives exactly json.dumps's characters."""
+
 import json
 
 import numpy as np
@@ -20,8 +21,17 @@ def _reference(values, lengths=None, nulls=None):
     return json.dumps(rows, separators=(",", ":"))
 
 
-@pytest.mark.parametrize("entries", [[0], [-1], [7, -7, 10, -10, 9999, 10000, -10**12], [2**63 - 1, -2**63 + 1],
-                                     [SPECIAL, 3], list(range(-20000, 20000, 7))])
+@pytest.mark.parametrize(
+    "entries",
+    [
+        [0],
+        [-1],
+        [7, -7, 10, -10, 9999, 10000, -(10**12)],
+        [2**63 - 1, -(2**63) + 1],
+        [SPECIAL, 3],
+        list(range(-20000, 20000, 7)),
+    ],
+)
 def test_lists_and_rows_as_json_writes_them(entries):
     values = np.array(entries, np.int64)
     assert intjson.dumps(values) == _reference(values)
@@ -44,7 +54,9 @@ def test_random_tables_with_ragged_and_empty_rows_and_nulls(block, monkeypatch):
         assert intjson.dumps(values) == _reference(values)
         assert intjson.dumps(values, lengths) == _reference(values, lengths)
         assert intjson.dumps(values, lengths, nulls) == _reference(values, lengths, nulls)
-        assert intjson.dumps(values.reshape(-1), None, nulls.reshape(-1)) == _reference(values.reshape(-1), None, nulls.reshape(-1))
+        assert intjson.dumps(values.reshape(-1), None, nulls.reshape(-1)) == _reference(
+            values.reshape(-1), None, nulls.reshape(-1)
+        )
 
 
 def test_what_numpy_does_not_write_goes_through_json():
@@ -123,5 +135,5 @@ def test_vector_and_scalar_tables_as_before():
         assert _table_text(vector, "") == _plain_table_json(vector, "")
         scalar = Table("s", (0,), (quanta.size,), quanta.reshape(-1), 2)
         assert _table_text(scalar, "") == _plain_table_json(scalar, "")
-    huge = Table("h", (0,), (3,), np.array([2**62, -2**62, 5], np.int64), 0)  # differences beyond int64
+    huge = Table("h", (0,), (3,), np.array([2**62, -(2**62), 5], np.int64), 0)  # differences beyond int64
     assert _table_text(huge, "") == _plain_table_json(huge, "")

@@ -1,4 +1,5 @@
 """K2 (kinetic-theory pressure): exact hit counting against enumeration, bounds, statistics, hard cases, effects."""
+
 from __future__ import annotations
 
 import math
@@ -10,8 +11,17 @@ import pytest
 from sitegen.compute.quantize import fmt
 from sitegen.models.kinetic.model import ATOMIC_MASS, BOX_SIDE, K_B, MASS_U, SPECIES, Kinetic
 from sitegen.models.kinetic.walls import (
-    QUANTILE, RANDOM, TRAIN_BINS, cumulative_impulse, maxwell_wall_records, molecules, pulsed_impulse, sample_ratio,
-    soft_record, wall_hits, wall_record,
+    QUANTILE,
+    RANDOM,
+    TRAIN_BINS,
+    cumulative_impulse,
+    maxwell_wall_records,
+    molecules,
+    pulsed_impulse,
+    sample_ratio,
+    soft_record,
+    wall_hits,
+    wall_record,
 )
 
 EPS = np.finfo(float).eps
@@ -56,7 +66,11 @@ def naive_stepping_ratio(z: np.ndarray, s: np.ndarray, tau: float, dt: float) ->
 # --- the readouts at the defaults (N = 1000, T = 300 K, N2, t_w = 100 L/v_th, quantile) ----------------------------
 
 DEFAULT_READOUTS = {
-    "v_th": "298.40", "v_rms": "516.84", "p_ideal": "4141.95", "ratio_sample": "0.998699", "ratio": "0.998976",
+    "v_th": "298.40",
+    "v_rms": "516.84",
+    "p_ideal": "4141.95",
+    "ratio_sample": "0.998699",
+    "ratio": "0.998976",
     "hits": "39879",
 }
 
@@ -120,7 +134,9 @@ def test_unfolded_count_equals_bounce_by_bounce_enumeration(N, tau, sampling):
 def test_ratio_is_the_impulse_sum_over_N_tau(N, tau, sampling):
     """p_sim/p_ideal = Σ 2|z_i| n_i / (N t_w) within 4ε rel of the exact rational over the enumerated hits."""
     z, s = molecules(N, SAMPLINGS[sampling])
-    exact = sum(2 * abs(Fraction(float(zi))) * _enumerated_hits(float(zi), float(si), Fraction(tau)) for zi, si in zip(z, s))
+    exact = sum(
+        2 * abs(Fraction(float(zi))) * _enumerated_hits(float(zi), float(si), Fraction(tau)) for zi, si in zip(z, s)
+    )
     exact /= N * Fraction(tau)
     value = Fraction(float(_evaluate(["ratio"], N=N, t_w=tau, sampling=SAMPLINGS[sampling])["ratio"]))
     assert abs(value - exact) <= 4 * EPS * exact
@@ -173,7 +189,8 @@ def test_random_simulated_pressure_is_unbiased():
 
 
 @pytest.mark.parametrize(
-    "N, listed", [(10, -0.120), (100, -0.0127), (1000, -0.0013), (10000, -0.00013)],
+    "N, listed",
+    [(10, -0.120), (100, -0.0127), (1000, -0.0013), (10000, -0.00013)],
     ids=["N=10-listed=-0.120", "N=100-listed=-0.0127", "N=1000-listed=-0.0013", "N=1e4-listed=-0.00013"],
 )
 def test_quantile_sample_falls_short_by_order_1_over_N(N, listed):
@@ -290,8 +307,11 @@ def test_window_outputs_are_bitwise_independent_of_temperature_and_species(outpu
 # --- the figure's curves ----------------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("N, tau, sampling", [(10, 1.0, QUANTILE), (1000, 100.0, QUANTILE), (300, 1000.0, RANDOM)],
-                         ids=["N=10-tw=1", "defaults", "N=300-tw=1000-random"])
+@pytest.mark.parametrize(
+    "N, tau, sampling",
+    [(10, 1.0, QUANTILE), (1000, 100.0, QUANTILE), (300, 1000.0, RANDOM)],
+    ids=["N=10-tw=1", "defaults", "N=300-tw=1000-random"],
+)
 def test_running_mean_ends_at_the_ratio_and_the_train_averages_to_it(N, tau, sampling):
     """The running mean's last point is the ratio bitwise; the mean force over the bins is the ratio to 1e-12."""
     out = _evaluate(["ratio", "running", "train"], N=N, t_w=tau, sampling=sampling)
@@ -385,7 +405,9 @@ def test_specular_limit_of_maxwell_wall_is_the_base_model_bitwise(output):
     assert np.array_equal(_evaluate([output], effects=["wall_law"], alpha=0.0)[output], _evaluate([base])[base])
 
 
-@pytest.mark.parametrize("N, tau, sampling", [(1000, 100.0, QUANTILE), (30, 300.0, RANDOM)], ids=["defaults", "N=30-tw=300-random"])
+@pytest.mark.parametrize(
+    "N, tau, sampling", [(1000, 100.0, QUANTILE), (30, 300.0, RANDOM)], ids=["defaults", "N=30-tw=300-random"]
+)
 def test_event_driven_walls_reproduce_exact_counting_as_alpha_vanishes(N, tau, sampling):
     """α = 1e-12 (the event-driven path, no diffuse event): same hits, ratio within 1e-12 of exact counting."""
     record = maxwell_wall_records(N, sampling, 1e-12, [tau])[tau]
@@ -421,9 +443,32 @@ def test_maxwell_wall_path_does_not_depend_on_the_windows_asked_for():
 
 @pytest.mark.parametrize(
     "inputs",
-    [{"N": 0.5}, {"N": 2e6}, {"T": 0.0}, {"T": -1.0}, {"t_w": 0.0}, {"species": 6.0}, {"species": 1.5},
-     {"sampling": 2.0}, {"t_w": float("nan")}, {"tau_c": -0.1}, {"alpha": 1.5}],
-    ids=["N<1", "N>1e6", "T=0", "T<0", "t_w=0", "species=6", "species=1.5", "sampling=2", "t_w=nan", "tau_c<0", "alpha>1"],
+    [
+        {"N": 0.5},
+        {"N": 2e6},
+        {"T": 0.0},
+        {"T": -1.0},
+        {"t_w": 0.0},
+        {"species": 6.0},
+        {"species": 1.5},
+        {"sampling": 2.0},
+        {"t_w": float("nan")},
+        {"tau_c": -0.1},
+        {"alpha": 1.5},
+    ],
+    ids=[
+        "N<1",
+        "N>1e6",
+        "T=0",
+        "T<0",
+        "t_w=0",
+        "species=6",
+        "species=1.5",
+        "sampling=2",
+        "t_w=nan",
+        "tau_c<0",
+        "alpha>1",
+    ],
 )
 def test_invalid_input_raises_naming_the_parameter(inputs):
     """Out-of-domain or NaN inputs raise ValueError whose message names the parameter."""

@@ -3,6 +3,7 @@
 on top (the bench, the review, the command) use the build from outside. A short walk over
 every module's imports (all of them, those inside functions too) fails when one runs backwards or
 two modules import each other, however far round."""
+
 from __future__ import annotations
 
 import ast
@@ -24,7 +25,12 @@ LAYERS = (
     ("sitegen.models",),  # the built-in plugins: a model, its figure and helpers per folder
     ("sitegen.registry", "sitegen.reference"),  # finds the plugins (built-in, installed, the book's); lists them
     ("sitegen.phases", "sitegen.build", "sitegen.stamp"),  # the build: its phases, the script that runs them, its stamp
-    ("sitegen.accuracy", "sitegen.review", "sitegen.preview", "sitegen.newbook"),  # tools that use the build and the layers below it
+    (
+        "sitegen.accuracy",
+        "sitegen.review",
+        "sitegen.preview",
+        "sitegen.newbook",
+    ),  # tools that use the build and the layers below it
     ("sitegen.cli", "sitegen.progress"),  # the command, and how it shows a build's progress on a terminal
 )
 # Who may import the built-in models by name: their own plugins, the registry (which lists them) and the
@@ -98,7 +104,7 @@ def test_no_circles():
         state[name] = "open"
         for target in sorted(graph().get(name, ())):
             if state.get(target) == "open":
-                circles.append(trail[trail.index(target):] + [target])
+                circles.append(trail[trail.index(target) :] + [target])
             elif target not in state:
                 visit(target, trail + [target])
         state[name] = "done"

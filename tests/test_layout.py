@@ -5,12 +5,12 @@ At 320, 390, 768 and 1280 px: the page never scrolls sideways, a box whose conte
 of a figure reaches outside it or shrinks below 8 px, no legend covers a panel where data is drawn,
 and no slider's label runs into the slider or its value. Print is checked in test_accessibility.py.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import pytest
-
 from browser import ROOT, front, new_page
 from layout import (
     control_label_problems,
@@ -20,6 +20,7 @@ from layout import (
     svg_text_problems,
     text_collision_problems,
 )
+
 from sitegen.content.pages import discover_pages
 
 PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
@@ -136,7 +137,12 @@ def test_the_checks_find_what_they_look_for(page_at):
             label.style.whiteSpace = 'nowrap'; label.textContent = 'a very long name that runs on and on';
             const eq = document.querySelector('.equation'); eq.style.width = '40px'; eq.classList.remove('scrolls');
         }""")
-        assert svg_text_problems(page) and legend_problems(page) and control_label_problems(page) and overflow_problems(page)
+        assert (
+            svg_text_problems(page)
+            and legend_problems(page)
+            and control_label_problems(page)
+            and overflow_problems(page)
+        )
         page.evaluate("""() => { const texts = document.querySelectorAll('#scene-collision svg.wide text');
             texts[1].setAttribute('x', texts[0].getAttribute('x')); texts[1].setAttribute('y', texts[0].getAttribute('y')); }""")
         assert text_collision_problems(page)

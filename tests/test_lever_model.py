@@ -1,4 +1,5 @@
 """I4 (lever): exact integer references on the whole slider grid, the hard cases, and the effects."""
+
 from __future__ import annotations
 
 import json
@@ -15,9 +16,9 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
-from sitegen.registry import builtin_registry
 from sitegen.models.lever.mechanics import BALANCED, LENGTH, TIPS_LEFT, TIPS_RIGHT, tipping_integral
 from sitegen.models.lever.model import BLOCK_SIDE_PER_CUBE_ROOT_KG, DRAWN_SLOPE, Lever
+from sitegen.registry import builtin_registry
 from sitegen.render.layers import layer_points
 from sitegen.site.assemble import readout_text
 from sitegen.site.payload import scene_payload
@@ -164,12 +165,17 @@ def test_net_torque_error_is_bounded_by_the_roundoff_of_its_terms(full_grid):
 
 PIVOT_AT_THE_END = {
     "MA-is-+inf-never-nan": lambda scene, tables, payload: float(_evaluate(["MA"], x_p=LENGTH)["MA"]) == math.inf,
-    "scene-data-is-strict-json": lambda scene, tables, payload: json.dumps(json.loads(payload), allow_nan=False) is not None
-    and json.loads(payload)["tables"]["MA"]["q"][-1] is None,
-    "readout-renders-infinity-phrase": lambda scene, tables, payload: readout_text(tables["MA"], "×", _stops(scene, x_p=2.0))
-    == "∞ (pivot at the end)",
-    "tau_R-is-0": lambda scene, tables, payload: np.all(_evaluate(["tau_R"], m_R=np.arange(1, 101) / 10, x_p=LENGTH)["tau_R"] == 0.0)
-    and readout_text(tables["tau_R"], "N·m", _stops(scene, x_p=2.0)) == "0.00 N·m",
+    "scene-data-is-strict-json": lambda scene, tables, payload: (
+        json.dumps(json.loads(payload), allow_nan=False) is not None
+        and json.loads(payload)["tables"]["MA"]["q"][-1] is None
+    ),
+    "readout-renders-infinity-phrase": lambda scene, tables, payload: (
+        readout_text(tables["MA"], "×", _stops(scene, x_p=2.0)) == "∞ (pivot at the end)"
+    ),
+    "tau_R-is-0": lambda scene, tables, payload: (
+        np.all(_evaluate(["tau_R"], m_R=np.arange(1, 101) / 10, x_p=LENGTH)["tau_R"] == 0.0)
+        and readout_text(tables["tau_R"], "N·m", _stops(scene, x_p=2.0)) == "0.00 N·m"
+    ),
     "MA-at-x_p=0-is-0": lambda scene, tables, payload: readout_text(tables["MA"], "×", _stops(scene, x_p=0.0)) == "0×",
 }
 
@@ -216,7 +222,7 @@ def test_off_grid_balance_marker_is_shown(built_scene):
     """At m_L = 1, m_R = 2 the figure's balance marker points at x* = 1.333 (display resolution 1 mm)."""
     scene, tables, layers, _ = built_scene
     stops = _stops(scene, m_L=1.0, m_R=2.0, x_p=1.33)
-    points = dict(zip((l.name for l in layers), layer_points(layers, scene, tables, stops)))
+    points = dict(zip((layer.name for layer in layers), layer_points(layers, scene, tables, stops)))
     assert points["balance-marker"][1][0] == pytest.approx(1.333, abs=1e-12)
     assert points["balance-line"][0][0] == pytest.approx(1.333, abs=1e-12)
 
@@ -232,7 +238,7 @@ def test_state_matches_the_exact_rule_at_every_stop(full_grid):
 def test_every_mass_pair_has_one_or_two_balanced_stops(full_grid, step_tenths):
     """For every (m_L, m_R) on the slider grid exactly one or two pivot stops are "balanced"."""
     a, b, k, out = full_grid
-    picked = (a[:, 0, 0] % step_tenths == 0)
+    picked = a[:, 0, 0] % step_tenths == 0
     counts = np.count_nonzero(out["state"][picked][:, picked] == BALANCED, axis=-1)
     assert counts.min() == 1 and counts.max() == 2, (counts.min(), counts.max())
 
@@ -246,7 +252,8 @@ def test_net_torque_at_the_default_is_exactly_zero():
 
 
 @pytest.mark.parametrize(
-    "m_L, m_R, x_p", [(1.0, 1.0, 1.0), (3.0, 1.0, 0.5), (1.5, 0.5, 0.5), (0.5, 1.5, 1.5)],
+    "m_L, m_R, x_p",
+    [(1.0, 1.0, 1.0), (3.0, 1.0, 0.5), (1.5, 0.5, 0.5), (0.5, 1.5, 1.5)],
     ids=["1|1@1", "3|1@0.5", "1.5|0.5@0.5", "0.5|1.5@1.5"],
 )
 def test_net_torque_is_exactly_zero_at_exact_balances_with_binary_values(m_L, m_R, x_p):
@@ -313,8 +320,8 @@ def test_scene_layers_read_declared_outputs_and_level_bar_at_defaults(built_scen
     """Every layer reads outputs of the model; at the defaults the bar is drawn level and the fulcrum's apex is at x_p."""
     scene, tables, layers, _ = built_scene
     declared = {o.name for o in Lever.outputs}
-    assert set().union(*(l.outputs() for l in layers)) <= declared
-    points = dict(zip((l.name for l in layers), layer_points(layers, scene, tables, scene.default_stops)))
+    assert set().union(*(layer.outputs() for layer in layers)) <= declared
+    points = dict(zip((layer.name for layer in layers), layer_points(layers, scene, tables, scene.default_stops)))
     assert points["bar"] == [(0.0, 0.0), (2.0, 0.0)]
     assert points["fulcrum"][1] == (1.0, 0.0)
 
@@ -322,7 +329,7 @@ def test_scene_layers_read_declared_outputs_and_level_bar_at_defaults(built_scen
 def test_bar_mass_scene_layers_follow_the_bar_inclusive_balance():
     """With bar_mass enabled the figure's tilt and balance marker read the outputs that include the bar."""
     scene = _resolve(BAR_SCENE)
-    reads = set().union(*(l.outputs() for l in FIGURES["lever"].layers(scene)))
+    reads = set().union(*(layer.outputs() for layer in FIGURES["lever"].layers(scene)))
     assert {"x_star_bar", "y_left_bar", "y_right_bar", "left_block_top0_bar"} <= reads
     assert not reads & {"x_star", "y_left", "y_right", "left_block_top0"}
 
@@ -370,7 +377,13 @@ def test_bar_mass_state_matches_the_exact_rule_with_one_or_two_balanced_stops(m_
     assert counts.min() == 1 and counts.max() == 2
 
 
-BAR_PAIRS = [("tau_net_bar", "tau_net"), ("x_star_bar", "x_star"), ("state_bar", "state"), ("y_left_bar", "y_left"), ("right_block_top1_bar", "right_block_top1")]
+BAR_PAIRS = [
+    ("tau_net_bar", "tau_net"),
+    ("x_star_bar", "x_star"),
+    ("state_bar", "state"),
+    ("y_left_bar", "y_left"),
+    ("right_block_top1_bar", "right_block_top1"),
+]
 
 
 @pytest.fixture(scope="module")
@@ -427,8 +440,14 @@ def _integrate_to_the_stop(m_L, m_R, x_p, theta_s, m_b=0.0):
 
     hits_stop.terminal = True
     solution = solve_ivp(
-        lambda t, y: (y[1], torque * math.cos(y[0]) / inertia), (0.0, 1e3), (0.0, 0.0), method="DOP853",
-        rtol=1e-12, atol=1e-14 * abs(stop), events=hits_stop, dense_output=True,
+        lambda t, y: (y[1], torque * math.cos(y[0]) / inertia),
+        (0.0, 1e3),
+        (0.0, 0.0),
+        method="DOP853",
+        rtol=1e-12,
+        atol=1e-14 * abs(stop),
+        events=hits_stop,
+        dense_output=True,
     )
     assert solution.status == 1, solution.message  # ended at the event, not at the time cap
     return solution, torque, inertia
@@ -453,17 +472,29 @@ def test_integrated_motion_conserves_energy(m_L, m_R, x_p, theta_s):
     assert np.max(np.abs(0.5 * inertia * omega**2 - torque * np.sin(theta))) <= 1e-9 * scale
 
 
-@pytest.mark.parametrize("theta", [1e-3, 0.01, 0.2618, 1.0, math.pi / 2], ids=["1e-3", "0.01", "15deg", "1rad", "90deg"])
+@pytest.mark.parametrize(
+    "theta", [1e-3, 0.01, 0.2618, 1.0, math.pi / 2], ids=["1e-3", "0.01", "15deg", "1rad", "90deg"]
+)
 def test_tipping_integral_closed_form_matches_quadrature(theta):
     """∫₀^θ dφ/√(sin φ) in elliptic closed form equals adaptive quadrature with the √φ singularity as a weight, 1e−13 rel."""
-    reference = quad(lambda p: math.sqrt(p / math.sin(p)) if p else 1.0, 0.0, theta, weight="alg", wvar=(-0.5, 0.0), epsabs=0, epsrel=1e-13)[0]
+    reference = quad(
+        lambda p: math.sqrt(p / math.sin(p)) if p else 1.0,
+        0.0,
+        theta,
+        weight="alg",
+        wvar=(-0.5, 0.0),
+        epsabs=0,
+        epsrel=1e-13,
+    )[0]
     assert abs(float(tipping_integral(theta)) / reference - 1) <= 1e-13
 
 
 def test_small_stop_angle_is_uniform_angular_acceleration():
     """θ_s → 0: t_stop → √(2 I θ_s / τ), the constant-acceleration time, within θ_s² rel."""
     theta_s = 0.05
-    out = _evaluate(["t_stop", "inertia", "tau_net"], effects=["rotation_dynamics"], m_L=3.0, m_R=1.0, x_p=1.7, theta_s=theta_s)
+    out = _evaluate(
+        ["t_stop", "inertia", "tau_net"], effects=["rotation_dynamics"], m_L=3.0, m_R=1.0, x_p=1.7, theta_s=theta_s
+    )
     expected = math.sqrt(2 * float(out["inertia"]) * math.radians(theta_s) / float(out["tau_net"]))
     assert abs(float(out["t_stop"]) / expected - 1) <= math.radians(theta_s) ** 2
 
@@ -498,8 +529,15 @@ def test_rotation_with_the_bar_matches_the_integrated_motion(m_L, m_R, x_p, m_b,
     t_stop and ω_stop agree with the integrated ODE within 1e−9 rel."""
     solution, _, inertia = _integrate_to_the_stop(m_L, m_R, x_p, theta_s, m_b)
     t_event, omega_event = solution.t_events[0][0], solution.y_events[0][0][1]
-    out = _evaluate(["t_stop", "omega_stop", "inertia"], effects=["bar_mass", "rotation_dynamics"],
-                    m_L=m_L, m_R=m_R, x_p=x_p, m_b=m_b, theta_s=theta_s)
+    out = _evaluate(
+        ["t_stop", "omega_stop", "inertia"],
+        effects=["bar_mass", "rotation_dynamics"],
+        m_L=m_L,
+        m_R=m_R,
+        x_p=x_p,
+        m_b=m_b,
+        theta_s=theta_s,
+    )
     assert abs(float(out["inertia"]) / inertia - 1) <= 4 * EPS
     assert abs(float(out["t_stop"]) / t_event - 1) <= 1e-9
     assert abs(float(out["omega_stop"]) / omega_event - 1) <= 1e-9
@@ -533,8 +571,18 @@ def test_rotation_with_a_vanishing_bar_is_the_massless_rotation(m_b):
 
 @pytest.mark.parametrize(
     "inputs",
-    [{"x_p": -0.01}, {"x_p": 2.01}, {"m_L": 0.0}, {"m_R": -1.0}, {"balance_tolerance": -1e-3}, {"m_b": -0.1},
-     {"theta_s": 0.0}, {"theta_s": 90.5}, {"x_p": float("nan")}, {"m_L": float("inf")}],
+    [
+        {"x_p": -0.01},
+        {"x_p": 2.01},
+        {"m_L": 0.0},
+        {"m_R": -1.0},
+        {"balance_tolerance": -1e-3},
+        {"m_b": -0.1},
+        {"theta_s": 0.0},
+        {"theta_s": 90.5},
+        {"x_p": float("nan")},
+        {"m_L": float("inf")},
+    ],
     ids=["x_p<0", "x_p>l", "m_L=0", "m_R<0", "tolerance<0", "m_b<0", "theta_s=0", "theta_s>90", "x_p=nan", "m_L=inf"],
 )
 def test_invalid_input_raises_naming_the_parameter(inputs):

@@ -6,6 +6,7 @@ from file:// a folder shows a listing, not its index.html), and a `#fragment` mu
 in the target page. Pages make no request outside the site; only links a reader follows
 (`<a href>`) may point to the web, and those are not fetched.
 """
+
 from __future__ import annotations
 
 import re
@@ -15,8 +16,8 @@ from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
 import pytest
-
 from browser import ROOT
+
 from sitegen.content.pages import discover_pages
 
 PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
@@ -168,7 +169,9 @@ def test_checker_finds_each_kind_of_broken_link(tmp_path):
     """The checker itself: a missing file, a missing anchor, a folder, an escape, an absolute
     path and an outside resource are each reported; good links are not."""
     (tmp_path / "assets").mkdir()
-    (tmp_path / "assets" / "x.css").write_text("a { background: url(missing.png); } b { background: url('../ok.html'); }")
+    (tmp_path / "assets" / "x.css").write_text(
+        "a { background: url(missing.png); } b { background: url('../ok.html'); }"
+    )
     (tmp_path / "ok.html").write_text('<p id="here">ok</p>')
     (tmp_path / "page.html").write_text(
         '<a href="ok.html#here">fine</a>\n<a href="#top" id="top">fine</a>\n<a href="https://example.org/">web</a>\n'

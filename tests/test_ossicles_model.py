@@ -1,4 +1,5 @@
 """K1 (middle-ear ossicle lever): exact rationals, the two ledgers kept apart, the matched load and the effects."""
+
 from __future__ import annotations
 
 import math
@@ -32,8 +33,14 @@ def _exact(A_TM, A_FP, ell, spl_pressure, load) -> dict[str, Fraction]:
         return 4 * Z1 * Z2 / (Z1 + Z2) ** 2
 
     return {
-        "A_r": A_r, "G": ell * A_r, "p_OW": ell * A_r * Fraction(spl_pressure), "Z_c": Z_c, "Z_ref": Z_ref,
-        "T0": 100 * T(Z_a, Z_c), "T1": 100 * T(Z_a, Z_ref), "ell_match_squared": Z_c / (Z_a * A_r),
+        "A_r": A_r,
+        "G": ell * A_r,
+        "p_OW": ell * A_r * Fraction(spl_pressure),
+        "Z_c": Z_c,
+        "Z_ref": Z_ref,
+        "T0": 100 * T(Z_a, Z_c),
+        "T1": 100 * T(Z_a, Z_ref),
+        "ell_match_squared": Z_c / (Z_a * A_r),
     }
 
 
@@ -50,11 +57,23 @@ POINTS = [
 # --- the readouts at the defaults ----------------------------------------------------------------------------
 
 DEFAULT_READOUTS = [
-    ("A_r", WATER, "17.19"), ("G", WATER, "22.34"), ("G_dB", WATER, "26.98"), ("p_TM", WATER, "0.0200"),
-    ("p_OW", WATER, "0.447"), ("T0", WATER, "0.1117"), ("T0_dB", WATER, "\u221229.52"), ("T1", WATER, "3.19"),
-    ("T1_dB", WATER, "\u221214.96"), ("ell_match", WATER, "14.43"), ("T0", COCHLEA, "2.4183"),
-    ("T0_dB", COCHLEA, "\u221216.16"), ("T1", COCHLEA, "51.26"), ("T1_dB", COCHLEA, "\u22122.90"),
-    ("ell_match", COCHLEA, "3.08"), ("Z_c", COCHLEA, "67520"), ("Z_c", WATER, "1479332"),
+    ("A_r", WATER, "17.19"),
+    ("G", WATER, "22.34"),
+    ("G_dB", WATER, "26.98"),
+    ("p_TM", WATER, "0.0200"),
+    ("p_OW", WATER, "0.447"),
+    ("T0", WATER, "0.1117"),
+    ("T0_dB", WATER, "\u221229.52"),
+    ("T1", WATER, "3.19"),
+    ("T1_dB", WATER, "\u221214.96"),
+    ("ell_match", WATER, "14.43"),
+    ("T0", COCHLEA, "2.4183"),
+    ("T0_dB", COCHLEA, "\u221216.16"),
+    ("T1", COCHLEA, "51.26"),
+    ("T1_dB", COCHLEA, "\u22122.90"),
+    ("ell_match", COCHLEA, "3.08"),
+    ("Z_c", COCHLEA, "67520"),
+    ("Z_c", WATER, "1479332"),
 ]
 
 
@@ -137,7 +156,9 @@ def test_the_transformer_lifts_water_transmission_from_minus_29_5_to_minus_15_dB
 
 
 @pytest.mark.parametrize(
-    "Z", [1e-100, 1e-5, 1.0, Z_AIR, 67520.0, Z_WATER, 3.7e12, 1e150], ids=["1e-100", "1e-5", "1", "Z_air", "Z_cochlea", "Z_water", "3.7e12", "1e150"]
+    "Z",
+    [1e-100, 1e-5, 1.0, Z_AIR, 67520.0, Z_WATER, 3.7e12, 1e150],
+    ids=["1e-100", "1e-5", "1", "Z_air", "Z_cochlea", "Z_water", "3.7e12", "1e150"],
 )
 def test_equal_impedances_transmit_everything_exactly(Z):
     """Z₁ = Z₂ gives T = 1.0 exactly (4Z·Z and (2Z)² round to the same double)."""
@@ -166,8 +187,11 @@ def test_zero_db_input_is_fine():
 def _random_inputs(seed: int, n: int = 300):
     rng = np.random.default_rng(seed)
     return {
-        "A_TM": rng.uniform(20, 90, n), "A_FP": rng.uniform(1.5, 5.0, n), "ell": rng.uniform(1.0, 3.0, n),
-        "SPL": rng.uniform(0, 120, n), "load": rng.integers(0, 2, n).astype(float),
+        "A_TM": rng.uniform(20, 90, n),
+        "A_FP": rng.uniform(1.5, 5.0, n),
+        "ell": rng.uniform(1.0, 3.0, n),
+        "SPL": rng.uniform(0, 120, n),
+        "load": rng.integers(0, 2, n).astype(float),
     }
 
 
@@ -251,8 +275,17 @@ def test_piston_spans_are_the_effective_diameters(output, area):
 
 @pytest.mark.parametrize(
     "inputs",
-    [{"A_TM": 0.0}, {"A_TM": -5.0}, {"A_FP": 0.0}, {"ell": 0.0}, {"ell": -1.3}, {"load": 0.5}, {"load": 2.0},
-     {"SPL": float("nan")}, {"A_FP": float("inf")}],
+    [
+        {"A_TM": 0.0},
+        {"A_TM": -5.0},
+        {"A_FP": 0.0},
+        {"ell": 0.0},
+        {"ell": -1.3},
+        {"load": 0.5},
+        {"load": 2.0},
+        {"SPL": float("nan")},
+        {"A_FP": float("inf")},
+    ],
     ids=["A_TM=0", "A_TM<0", "A_FP=0", "ell=0", "ell<0", "load=0.5", "load=2", "SPL=nan", "A_FP=inf"],
 )
 def test_invalid_input_raises_naming_the_parameter(inputs):

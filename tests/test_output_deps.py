@@ -3,6 +3,7 @@
 The build tabulates an output only over its deps (spec §0.2), so a missing dep freezes a slider's effect and
 a superfluous one wastes table bytes.
 """
+
 from __future__ import annotations
 
 import functools
@@ -10,21 +11,24 @@ import functools
 import numpy as np
 import pytest
 
-from sitegen.registry import builtin_registry
 from sitegen.physics.base import Param
+from sitegen.registry import builtin_registry
 
 MODELS = builtin_registry().models
 
 POINTS = 16  # random valid points per check
 SPAN = 5.0  # sample each domain within [-SPAN, SPAN]
 
+
 def _effect_sets(model, output) -> list[frozenset[str]]:
     """The effect sets an output's deps are checked under: the effects it needs (its own and those of
     its parameters), and that set plus each effect that changes its deps (`deps_with`)."""
     declared = model.output(output.name)
     base = frozenset(e for e in (declared.effect, *(model.param(d).effect for d in declared.deps)) if e)
-    extra = [base | {effect} | {model.param(d).effect for d in deps if model.param(d).effect}
-             for effect, deps in declared.deps_with]
+    extra = [
+        base | {effect} | {model.param(d).effect for d in deps if model.param(d).effect}
+        for effect, deps in declared.deps_with
+    ]
     return list(dict.fromkeys([base, *extra]))
 
 
@@ -75,7 +79,7 @@ def _params_that_change(model, output: str, effects: frozenset[str], seed: int) 
     return _group_changes(model, effects, seed)[output]
 
 
-@functools.lru_cache(maxsize=None)  # the outputs of a group, and both tests of an output, read the same counts
+@functools.cache  # the outputs of a group, and both tests of an output, read the same counts
 def _group_changes(model, effects: frozenset[str], seed: int) -> dict[str, dict[str, int]]:
     """_params_that_change for every output of the group (model, effects)."""
     outputs = GROUPS[model.name, effects]
@@ -111,7 +115,8 @@ def test_output_ignores_parameters_outside_its_deps(model, output, effects):
 THRESHOLD_MODELS = {"bubble"}
 THRESHOLD_PHRASES = {("acoustic_energy", "validity")}
 RESPONDING_CASES = [
-    case for case in CASES
+    case
+    for case in CASES
     if case.values[0].name not in THRESHOLD_MODELS and (case.values[0].name, case.values[1]) not in THRESHOLD_PHRASES
 ]
 

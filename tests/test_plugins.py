@@ -2,6 +2,7 @@
 package's entry point (tests/plugins/swing, installed into a folder on sys.path as pip installs it) and
 the book's models/ folder (tests/plugins/book/models/pendulum). What the cache recomputes when one of
 them changes, and where an author's code is blamed when it fails."""
+
 from __future__ import annotations
 
 import shutil
@@ -18,15 +19,32 @@ from sitegen.registry import builtin_registry, load_registry
 
 HERE = Path(__file__).resolve().parent
 PLUGINS = HERE / "plugins"
-PENDULUM_SCENE_LINE = 8  # content/index.md of the plugin book: the pendulum scene's `model:` line (its fence is the line before)
+PENDULUM_SCENE_LINE = (
+    8  # content/index.md of the plugin book: the pendulum scene's `model:` line (its fence is the line before)
+)
 
 
 @pytest.fixture(scope="session")
 def swing_installed(tmp_path_factory) -> Path:
     """tests/plugins/swing installed by pip into a folder (with its dist-info and entry point)."""
     target = tmp_path_factory.mktemp("swing") / "site"
-    subprocess.run([sys.executable, "-m", "pip", "install", "--quiet", "--no-deps", "--no-build-isolation", "--no-compile",
-                    "--disable-pip-version-check", "--target", str(target), str(PLUGINS / "swing")], check=True)
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "install",
+            "--quiet",
+            "--no-deps",
+            "--no-build-isolation",
+            "--no-compile",
+            "--disable-pip-version-check",
+            "--target",
+            str(target),
+            str(PLUGINS / "swing"),
+        ],
+        check=True,
+    )
     return target
 
 
@@ -105,14 +123,19 @@ def test_editing_a_helper_of_the_book_model_recomputes_its_scenes(book):
     build(book, progress=None)
     helper = book.root / "models" / "pendulum" / "swing_time.py"
     helper.write_text(helper.read_text().replace("2 * np.pi", "2.0 * np.pi"))
-    assert _statuses(build(book, progress=None)) == {"index#pendulum": "computed: model code changed", "index#swing": "cached"}
+    assert _statuses(build(book, progress=None)) == {
+        "index#pendulum": "computed: model code changed",
+        "index#swing": "cached",
+    }
 
 
 def test_editing_the_installed_model_recomputes_only_its_scenes(book, swing):
     """An edit to the package's module recomputes the swing's scene (the pendulum's stays cached)."""
     build(book, progress=None)
     module = swing / "__init__.py"
-    module.write_text(module.read_text().replace('("m", "k"), decimals=3),\n    )', '("m", "k"), decimals=4),\n    )') + "# edited\n")
+    module.write_text(
+        module.read_text().replace('("m", "k"), decimals=3),\n    )', '("m", "k"), decimals=4),\n    )') + "# edited\n"
+    )
     _forget("sitegen_swing")
     report = build(book, progress=None)
     assert _statuses(report) == {"index#pendulum": "cached", "index#swing": "computed: model code changed"}
@@ -124,19 +147,26 @@ def test_adding_a_model_recomputes_nothing(book):
     build(book, progress=None)
     shutil.copytree(book.root / "models" / "pendulum", book.root / "models" / "pendulum2")
     for path in (book.root / "models" / "pendulum2").glob("*.py"):
-        path.write_text(path.read_text().replace('"pendulum"', '"pendulum2"').replace("class Pendulum(", "class Pendulum2("))
+        path.write_text(
+            path.read_text().replace('"pendulum"', '"pendulum2"').replace("class Pendulum(", "class Pendulum2(")
+        )
     (book.root / "models" / "pendulum2" / "__init__.py").write_text(
         "from .figure import PendulumFigure\nfrom .model import Pendulum2\n\n"
-        'MODELS = {"pendulum2": Pendulum2}\nFIGURES = {"pendulum2": PendulumFigure()}\n')
+        'MODELS = {"pendulum2": Pendulum2}\nFIGURES = {"pendulum2": PendulumFigure()}\n'
+    )
     report = build(book, progress=None)
     assert report.computed == 0 and _statuses(report) == {"index#pendulum": "cached", "index#swing": "cached"}
 
 
-@pytest.mark.parametrize("model, own, others", [
-    ("collision", "sitegen.models.collision.model", ("chain", "bubble", "impulse")),
-    ("chain", "sitegen.models.chain.integrators", ("collision", "bubble")),  # the chain's accuracy reference
-    ("bubble", "sitegen.models.bubble.kernel_march", ("chain", "collision")),
-], ids=["collision", "chain", "bubble"])
+@pytest.mark.parametrize(
+    "model, own, others",
+    [
+        ("collision", "sitegen.models.collision.model", ("chain", "bubble", "impulse")),
+        ("chain", "sitegen.models.chain.integrators", ("collision", "bubble")),  # the chain's accuracy reference
+        ("bubble", "sitegen.models.bubble.kernel_march", ("chain", "collision")),
+    ],
+    ids=["collision", "chain", "bubble"],
+)
 def test_a_built_in_model_key_covers_its_own_files_and_no_other_model(model, own, others):
     """The built-in model's key is made of the modules it imports: its plugin's, the framework's, never another model's."""
     modules = source_hashes(frozenset({builtin_registry().models[model].__module__}))
@@ -152,14 +182,17 @@ def test_a_name_defined_twice_is_an_error_naming_both(book):
     folder = book.root / "models" / "collision"
     shutil.copytree(book.root / "models" / "pendulum", folder)
     (folder / "__init__.py").write_text((folder / "__init__.py").read_text().replace('"pendulum"', '"collision"'))
-    (folder / "model.py").write_text((folder / "model.py").read_text().replace('name = "pendulum"', 'name = "collision"'))
+    (folder / "model.py").write_text(
+        (folder / "model.py").read_text().replace('name = "pendulum"', 'name = "collision"')
+    )
     with pytest.raises(BuildFailed) as failure:
         build(book, progress=None)
     assert [str(e) for e in failure.value.errors] == [
         "models/collision/figure.py:6: figure 'collision' is defined twice: by built-in sitegen.models.collision "
         "and by models/collision (the book)",
         "models/collision/model.py:7: model 'collision' is defined twice: by built-in sitegen.models.collision "
-        "and by models/collision (the book)"]
+        "and by models/collision (the book)",
+    ]
 
 
 def test_an_import_error_in_a_book_model_is_reported_at_its_line_and_at_the_scene(book):
@@ -182,29 +215,38 @@ def test_a_syntax_error_in_a_book_model_is_reported_at_its_line(book):
     helper.write_text(helper.read_text().replace("return 2 * np.pi", "return 2 * * np.pi"))
     with pytest.raises(BuildFailed) as failure:
         build(book, progress=None)
-    assert "models/pendulum/swing_time.py:7: models/pendulum (the book) cannot be loaded: SyntaxError: invalid syntax" in \
-        [str(e) for e in failure.value.errors]
+    assert (
+        "models/pendulum/swing_time.py:7: models/pendulum (the book) cannot be loaded: SyntaxError: invalid syntax"
+        in [str(e) for e in failure.value.errors]
+    )
 
 
 def test_a_model_missing_a_declaration_is_an_error_at_its_class(book):
     """A model class without outputs is reported where the class is defined."""
     model = book.root / "models" / "pendulum" / "model.py"
     text = model.read_text()
-    model.write_text(text[: text.index("    outputs = (")] + text[text.index("    def _evaluate"):])
+    model.write_text(text[: text.index("    outputs = (")] + text[text.index("    def _evaluate") :])
     with pytest.raises(BuildFailed) as failure:
         build(book, progress=None)
-    assert "models/pendulum/model.py:7: models/pendulum (the book): model Pendulum declares no outputs (see the Model class)" in \
-        [str(e) for e in failure.value.errors]
+    assert (
+        "models/pendulum/model.py:7: models/pendulum (the book): model Pendulum declares no outputs (see the Model class)"
+        in [str(e) for e in failure.value.errors]
+    )
 
 
 @pytest.mark.parametrize("jobs", [1, 2], ids=["serial", "worker-processes"])
 def test_an_exception_in_a_book_model_names_its_line_and_the_scene(book, jobs):
     """A bug in the author's helper: the message names the helper's line and the scene, not "internal error"."""
     helper = book.root / "models" / "pendulum" / "swing_time.py"
-    helper.write_text(helper.read_text().replace('    """T = 2π √(L/g)."""\n',
-                                                 '    """T = 2π √(L/g)."""\n    raise RuntimeError("the bob fell off")\n'))
+    helper.write_text(
+        helper.read_text().replace(
+            '    """T = 2π √(L/g)."""\n', '    """T = 2π √(L/g)."""\n    raise RuntimeError("the bob fell off")\n'
+        )
+    )
     config = BuildConfig(book.root, book.content, book.out, cache=None, jobs=jobs, book=book.book)
     with pytest.raises(SceneCrashed) as crash:
         build(config, progress=None)
-    assert str(crash.value) == (f"content/index.md:{PENDULUM_SCENE_LINE - 1}: scene 'pendulum': models/pendulum/swing_time.py:7: "
-                                "RuntimeError: the bob fell off (while tabulating)")
+    assert str(crash.value) == (
+        f"content/index.md:{PENDULUM_SCENE_LINE - 1}: scene 'pendulum': models/pendulum/swing_time.py:7: "
+        "RuntimeError: the bob fell off (while tabulating)"
+    )

@@ -3,6 +3,7 @@ built-in model): the open page follows a prose edit by itself, keeping its scrol
 scene's state; a build error shows over the last good page with its file:line and goes when fixed;
 an edit to the book's model recomputes only that model's scene; the reload script is in the served
 pages only, never in build/; the server listens on 127.0.0.1 and serves nothing outside the output."""
+
 from __future__ import annotations
 
 import http.client
@@ -13,9 +14,9 @@ import time
 from pathlib import Path
 
 import pytest
+from preview import WatchServer
 from scipy.integrate import quad
 
-from preview import WatchServer
 from sitegen.newbook import new_book
 
 OTHER_PAGE = """+++
@@ -77,9 +78,12 @@ def _period(theta_deg: float, length: float = 1.0, gravity: float = 9.81) -> flo
 def test_the_server_listens_on_loopback_and_serves_nothing_outside(server, book):
     """127.0.0.1 unless told otherwise; '..' (plain or encoded) gets a 404, never the book's files."""
     assert server.origin.startswith("http://127.0.0.1:")
-    for path, name in (("/../book.toml", "book.toml"), ("/%2e%2e/book.toml", "book.toml"),
-                       ("/assets/../../content/pendulum.md", "content/pendulum.md"),
-                       ("/..%2fmodels/pendulum/model.py", "models/pendulum/model.py")):
+    for path, name in (
+        ("/../book.toml", "book.toml"),
+        ("/%2e%2e/book.toml", "book.toml"),
+        ("/assets/../../content/pendulum.md", "content/pendulum.md"),
+        ("/..%2fmodels/pendulum/model.py", "models/pendulum/model.py"),
+    ):
         status, body = _get(server, path)
         assert status == 404 and (book / name).read_bytes()[:40] not in body, path
 
@@ -107,8 +111,12 @@ def test_a_prose_edit_shows_in_the_open_page_by_itself(server, book, chromium):
     scroll = page.evaluate("window.scrollY")
     assert scroll > 300
     start = time.monotonic()
-    _edit(book / "content" / "pendulum.md", "Edit this page,", "A sentence added while the page was open. Edit this page,")
-    page.wait_for_function("document.body.innerText.includes('A sentence added while the page was open.')", timeout=HANG)
+    _edit(
+        book / "content" / "pendulum.md", "Edit this page,", "A sentence added while the page was open. Edit this page,"
+    )
+    page.wait_for_function(
+        "document.body.innerText.includes('A sentence added while the page was open.')", timeout=HANG
+    )
     seconds = time.monotonic() - start
     page.wait_for_load_state("load")
     page.wait_for_timeout(100)  # the scroll is put back once the page has loaded
@@ -130,7 +138,9 @@ def test_a_build_error_shows_over_the_last_good_page_and_goes_when_fixed(server,
     _edit(source, SLIDER, SLIDER.replace("175", "190"))
     overlay = page.wait_for_selector("#sitegen-build-errors", timeout=10_000)
     text = overlay.inner_text()
-    assert f"content/pendulum.md:{line}: scene 'pendulum': slider 'theta0' max 190 exceeds the model's bound 179" in text, text
+    assert (
+        f"content/pendulum.md:{line}: scene 'pendulum': slider 'theta0' max 190 exceeds the model's bound 179" in text
+    ), text
     assert page.evaluate("document.querySelectorAll('[data-scene=\"pendulum\"]').length") == 1  # the last good page
     page.screenshot(path=str(book.parent / "overlay.png"))
     with page.expect_navigation(wait_until="load", timeout=10_000):  # the page reloads once the build succeeds
@@ -144,8 +154,11 @@ def test_an_edit_to_the_books_model_recomputes_its_scene_only(server, book):
     """After the model's file changes, the rebuild computes the pendulum's scene and takes the
     collision's from the cache; the page shows the model's new digits."""
     model = book / "models" / "pendulum" / "model.py"
-    _edit(model, 'Output("T", "period T", "s", ("theta0", "L", "g"), decimals=3)',
-          'Output("T", "period T", "s", ("theta0", "L", "g"), decimals=4)')
+    _edit(
+        model,
+        'Output("T", "period T", "s", ("theta0", "L", "g"), decimals=3)',
+        'Output("T", "period T", "s", ("theta0", "L", "g"), decimals=4)',
+    )
     printed = server.lines_until("built models/pendulum/model.py", timeout=60)
     scenes = [line.strip() for line in printed if line.strip().startswith("[")]
     assert len(scenes) == 1 and " pendulum#pendulum " in scenes[0] and "computed" in scenes[0], printed
@@ -167,10 +180,14 @@ def test_the_event_stream_sends_the_state_at_once(server):
     assert state["errors"] == [] and state["build"] >= 1
 
 
-@pytest.mark.parametrize("arguments, message", [
-    (["--dir", "build"], "serve --watch serves the book's output folder; leave out --dir"),
-    ([], "no book.toml in"),
-], ids=["with-dir", "outside-a-book"])
+@pytest.mark.parametrize(
+    "arguments, message",
+    [
+        (["--dir", "build"], "serve --watch serves the book's output folder; leave out --dir"),
+        ([], "no book.toml in"),
+    ],
+    ids=["with-dir", "outside-a-book"],
+)
 def test_watch_needs_a_book_and_no_dir(tmp_path, monkeypatch, capsys, arguments, message):
     """--watch builds a book: it needs one (book.toml here) and serves its output folder, no other."""
     from sitegen.cli import main

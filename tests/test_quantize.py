@@ -1,4 +1,5 @@
 """Display formatting (spec §0.3): integer quanta, unsigned zero, U+2212 minus, exact round trip."""
+
 from __future__ import annotations
 
 from decimal import Decimal
@@ -98,7 +99,7 @@ def test_quantize_keeps_the_shape_of_its_input():
 def test_format_quantum_round_trips(decimals):
     """format_quantum(q, d), read back as a decimal (− → -) and scaled by 10^d, is exactly q, for many quanta."""
     rng = np.random.default_rng(1000 + decimals)
-    quanta = np.concatenate([rng.integers(-10**9, 10**9, 2000), np.arange(-1100, 1101)])
+    quanta = np.concatenate([rng.integers(-(10**9), 10**9, 2000), np.arange(-1100, 1101)])
     for q in quanta.tolist():
         text = format_quantum(q, decimals)
         assert "-" not in text and text.count(MINUS) == (q < 0)

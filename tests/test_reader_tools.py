@@ -7,6 +7,7 @@
 - search, which loads its index as a classic script, from disk as over http;
 - without JavaScript, the controls are hidden and a line says that the figures show their defaults.
 """
+
 from __future__ import annotations
 
 import json
@@ -15,8 +16,8 @@ from decimal import Decimal
 from urllib.parse import unquote
 
 import pytest
-
 from browser import SiteServer, book, front, load, logged_page, move, read_state, scene_problems
+
 from sitegen.compute.grid import CHOICE
 from sitegen.site.navigation import reading_order
 
@@ -62,7 +63,10 @@ def shared(chromium, built_site):
 
 
 def _in_view(page, dom_id: str) -> bool:
-    return page.evaluate("id => { const r = document.getElementById(id).getBoundingClientRect(); return r.top >= -2 && r.top < innerHeight; }", dom_id)
+    return page.evaluate(
+        "id => { const r = document.getElementById(id).getBoundingClientRect(); return r.top >= -2 && r.top < innerHeight; }",
+        dom_id,
+    )
 
 
 def _wait_for_hash(page, prefix: str) -> str:
@@ -95,7 +99,9 @@ def test_scene_state_round_trips_through_its_link(fresh, shared, scene):
         if axis.kind == CHOICE:
             assert unquote(text) == axis.labels[moved.control(param).index], (param, text)
         else:
-            assert abs(Decimal(unquote(text)) - Decimal(str(float(axis.stop(moved.control(param).index))))) < Decimal("1e-6"), (param, text)
+            assert abs(Decimal(unquote(text)) - Decimal(str(float(axis.stop(moved.control(param).index))))) < Decimal(
+                "1e-6"
+            ), (param, text)
 
     opened, opened_errors = fresh(page.url)
     front(page).click(f"#{scene.dom_id} button[data-reset]")  # the shared page back on the defaults
@@ -133,12 +139,16 @@ def test_a_written_link_opens_the_collision_as_asked(fresh):
     assert not errors
 
 
-@pytest.mark.parametrize("fragment", [
-    "collision:m1=abc,e=7,v1i=,zz=1,v2i=%E0%A4",  # not a number, off the grid, empty, unknown, malformed
-    "collision:m1=1.05,e=-0,m2=0x10",  # between stops, a sign, hexadecimal
-    "kinetic:sampling=nonsense,species=,N=1e9",  # no such option, empty, out of range
-    "nosuchscene:m1=2",
-], ids=["collision-garbage", "collision-near", "kinetic-garbage", "no-scene"])
+@pytest.mark.parametrize(
+    "fragment",
+    [
+        "collision:m1=abc,e=7,v1i=,zz=1,v2i=%E0%A4",  # not a number, off the grid, empty, unknown, malformed
+        "collision:m1=1.05,e=-0,m2=0x10",  # between stops, a sign, hexadecimal
+        "kinetic:sampling=nonsense,species=,N=1e9",  # no such option, empty, out of range
+        "nosuchscene:m1=2",
+    ],
+    ids=["collision-garbage", "collision-near", "kinetic-garbage", "no-scene"],
+)
 def test_bad_values_in_a_link_fall_back_to_the_defaults(fresh, built_site, fragment):
     """Each name that is no control and each value that is no stop of its control is ignored: the
     control keeps its default (e = −0 is the stop 0), with no error."""
@@ -191,7 +201,9 @@ def test_every_page_links_to_its_neighbours_and_the_whole_book(shared, name):
         [h.id, (h.querySelector('a.anchor') || {}).getAttribute?.('href') ?? null])""")
     assert headings and all(href == f"#{anchor}" for anchor, href in headings), headings
     sections = {h for h, _ in links if h.startswith("#")}
-    prose = page.evaluate("() => [...document.querySelectorAll('article h2[id], article h3[id]')].filter(h => !h.closest('nav')).map(h => h.id)")
+    prose = page.evaluate(
+        "() => [...document.querySelectorAll('article h2[id], article h3[id]')].filter(h => !h.closest('nav')).map(h => h.id)"
+    )
     assert sections == {f"#{anchor}" for anchor in prose}, "the current page's sections in the contents"
 
 

@@ -1,6 +1,7 @@
 """`sitegen review`: tables decoded and compared stop by stop, text diffs, and the whole review end to
 end — a changed model constant shows up as exactly that scene's figure and numbers, identical builds
 exit 0, and `--base REV` builds a git revision in a temporary worktree."""
+
 from __future__ import annotations
 
 import os
@@ -16,8 +17,8 @@ import pytest
 from sitegen.cli import main
 from sitegen.review import review_builds
 from sitegen.review.compare import text_diff
-from sitegen.review.figures import CHROMIUM
 from sitegen.review.decode import decode
+from sitegen.review.figures import CHROMIUM
 from sitegen.review.tables import compare_table
 from sitegen.review.tree import parse_page, text_lines
 
@@ -53,10 +54,14 @@ def _data(tables: dict, sliders=SLIDERS) -> dict:
 @pytest.mark.parametrize(
     "entry, expected",
     [
-        ({"axes": [0, 1], "shape": [3, 2], "d": 2, "q": [100, 200, 300, 400, 500, 600]},
-         [[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]]),
-        ({"axes": [0, 1], "shape": [3, 2], "d": 2, "q": [100, 100, 100, 100, 100, 100], "enc": "delta"},
-         [[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]]),
+        (
+            {"axes": [0, 1], "shape": [3, 2], "d": 2, "q": [100, 200, 300, 400, 500, 600]},
+            [[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]],
+        ),
+        (
+            {"axes": [0, 1], "shape": [3, 2], "d": 2, "q": [100, 100, 100, 100, 100, 100], "enc": "delta"},
+            [[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]],
+        ),
         ({"axes": [0], "shape": [3], "d": 0, "q": [1, None, 3], "special": "∞"}, [1.0, np.inf, 3.0]),
         ({"axes": [], "shape": [], "d": 3, "q": [1234]}, 1.234),
     ],
@@ -181,8 +186,14 @@ def two_builds(tmp_path_factory, tiny_built) -> tuple[Path, Path]:
 
 def _build_copy(root: Path, out: Path) -> Path:
     env = {**os.environ, "PYTHONPATH": str(root / "src"), "OPENBLAS_NUM_THREADS": "1"}
-    done = subprocess.run([sys.executable, "-m", "sitegen.cli", "build", "--root", str(root), "--out", str(out)],
-                          cwd=root, env=env, capture_output=True, text=True, check=False)
+    done = subprocess.run(
+        [sys.executable, "-m", "sitegen.cli", "build", "--root", str(root), "--out", str(out)],
+        cwd=root,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert done.returncode == 0, done.stderr
     out.with_suffix(".log").write_text(done.stdout)
     return out
@@ -297,8 +308,13 @@ caption: A pulse.
 
 
 def _git(repo: Path, *args: str) -> str:
-    done = subprocess.run(["git", "-c", "user.name=t", "-c", "user.email=t@example.org", *args],
-                          cwd=repo, capture_output=True, text=True, check=True)
+    done = subprocess.run(
+        ["git", "-c", "user.name=t", "-c", "user.email=t@example.org", *args],
+        cwd=repo,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     return done.stdout
 
 

@@ -1,4 +1,5 @@
 """The search index's text of a page: prose by section, never what is inside drawings, scripts or comments."""
+
 from __future__ import annotations
 
 from sitegen.site.search import page_sections

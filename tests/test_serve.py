@@ -2,6 +2,7 @@
 nothing outside it — not through '..' (plain, percent-encoded, mixed), an absolute path, a
 symbolic link, nor a folder listing. Traffic goes to the loopback address only.
 """
+
 from __future__ import annotations
 
 import http.client
@@ -13,7 +14,6 @@ import sys
 from pathlib import Path
 
 import pytest
-
 from preview import hears_ctrl_c
 
 SECRET = b"secret outside the site"
@@ -59,7 +59,12 @@ def server(site):
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
     process = subprocess.Popen(
         [sys.executable, "-m", "sitegen.cli", "serve", "--dir", str(site), "--port", "0"],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=site.parent, preexec_fn=hears_ctrl_c,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+        cwd=site.parent,
+        preexec_fn=hears_ctrl_c,
     )
     line = process.stdout.readline()
     assert line.startswith("serving "), (line, process.stderr.read() if process.poll() is not None else "")
@@ -101,8 +106,13 @@ def test_binds_loopback_only_by_default(server):
 def test_serves_the_files_of_its_folder(server, site):
     """Files come back byte for byte; / is the home page."""
     host, port, _ = server
-    for path, name in (("/index.html", "index.html"), ("/", "index.html"), ("/assets/sitegen.css", "assets/sitegen.css"),
-                       ("/sub/page.html", "sub/page.html"), ("/index.html?x=1#y", "index.html")):
+    for path, name in (
+        ("/index.html", "index.html"),
+        ("/", "index.html"),
+        ("/assets/sitegen.css", "assets/sitegen.css"),
+        ("/sub/page.html", "sub/page.html"),
+        ("/index.html?x=1#y", "index.html"),
+    ):
         status, body = get(host, port, path)
         assert (status, body) == (200, (site / name).read_bytes()), path
 
@@ -138,9 +148,17 @@ def test_missing_file_is_404(server):
 
 def test_nothing_to_serve_is_an_error(tmp_path):
     """A folder without index.html (no build yet) is refused with a hint, not served."""
-    done = subprocess.run([sys.executable, "-m", "sitegen.cli", "serve", "--dir", str(tmp_path), "--port", "0"],
-                          capture_output=True, text=True, timeout=60)
-    assert done.returncode == 1 and "build the book first (sitegen build)" in done.stderr and "Traceback" not in done.stderr
+    done = subprocess.run(
+        [sys.executable, "-m", "sitegen.cli", "serve", "--dir", str(tmp_path), "--port", "0"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert (
+        done.returncode == 1
+        and "build the book first (sitegen build)" in done.stderr
+        and "Traceback" not in done.stderr
+    )
 
 
 def test_port_in_use_is_an_error_without_traceback(site):
@@ -149,8 +167,12 @@ def test_port_in_use_is_an_error_without_traceback(site):
         taken.bind(("127.0.0.1", 0))
         taken.listen()
         port = taken.getsockname()[1]
-        done = subprocess.run([sys.executable, "-m", "sitegen.cli", "serve", "--dir", str(site), "--port", str(port)],
-                              capture_output=True, text=True, timeout=60)
+        done = subprocess.run(
+            [sys.executable, "-m", "sitegen.cli", "serve", "--dir", str(site), "--port", str(port)],
+            capture_output=True,
+            text=True,
+            timeout=60,
+        )
     assert done.returncode == 1 and "cannot serve on 127.0.0.1" in done.stderr and "Traceback" not in done.stderr
 
 

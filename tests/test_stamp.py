@@ -1,5 +1,6 @@
 """A rebuild with nothing changed stops at the stamp, without loading the libraries; any change to an
 input or to the output folder makes it build again."""
+
 from __future__ import annotations
 
 import subprocess
@@ -14,8 +15,9 @@ _PROBE = "import sys; from sitegen.cli import main; code = main(sys.argv[1:]); p
 
 
 def _build(root, *extra) -> str:
-    done = subprocess.run([sys.executable, "-c", _PROBE, "build", "--root", str(root), *extra],
-                          capture_output=True, text=True, check=True)
+    done = subprocess.run(
+        [sys.executable, "-c", _PROBE, "build", "--root", str(root), *extra], capture_output=True, text=True, check=True
+    )
     return done.stdout
 
 
@@ -43,7 +45,9 @@ def test_any_change_to_an_input_or_the_output_builds_again(stamped, capsys):
     changes = {
         "page": lambda: page.write_text(page.read_text() + "\nOne more sentence.\n"),
         "config": lambda: (root / "book.toml").write_text('author = "Someone else"\n'),
-        "a file in the models folder": lambda: (root / "models").mkdir() or (root / "models" / "notes.txt").write_text("x"),
+        "a file in the models folder": lambda: (
+            (root / "models").mkdir() or (root / "models" / "notes.txt").write_text("x")
+        ),
         "output edited": lambda: (out / "index.html").write_text("edited by hand"),
         "output removed": lambda: (out / "index.html").unlink(),
         "output added": lambda: (out / "stray.html").write_text("a file the build did not write"),

@@ -1,20 +1,21 @@
 """Structure-aware tabulation: declared exact forms are compiled into small expressions, proven
 against the model at build time, and a wrong claim fails the build at the scene's line."""
+
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.expression import shown
 from sitegen.compute.proof import proof_stops
+from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.structure import Structured
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import AuthorError, SourceLoc
-from sitegen.registry import builtin_registry
 from sitegen.physics.base import Model, Output, Param
 from sitegen.physics.structure import Coord, Poly, param
+from sitegen.registry import builtin_registry
 
 MODELS = builtin_registry().models
 
@@ -28,9 +29,12 @@ def _scene(lines: list[str], models=MODELS):
 
 
 COLLISION = [
-    "model: collision", "id: c",
-    "slider m1: 0.1..10 step 0.1 default 1", "slider m2: 0.1..10 step 0.1 default 2",
-    "slider v1i: -5..5 step 0.1 default 3", "slider v2i: -5..5 step 0.1 default -1",
+    "model: collision",
+    "id: c",
+    "slider m1: 0.1..10 step 0.1 default 1",
+    "slider m2: 0.1..10 step 0.1 default 2",
+    "slider v1i: -5..5 step 0.1 default 3",
+    "slider v2i: -5..5 step 0.1 default -1",
     "slider e: 0..1 step 0.01 default 1",
     "readouts: v1f v2f p_before p_after K_before K_after status",
 ]
@@ -73,8 +77,15 @@ class _Square(Model):
     outputs = (
         Output("right", "right", "", ("x",), structure=Poly(lambda c: c["x"] ** 2, ((param("x"), 2),))),
         Output("wrong", "wrong", "", ("x",), structure=Poly(lambda c: c["x"] ** 2, ((param("x"), 1),))),
-        Output("per_mass", "per mass", "", ("x", "m"),
-               structure=Poly(lambda c: c["x"] * c["inv_m"], ((param("x"), 1), (Coord("inv_m", ("m",), lambda m: 1 / m), 1)))),
+        Output(
+            "per_mass",
+            "per mass",
+            "",
+            ("x", "m"),
+            structure=Poly(
+                lambda c: c["x"] * c["inv_m"], ((param("x"), 1), (Coord("inv_m", ("m",), lambda m: 1 / m), 1))
+            ),
+        ),
     )
 
     def _evaluate(self, x, wanted, effects):

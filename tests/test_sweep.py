@@ -11,6 +11,7 @@ are outputs the page computes from a proven expression, which keep fixed decimal
 slider from its first to its last stop changes something a reader sees: a readout, a layer of the
 figure, or a note under it (the scale of a normalised figure).
 """
+
 from __future__ import annotations
 
 import itertools
@@ -20,8 +21,8 @@ import re
 
 import numpy as np
 import pytest
-
 from browser import FIGURES, BookScene, book, describe_stop, front, new_page, stop_inputs
+
 from sitegen.compute.structure import structured_pieces
 
 PAGES, SCENES = book()
@@ -106,8 +107,10 @@ def readout_problems(scene: BookScene, stops, seen: dict, values: dict[str, floa
     for readout in seen["readouts"]:
         name, text, output = readout["name"], readout["text"], outputs[readout["name"]]
         if text.startswith(DASH) and not (readout["title"].strip() and readout["described"].strip()):
-            problems.append(f"{name} shows {text!r} without a reason (title {readout['title']!r}, "
-                            f"described {readout['described']!r})")
+            problems.append(
+                f"{name} shows {text!r} without a reason (title {readout['title']!r}, "
+                f"described {readout['described']!r})"
+            )
         if output.is_text or text == output.special:
             continue
         if len(text) > WIDTH_BUDGET:
@@ -163,13 +166,25 @@ def digit_spread_problems(scene: BookScene, seen: list[dict], signed: set[str]) 
     problems = []
     computed = structured_pieces(scene.scene, [o.name for o in scene.scene.readouts])
     for output in scene.scene.readouts:
-        if output.is_text or output.name in signed or output.name in computed or (output.decimals == 0 and not output.digits):
+        if (
+            output.is_text
+            or output.name in signed
+            or output.name in computed
+            or (output.decimals == 0 and not output.digits)
+        ):
             continue
-        shown = {r["text"] for state in seen for r in state["readouts"] if r["name"] == output.name and r["text"] != output.special}
+        shown = {
+            r["text"]
+            for state in seen
+            for r in state["readouts"]
+            if r["name"] == output.name and r["text"] != output.special
+        }
         counts = {text: significant_digits(text) for text in shown if significant_digits(text)}
         if counts and max(counts.values()) - min(counts.values()) > DIGIT_SPREAD:
             fewest, most = min(counts, key=counts.get), max(counts, key=counts.get)
-            problems.append(f"{output.name} shows {fewest!r} and {most!r}: {counts[fewest]} and {counts[most]} significant digits")
+            problems.append(
+                f"{output.name} shows {fewest!r} and {most!r}: {counts[fewest]} and {counts[most]} significant digits"
+            )
     return problems
 
 
@@ -207,8 +222,14 @@ def test_every_slider_changes_what_a_reader_sees(scene_pages, scene):
     bases = [scene.defaults, *(tuple(rng.randrange(a.count) for a in scene.axes) for _ in range(3))]
     frozen, figure_frozen = [], []
     for i, axis in enumerate(scene.axes):
-        seen = [_see(scene_pages(scene), scene, [tuple(k if j == i else s for j, s in enumerate(base))
-                                                  for k in (0, axis.count - 1)]) for base in bases]
+        seen = [
+            _see(
+                scene_pages(scene),
+                scene,
+                [tuple(k if j == i else s for j, s in enumerate(base)) for k in (0, axis.count - 1)],
+            )
+            for base in bases
+        ]
         if all(_visible(low) == _visible(high) for low, high in seen):
             frozen.append(axis.param)
         if axis.param in drawn and all(_figure(low) == _figure(high) for low, high in seen):

@@ -2,6 +2,7 @@
 small scenes, and for scenes of up to 10^10 stops (computed from proven expressions) at every
 corner and edge of the slider box plus a large random sample, drawn independently of the build's
 own proof."""
+
 from __future__ import annotations
 
 from fractions import Fraction
@@ -12,8 +13,8 @@ import numpy as np
 import pytest
 
 from sitegen.build import BuildConfig, needed_outputs, resolve_book
-from sitegen.compute.quantize import SPECIAL
 from sitegen.compute.expression import shown
+from sitegen.compute.quantize import SPECIAL
 from sitegen.compute.structure import Structured
 from sitegen.compute.tabulate import tabulate_scene
 
@@ -35,9 +36,14 @@ def _exact_collision(m1, m2, v1i, v2i, e, **_):
     K_before = (m1 * v1i**2 + m2 * v2i**2) / 2
     K_after = (m1 * v1f**2 + m2 * v2f**2) / 2
     return {
-        "v1f": v1f, "v2f": v2f, "v_cm": V,
-        "p_before": m1 * v1i + m2 * v2i, "p_after": m1 * v1f + m2 * v2f,
-        "K_before": K_before, "K_after": K_after, "K_lost": K_before - K_after,
+        "v1f": v1f,
+        "v2f": v2f,
+        "v_cm": V,
+        "p_before": m1 * v1i + m2 * v2i,
+        "p_after": m1 * v1f + m2 * v2f,
+        "K_before": K_before,
+        "K_after": K_after,
+        "K_lost": K_before - K_after,
         "K_kept_pct": 100 * K_after / K_before if K_before else Fraction(100),
         "status": 0 if v1i > v2i else 1,
     }
@@ -48,8 +54,12 @@ def _exact_lever(m_L, m_R, x_p, balance_tolerance, **_):
     x_star = length * m_R / (m_L + m_R)
     state = 0 if abs(x_p - x_star) <= balance_tolerance else (1 if x_p > x_star else 2)
     return {
-        "tau_L": m_L * g * x_p, "tau_R": m_R * g * (length - x_p), "tau_net": g * (m_L * x_p - m_R * (length - x_p)),
-        "MA": x_p / (length - x_p) if x_p != length else None, "state": state, "x_star": x_star,
+        "tau_L": m_L * g * x_p,
+        "tau_R": m_R * g * (length - x_p),
+        "tau_net": g * (m_L * x_p - m_R * (length - x_p)),
+        "MA": x_p / (length - x_p) if x_p != length else None,
+        "state": state,
+        "x_star": x_star,
     }
 
 
@@ -75,7 +85,7 @@ def _checked_stops(scene) -> list[tuple[int, ...]]:
     ends = [sorted({0, c - 1}) for c in counts]
     stops = set(product(*ends))
     for i, count in enumerate(counts):
-        for corner in product(*(ends[:i] + ends[i + 1:])):
+        for corner in product(*(ends[:i] + ends[i + 1 :])):
             stops.update((*corner[:i], k, *corner[i:]) for k in range(count))
     rng = np.random.default_rng(20261121)  # not the build's seed: an independent sample
     stops.update(map(tuple, rng.integers(0, counts, size=(SAMPLE, len(counts))).tolist()))
@@ -138,6 +148,10 @@ def test_tables_cover_only_their_dependencies():
         for name, table in tabulate_scene(scene, needed_outputs(scene)).items():
             if isinstance(table, Structured):
                 continue
-            deps = scene.model.deps_of(name, scene.effects) if not name.startswith("~") else [a.param for a in scene.axes]
+            deps = (
+                scene.model.deps_of(name, scene.effects) if not name.startswith("~") else [a.param for a in scene.axes]
+            )
             assert {scene.axes[a].param for a in table.axes} <= set(deps), (scene.id, name)
-            assert table.quanta.size == (int(np.prod(table.shape)) * max(table.width, 1) if not table.summed_axes else table.shape[0])
+            assert table.quanta.size == (
+                int(np.prod(table.shape)) * max(table.width, 1) if not table.summed_axes else table.shape[0]
+            )

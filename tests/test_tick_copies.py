@@ -1,4 +1,5 @@
 """An axis' new ticks made by copies (render/tick_copies.py) draw the same bytes as matplotlib's own."""
+
 from __future__ import annotations
 
 import re
@@ -9,7 +10,7 @@ import sys
 # changed after the first ticks exist, labels set per tick and then more ticks needed, properties that matplotlib
 # does not pass from the first tick to new ones (an id, a rotation mode, a wrapped label), an rc setting that
 # differs between making the axes and drawing them, a layout measured then drawn, and a polar axes.
-FIGURE = r'''
+FIGURE = r"""
 import io, sys
 import matplotlib
 matplotlib.use("svg")
@@ -44,7 +45,7 @@ with plt.rc_context({"svg.hashsalt": "test", "svg.fonttype": "none"}):  # a pola
     fig.savefig(out, format="svg", metadata={"Date": None, "Creator": None})
 plt.close(fig)
 svg = out.getvalue()
-'''
+"""
 
 
 def test_copied_ticks_draw_the_bytes_of_ticks_built_afresh():
@@ -55,8 +56,9 @@ def test_copied_ticks_draw_the_bytes_of_ticks_built_afresh():
     from sitegen.render import tick_copies
 
     assert matplotlib.axis.Axis.get_major_ticks.__code__.co_filename == tick_copies.__file__  # copying is on here
-    built = subprocess.run([sys.executable, "-c", FIGURE + "sys.stdout.write(svg)"], capture_output=True, text=True,
-                           check=True).stdout
+    built = subprocess.run(
+        [sys.executable, "-c", FIGURE + "sys.stdout.write(svg)"], capture_output=True, text=True, check=True
+    ).stdout
     drawn: dict = {}
     exec(FIGURE, drawn)
     copied = drawn["svg"]

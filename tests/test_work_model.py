@@ -1,5 +1,6 @@
 """I3 (work of a spring vs drag, direct vs arc): closed forms against exact rationals and Gauss–Legendre line
 integrals, the hard cases of physics.md I3 and §11.4, the effects' vanishing limits, and the figure's shapes."""
+
 from __future__ import annotations
 
 import math
@@ -13,10 +14,20 @@ from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
-from sitegen.registry import builtin_registry
 from sitegen.models.work.model import CONSERVATIVE, PATH_DEPENDENT, QUADRATIC, Work
-from sitegen.models.work.paths import ARC, DIRECT, DRAG, G, SPRING, arc_length, arc_points, arc_velocity, line_integral_work
+from sitegen.models.work.paths import (
+    ARC,
+    DIRECT,
+    DRAG,
+    SPRING,
+    G,
+    arc_length,
+    arc_points,
+    arc_velocity,
+    line_integral_work,
+)
 from sitegen.models.work.shapes import ARROW_MAX, DRAG_SPACING, GRID_X, GRID_Y, JOIN_Y, WEDGE_VERTICES
+from sitegen.registry import builtin_registry
 from sitegen.site.assemble import readout_text
 
 MODELS = builtin_registry().models
@@ -75,7 +86,9 @@ def test_defaults_display_the_seed_readouts(inputs, output, expected):
     assert shown == expected
 
 
-@pytest.mark.parametrize("force, phrase", [(SPRING, "yes — conservative"), (DRAG, "no — depends on the path")], ids=["spring", "drag"])
+@pytest.mark.parametrize(
+    "force, phrase", [(SPRING, "yes — conservative"), (DRAG, "no — depends on the path")], ids=["spring", "drag"]
+)
 def test_verdict_phrase(force, phrase):
     """The verdict reads "yes — conservative" for the spring and "no — depends on the path" for drag."""
     labels = Work.output("verdict").labels
@@ -134,7 +147,14 @@ def _quadrature_error(path, ell0, n, split=True) -> float:
         (DIRECT, 0.5, 4, True, 4 * EPS),
         (DIRECT, 0.5, 32, True, 4 * EPS),
     ],
-    ids=["direct-l0=0-n=2", "direct-l0=0-n=32", "arc-l0=0-n=8", "arc-l0=0.5-n=32", "direct-l0=0.5-split-n=4", "direct-l0=0.5-split-n=32"],
+    ids=[
+        "direct-l0=0-n=2",
+        "direct-l0=0-n=32",
+        "arc-l0=0-n=8",
+        "arc-l0=0.5-n=32",
+        "direct-l0=0.5-split-n=4",
+        "direct-l0=0.5-split-n=32",
+    ],
 )
 def test_gauss_legendre_converges_where_physics_md_says(path, ell0, n, split, tolerance):
     """§11.4 (x_c = 0.5): ℓ0 = 0 exact for n ≥ 2 direct, 3e−15 at n = 8 on the arc; ℓ0 = 0.5 arc 4e−16 at n = 32;
@@ -253,7 +273,9 @@ def test_drag_verdict_comes_from_the_force_not_from_comparing_paths(h):
 
 
 @pytest.mark.parametrize("h", [0.0, 0.25, 1.0, 2.0, 4.0], ids=["h=0", "h=0.25", "h=1", "h=2", "h=4"])
-@pytest.mark.parametrize("x_c, ell0", [(0.5, None), (-0.35, 0.5), (0.8, 1.3)], ids=["x_c=0.5", "x_c=-0.35-l0=0.5", "x_c=0.8-l0=1.3"])
+@pytest.mark.parametrize(
+    "x_c, ell0", [(0.5, None), (-0.35, 0.5), (0.8, 1.3)], ids=["x_c=0.5", "x_c=-0.35-l0=0.5", "x_c=0.8-l0=1.3"]
+)
 def test_spring_work_is_the_same_on_both_paths(h, x_c, ell0):
     """Spring: |W_arc − W_dir| ≤ 1e−12 J by (adaptive) quadrature, the readouts are bitwise equal, the verdict is yes."""
     arc = line_integral_work(SPRING, ARC, h, k=2.5, x_c=x_c, ell0=ell0, tol=1e-15)
@@ -268,9 +290,19 @@ def test_verdict_depends_on_nothing_but_the_force():
     """Over 2000 random points with every effect on, the verdict is CONSERVATIVE exactly when force is spring."""
     rng = np.random.default_rng(7)
     n = 2000
-    inputs = {"force": rng.integers(0, 2, n), "path": rng.integers(0, 2, n), "k": rng.uniform(0.1, 5, n),
-              "x_c": rng.uniform(-2, 2, n), "h": rng.uniform(0, 4, n), "s": rng.uniform(0, 5, n), "b": rng.uniform(0, 5, n),
-              "ell0": rng.uniform(0, 2, n), "drag_law": rng.integers(0, 2, n), "c_q": rng.uniform(0, 5, n), "m_g": rng.uniform(0, 5, n)}
+    inputs = {
+        "force": rng.integers(0, 2, n),
+        "path": rng.integers(0, 2, n),
+        "k": rng.uniform(0.1, 5, n),
+        "x_c": rng.uniform(-2, 2, n),
+        "h": rng.uniform(0, 4, n),
+        "s": rng.uniform(0, 5, n),
+        "b": rng.uniform(0, 5, n),
+        "ell0": rng.uniform(0, 2, n),
+        "drag_law": rng.integers(0, 2, n),
+        "c_q": rng.uniform(0, 5, n),
+        "m_g": rng.uniform(0, 5, n),
+    }
     verdict = _evaluate(["verdict"], ALL_EFFECTS, **inputs)["verdict"]
     assert np.array_equal(verdict, np.where(inputs["force"] == SPRING, CONSERVATIVE, PATH_DEPENDENT))
 
@@ -285,7 +317,9 @@ def test_verdict_depends_on_nothing_but_the_force():
         pytest.param(lambda: _W(x_c=-0.0), id="W-anchor-at-minus-zero"),
         pytest.param(lambda: _W(path=ARC, x_c=-0.0), id="W-arc-anchor-at-minus-zero"),
         pytest.param(lambda: line_integral_work(SPRING, ARC, 1.0, x_c=0.0, n=7), id="quadrature-arc-n=7"),
-        pytest.param(lambda: line_integral_work(SPRING, ARC, 1.0, x_c=0.0, ell0=0.5, n=13), id="quadrature-arc-l0-n=13"),
+        pytest.param(
+            lambda: line_integral_work(SPRING, ARC, 1.0, x_c=0.0, ell0=0.5, n=13), id="quadrature-arc-l0-n=13"
+        ),
     ],
 )
 def test_zero_work_is_shown_unsigned(value):
@@ -411,7 +445,9 @@ def _shoelace(xs, ys) -> float:
     return 0.5 * float(np.sum(xs * np.roll(ys, -1) - np.roll(xs, -1) * ys))
 
 
-@pytest.mark.parametrize("inputs", [{}, {"x_c": 0.65}, {"x_c": -1.0, "ell0": 0.8}], ids=["default", "x_c=0.65", "x_c=-1-l0=0.8"])
+@pytest.mark.parametrize(
+    "inputs", [{}, {"x_c": 0.65}, {"x_c": -1.0, "ell0": 0.8}], ids=["default", "x_c=0.65", "x_c=-1-l0=0.8"]
+)
 def test_field_arrows_point_along_the_spring_force(inputs):
     """Each grid arrow's tip − tail is parallel to the spring force at its grid point (cos > 1 − 1e−12)."""
     out = _evaluate(["field_x", "field_y"], ("spring_rest_length",), **inputs)
@@ -428,7 +464,9 @@ def test_field_arrows_point_along_the_spring_force(inputs):
     assert np.max(np.hypot(arrow_x, arrow_y)) <= ARROW_MAX * (1 + 1e-12)
 
 
-@pytest.mark.parametrize("path, h", [(DIRECT, 1.0), (ARC, 0.5), (ARC, 2.0), (ARC, 4.0)], ids=["direct", "arc-h=0.5", "arc-h=2", "arc-h=4"])
+@pytest.mark.parametrize(
+    "path, h", [(DIRECT, 1.0), (ARC, 0.5), (ARC, 2.0), (ARC, 4.0)], ids=["direct", "arc-h=0.5", "arc-h=2", "arc-h=4"]
+)
 def test_drag_arrows_oppose_the_motion_one_per_spacing(path, h):
     """Drag arrows: round(L/0.3) of them, each tip − tail anti-parallel to dr/dλ where it sits; none for the spring."""
     out = _evaluate(["drag_x", "drag_y", "L"], force=DRAG, path=path, h=h)
@@ -481,9 +519,16 @@ def test_chosen_path_runs_from_a_to_b(h):
 
 def _scene():
     """The seed's controls on coarse grids that hold the defaults, resolved and tabulated as the build would."""
-    lines = ["model: work", "choice force: spring | drag default spring", "choice path: direct | arc default direct",
-             "slider k: 0.5..1.5 step 0.5 default 1", "slider x_c: -1..1 step 0.5 default 0",
-             "slider h: 0..2 step 0.5 default 1", "slider s: 0.5..1.5 step 0.5 default 1", "readouts: W dU W_drag verdict"]
+    lines = [
+        "model: work",
+        "choice force: spring | drag default spring",
+        "choice path: direct | arc default direct",
+        "slider k: 0.5..1.5 step 0.5 default 1",
+        "slider x_c: -1..1 step 0.5 default 0",
+        "slider h: 0..2 step 0.5 default 1",
+        "slider s: 0.5..1.5 step 0.5 default 1",
+        "readouts: W dU W_drag verdict",
+    ]
     spec, errors = parse_scene_block(lines, SourceLoc("try.md", 1))
     assert not errors
     scene, errors = resolve_scene(spec, MODELS)
@@ -525,8 +570,19 @@ def test_figure_axes_hold_every_arrow_and_hide_the_joins():
 
 @pytest.mark.parametrize(
     "inputs",
-    [{"h": -0.01}, {"h": 4.01}, {"k": 0.0}, {"s": -1.0}, {"b": -0.1}, {"force": 0.5}, {"path": 2}, {"ell0": -0.1},
-     {"drag_law": 3}, {"x_c": float("nan")}, {"h": float("inf")}],
+    [
+        {"h": -0.01},
+        {"h": 4.01},
+        {"k": 0.0},
+        {"s": -1.0},
+        {"b": -0.1},
+        {"force": 0.5},
+        {"path": 2},
+        {"ell0": -0.1},
+        {"drag_law": 3},
+        {"x_c": float("nan")},
+        {"h": float("inf")},
+    ],
     ids=["h<0", "h>2c", "k=0", "s<0", "b<0", "force=0.5", "path=2", "l0<0", "drag_law=3", "x_c=nan", "h=inf"],
 )
 def test_invalid_input_raises_naming_the_parameter(inputs):

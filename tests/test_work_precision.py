@@ -5,6 +5,7 @@ and narrow: many points keep their label, and no label covers another label, a m
 of the chosen setting; the legend (which names the ring) sits outside the panel and the title
 above the legend; nothing is drawn outside the figure.
 """
+
 from __future__ import annotations
 
 import math
@@ -21,8 +22,15 @@ def _crowded_panel() -> Panel:
     """Seven lines from the upper left to the lower right, crossing and close together as real solvers are."""
     series = []
     for m, name in enumerate(METHODS):
-        points = tuple(Point(10 ** (0.5 + 0.35 * m + 0.2 * k + 0.03 * math.sin(3 * k + m)), 10 ** (-2 - 1.0 * k - 0.3 * m),
-                             str(3 + k), major=(3 + k) % 3 == 0) for k in range(10))
+        points = tuple(
+            Point(
+                10 ** (0.5 + 0.35 * m + 0.2 * k + 0.03 * math.sin(3 * k + m)),
+                10 ** (-2 - 1.0 * k - 0.3 * m),
+                str(3 + k),
+                major=(3 + k) % 3 == 0,
+            )
+            for k in range(10)
+        )
         series.append(Series(name, points))
     chosen = series[1].points[5]
     return Panel("a crowded panel", tuple(series), chosen=Point(chosen.x, chosen.y, "chosen: DOP853 rtol 1e-8"))
@@ -57,7 +65,7 @@ def test_no_label_covers_a_label_a_marker_or_the_ring(drawn):
     fig, ax, panel = drawn
     labels = _boxes(t for t in ax.texts if t.get_text().isdigit())
     for i, a in enumerate(labels):
-        assert not any(_overlap(a, b) > 0 for b in labels[i + 1:]), "two labels overlap"
+        assert not any(_overlap(a, b) > 0 for b in labels[i + 1 :]), "two labels overlap"
     centres = [ax.transData.transform((p.x, p.y)) for s in panel.series for p in s.points]
     markers = [(x - wp.MARKER_HALF, y - wp.MARKER_HALF, x + wp.MARKER_HALF, y + wp.MARKER_HALF) for x, y in centres]
     rx, ry = ax.transData.transform((panel.chosen.x, panel.chosen.y))

@@ -9,27 +9,39 @@ come last, as those list every scene. Work that needs no earlier page may run in
 the build (phases/ahead.py: compiled scenes and the report's diagrams; else phases/beside.py: the last
 pages), taken back where a build without it would have done it.
 """
+
 from __future__ import annotations
 
 from .compute.sources import forget_sources
+from .phases.ahead import work_ahead
+from .phases.beside import hand_over_pages, take_pages
 from .phases.collect import collect_garbage, collecting_per_page
 from .phases.pages import assemble_scenes, write_assets, write_page
 from .phases.read import convert_math, figure_name, read_pages, resolve_scenes
 from .phases.read import needed_outputs as _needed_outputs
 from .phases.record import Book
 from .phases.run import BuildConfig, BuildReport, BuildRun
-from .phases.ahead import work_ahead
-from .phases.beside import hand_over_pages, take_pages
 from .phases.scenes import check_scenes, compile_kernels, render_figures, tabulate_scenes
 from .registry import Registry, builtin_registry, load_registry
 from .site.writer import staged_tree
 
 __all__ = ["BuildConfig", "BuildReport", "build", "needed_outputs", "resolve_book", "tabulate_book"]
 
-BOOK_PHASES = (("read", read_pages), ("resolve", resolve_scenes), ("math", convert_math), ("compile", compile_kernels),
-               ("ahead", work_ahead))
-PAGE_PHASES = (("tabulate", tabulate_scenes), ("check", check_scenes), ("render", render_figures),
-               ("assemble", assemble_scenes), ("write", write_page), ("collect", collect_garbage))
+BOOK_PHASES = (
+    ("read", read_pages),
+    ("resolve", resolve_scenes),
+    ("math", convert_math),
+    ("compile", compile_kernels),
+    ("ahead", work_ahead),
+)
+PAGE_PHASES = (
+    ("tabulate", tabulate_scenes),
+    ("check", check_scenes),
+    ("render", render_figures),
+    ("assemble", assemble_scenes),
+    ("write", write_page),
+    ("collect", collect_garbage),
+)
 
 
 def build(config: BuildConfig, progress=print, registry: Registry | None = None) -> BuildReport:

@@ -1,4 +1,5 @@
 """The `sitegen` command: new, build, serve, review, bench, models, and accept-figures/check-figures for the figure goldens."""
+
 from __future__ import annotations
 
 import argparse
@@ -45,45 +46,86 @@ def run() -> None:
 
 def command_parser() -> argparse.ArgumentParser:
     """The command line: every subcommand with its options."""
-    parser = argparse.ArgumentParser(prog="sitegen", description="Build an offline interactive physics book.",
-                                     epilog="Every command works on the book in the current folder (the folder of its "
-                                            "book.toml), or in the folder given with --root.")
+    parser = argparse.ArgumentParser(
+        prog="sitegen",
+        description="Build an offline interactive physics book.",
+        epilog="Every command works on the book in the current folder (the folder of its "
+        "book.toml), or in the folder given with --root.",
+    )
     commands = parser.add_subparsers(dest="command", required=True)
-    new_cmd = commands.add_parser("new", help="write a new book into DIR (a new or empty folder)",
-                                  description="write a new book into DIR: book.toml, a home page, a chapter with "
-                                              "a scene of the book's own model, and a test of that model")
+    new_cmd = commands.add_parser(
+        "new",
+        help="write a new book into DIR (a new or empty folder)",
+        description="write a new book into DIR: book.toml, a home page, a chapter with "
+        "a scene of the book's own model, and a test of that model",
+    )
     new_cmd.add_argument("folder", type=Path, metavar="DIR")
-    build_cmd = _command(commands, "build", "build the site into the book's output folder (book.toml 'output', default build/)")
+    build_cmd = _command(
+        commands, "build", "build the site into the book's output folder (book.toml 'output', default build/)"
+    )
     build_cmd.add_argument("--out", type=Path, default=None, help="output folder (default: the book's)")
     build_cmd.add_argument("--debug", action="store_true", help="show Python tracebacks")
-    build_cmd.add_argument("--explain", action="store_true", help="say for each scene why it was computed or that it was cached")
+    build_cmd.add_argument(
+        "--explain", action="store_true", help="say for each scene why it was computed or that it was cached"
+    )
     build_cmd.add_argument("--jobs", type=int, default=1, help="tabulate in N local processes (default 1: serial)")
     build_cmd.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT", help="tabulate on a Dask cluster")
-    build_cmd.add_argument("--no-cache", action="store_true", help="compute every scene; neither read nor write tables in .cache/ (compiled code is still kept in .cache/compiled/)")
+    build_cmd.add_argument(
+        "--no-cache",
+        action="store_true",
+        help="compute every scene; neither read nor write tables in .cache/ (compiled code is still kept in .cache/compiled/)",
+    )
     serve_cmd = _command(commands, "serve", "serve the built site on 127.0.0.1")
     serve_cmd.add_argument("--dir", type=Path, default=None, help="folder to serve (default: the book's output folder)")
     serve_cmd.add_argument("--port", type=int, default=8000, help="port (default 8000; 0: any free port)")
-    serve_cmd.add_argument("--host", "--bind", dest="host", default="127.0.0.1",
-                           help="address to listen on (default 127.0.0.1: this machine only)")
-    serve_cmd.add_argument("--watch", action="store_true",
-                           help="build the book, then rebuild it when its pages, book.toml, theme or models change; "
-                                "open pages reload by themselves and show a failed build's errors")
+    serve_cmd.add_argument(
+        "--host",
+        "--bind",
+        dest="host",
+        default="127.0.0.1",
+        help="address to listen on (default 127.0.0.1: this machine only)",
+    )
+    serve_cmd.add_argument(
+        "--watch",
+        action="store_true",
+        help="build the book, then rebuild it when its pages, book.toml, theme or models change; "
+        "open pages reload by themselves and show a failed build's errors",
+    )
     review_cmd = _command(commands, "review", "compare two builds: the figures, tables and text that changed")
     review_cmd.add_argument("trees", nargs="*", type=Path, metavar="BUILD", help="OLD NEW, or with --base only NEW")
-    review_cmd.add_argument("--base", metavar="REV", help="build git revision REV in a temporary worktree as OLD; NEW defaults to the book's output folder")
+    review_cmd.add_argument(
+        "--base",
+        metavar="REV",
+        help="build git revision REV in a temporary worktree as OLD; NEW defaults to the book's output folder",
+    )
     review_cmd.add_argument("--out", type=Path, default=None, help="report folder (default ./build-review)")
-    review_cmd.add_argument("--no-render", action="store_true", help="do not render figures to PNG (no Chromium needed)")
-    for name, text in (("accept-figures", "rewrite the book's figure goldens from a build (refused in CI)"),
-                       ("check-figures", "compare a build's figures with the book's goldens (exit 1 on a difference)")):
+    review_cmd.add_argument(
+        "--no-render", action="store_true", help="do not render figures to PNG (no Chromium needed)"
+    )
+    for name, text in (
+        ("accept-figures", "rewrite the book's figure goldens from a build (refused in CI)"),
+        ("check-figures", "compare a build's figures with the book's goldens (exit 1 on a difference)"),
+    ):
         golden_cmd = _command(commands, name, text)
-        golden_cmd.add_argument("--build", type=Path, default=None, help="the built site (default: the book's output folder)")
-        golden_cmd.add_argument("--goldens", type=Path, default=None, help="the goldens folder (default: book.toml 'goldens', else goldens/)")
+        golden_cmd.add_argument(
+            "--build", type=Path, default=None, help="the built site (default: the book's output folder)"
+        )
+        golden_cmd.add_argument(
+            "--goldens",
+            type=Path,
+            default=None,
+            help="the goldens folder (default: book.toml 'goldens', else goldens/)",
+        )
     bench_cmd = _command(commands, "bench", "measure accuracy against cost; write content/accuracy/bench.json")
     bench_cmd.add_argument("--out", type=Path, default=None, help="results file (default CONTENT/accuracy/bench.json)")
-    bench_cmd.add_argument("--quick", action="store_true", help="a few points, one run each: a smoke test, not a measurement")
+    bench_cmd.add_argument(
+        "--quick", action="store_true", help="a few points, one run each: a smoke test, not a measurement"
+    )
     models_cmd = _command(commands, "models", "list the models a book can use: parameters, outputs, effects, numerics")
     models_cmd.add_argument("name", nargs="?", help="one model (default: every model)")
-    models_cmd.add_argument("--builtin", action="store_true", help="only sitegen's built-in models (as in docs/models.md)")
+    models_cmd.add_argument(
+        "--builtin", action="store_true", help="only sitegen's built-in models (as in docs/models.md)"
+    )
     return parser
 
 
@@ -100,7 +142,12 @@ def _needs_book(args) -> bool:
 
 def _command(commands, name: str, text: str):
     command = commands.add_parser(name, help=text, description=text)
-    command.add_argument("--root", type=Path, default=Path.cwd(), help="the book's folder, which holds book.toml (default: the current folder)")
+    command.add_argument(
+        "--root",
+        type=Path,
+        default=Path.cwd(),
+        help="the book's folder, which holds book.toml (default: the current folder)",
+    )
     return command
 
 
@@ -112,9 +159,11 @@ def _new(folder: Path) -> int:
     except FolderNotEmpty as problem:
         print(f"sitegen: {problem}", file=sys.stderr)
         return 2
-    print(f"wrote a new book into {folder}: {', '.join(written)}\n"
-          f"next: cd {folder} && sitegen build (then open build/index.html), or sitegen serve --watch to see "
-          f"each edit in the browser as you save it")
+    print(
+        f"wrote a new book into {folder}: {', '.join(written)}\n"
+        f"next: cd {folder} && sitegen build (then open build/index.html), or sitegen serve --watch to see "
+        f"each edit in the browser as you save it"
+    )
     return 0
 
 
@@ -149,15 +198,20 @@ def _build(args, book: BookConfig) -> int:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # small linear algebra is 10x faster single-threaded
     out = (args.out or book.output).resolve()
     if not book.content.is_dir():
-        print(f"sitegen: no folder {book.relative(book.content)} in {book.root}: a book's pages are "
-              f"{book.relative(book.content)}/index.md and its other pages", file=sys.stderr)
+        print(
+            f"sitegen: no folder {book.relative(book.content)} in {book.root}: a book's pages are "
+            f"{book.relative(book.content)}/index.md and its other pages",
+            file=sys.stderr,
+        )
         return 2
     stamped = not (args.no_cache or args.explain)  # both ask for the work itself, so neither stops early
     inputs = stamp.inputs_digest(book) if stamped else None
     last = stamp.up_to_date(book, out, inputs) if stamped else None
     if last is not None:
-        print(f"up to date: no page, model, setting or library changed since the last build of {last['pages']} "
-              f"pages, {last['scenes']} scenes -> {out}")
+        print(
+            f"up to date: no page, model, setting or library changed since the last build of {last['pages']} "
+            f"pages, {last['scenes']} scenes -> {out}"
+        )
         return 0
     from .build import BuildConfig, build
     from .content.math import MathToolMissing
@@ -177,14 +231,19 @@ def _build(args, book: BookConfig) -> int:
         print(f"sitegen: {problem}", file=sys.stderr)
         return 2
     except KeyboardInterrupt as stop:
-        print(f"build {'stopped' if isinstance(stop, Terminated) else 'interrupted'}; {config.out} holds the last "
-              f"complete build", file=sys.stderr)
+        print(
+            f"build {'stopped' if isinstance(stop, Terminated) else 'interrupted'}; {config.out} holds the last "
+            f"complete build",
+            file=sys.stderr,
+        )
         return 128 + signal.SIGTERM if isinstance(stop, Terminated) else 130
     except SceneCrashed as crash:  # an exception in a model's, a figure's or sitegen's code, met on one scene
         if args.debug:
-            raise crash.error
-        print(f"sitegen: {crash}\n{config.out} holds the last complete build; run again with --debug for the traceback",
-              file=sys.stderr)
+            raise crash.error from None
+        print(
+            f"sitegen: {crash}\n{config.out} holds the last complete build; run again with --debug for the traceback",
+            file=sys.stderr,
+        )
         return 3
     except OSError as problem:  # the machine's side: a folder that cannot be written, a full disk
         if args.debug:
@@ -195,15 +254,20 @@ def _build(args, book: BookConfig) -> int:
         if args.debug:
             raise
         where = raising_line(problem, [], book)
-        print(f"sitegen: {where}: {type(problem).__name__}: {problem}\n"
-              f"{config.out} holds the last complete build; run again with --debug for the traceback", file=sys.stderr)
+        print(
+            f"sitegen: {where}: {type(problem).__name__}: {problem}\n"
+            f"{config.out} holds the last complete build; run again with --debug for the traceback",
+            file=sys.stderr,
+        )
         return 3
     if stamped:
         stamp.write_stamp(book, out, inputs, {"pages": report.pages, "scenes": report.scenes})
     total = sum(report.phases.values())
     size = sum(report.files.values())
-    print(f"built {report.pages} pages, {report.scenes} scenes ({report.computed} computed, {report.cached} cached), "
-          f"{report.stored_values} stored values, {size / 1024:.0f} KiB in {total:.2f} s -> {config.out}")
+    print(
+        f"built {report.pages} pages, {report.scenes} scenes ({report.computed} computed, {report.cached} cached), "
+        f"{report.stored_values} stored values, {size / 1024:.0f} KiB in {total:.2f} s -> {config.out}"
+    )
     return 0
 
 
@@ -260,7 +324,10 @@ def _serve(args, book: BookConfig) -> int:
     try:
         server = site_server(directory, args.host, args.port, live)
     except OSError as problem:
-        print(f"sitegen: cannot serve on {args.host}:{args.port}: {problem.strerror or problem}; choose another --port", file=sys.stderr)
+        print(
+            f"sitegen: cannot serve on {args.host}:{args.port}: {problem.strerror or problem}; choose another --port",
+            file=sys.stderr,
+        )
         return 1
     if args.watch:
         os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -277,8 +344,15 @@ def _serve(args, book: BookConfig) -> int:
     return 0
 
 
-COMMANDS = {"build": _build, "serve": _serve, "review": _review, "accept-figures": _goldens, "check-figures": _goldens,
-            "bench": _bench, "models": _models}
+COMMANDS = {
+    "build": _build,
+    "serve": _serve,
+    "review": _review,
+    "accept-figures": _goldens,
+    "check-figures": _goldens,
+    "bench": _bench,
+    "models": _models,
+}
 
 if __name__ == "__main__":
     run()

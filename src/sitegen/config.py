@@ -12,6 +12,7 @@ the folders of its parts). Every key is optional; a folder is relative to the bo
     output = "build"                      # where the site is written
     goldens = "goldens"                   # the figure goldens of `sitegen check-figures`
 """
+
 from __future__ import annotations
 
 import difflib
@@ -66,8 +67,10 @@ def read_book(root: Path, required: bool = False) -> BookConfig:
     path = root / CONFIG_FILE
     if not path.is_file():
         if required:
-            raise ConfigError(f"no {CONFIG_FILE} in {root}: a book is a folder with {CONFIG_FILE} and content/ "
-                              f"(run sitegen inside the book's folder, or give --root)")
+            raise ConfigError(
+                f"no {CONFIG_FILE} in {root}: a book is a folder with {CONFIG_FILE} and content/ "
+                f"(run sitegen inside the book's folder, or give --root)"
+            )
         return BookConfig(root)
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
@@ -89,4 +92,3 @@ def _checked(data: dict, root: Path) -> dict:
             raise ConfigError(f"{CONFIG_FILE}: '{key}' must be a string, e.g. {key} = \"...\"")
         values[key] = (root / value).resolve() if key in FOLDERS else value
     return values
-

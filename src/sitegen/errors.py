@@ -1,4 +1,5 @@
 """Author-facing errors: where in the sources, what is wrong, and what would be right."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass

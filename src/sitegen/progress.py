@@ -1,4 +1,5 @@
 """A build's progress lines as `sitegen build` shows them: on a terminal with a live bar, in a log line by line."""
+
 from __future__ import annotations
 
 

@@ -2,6 +2,7 @@
 each model's parameters (symbol, unit, domain, default), outputs (unit, what they depend on),
 effects, numerical settings and figures. `sitegen models` prints it; docs/models.md is its text
 for the built-in models (`sitegen models --builtin > docs/models.md`)."""
+
 from __future__ import annotations
 
 import math
@@ -11,8 +12,10 @@ from html import unescape
 from .physics.base import Model, Output, Param
 from .registry import Registry
 
-HEADER = ("# Models\n\nEvery model a scene may name (`model: NAME`), from its declarations. This file is written by\n"
-          "`sitegen models --builtin > docs/models.md`; a test checks that it is up to date.\n")
+HEADER = (
+    "# Models\n\nEvery model a scene may name (`model: NAME`), from its declarations. This file is written by\n"
+    "`sitegen models --builtin > docs/models.md`; a test checks that it is up to date.\n"
+)
 
 
 def models_reference(registry: Registry, names: list[str] | None = None, header: bool = True) -> str:

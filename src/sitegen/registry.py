@@ -11,6 +11,7 @@ name: the view of the accuracy-report parts the model declares). Plugins come fr
 A name defined by two plugins is an error naming both. A plugin that cannot be imported, or that
 declares something wrongly, is an author error at its own file and line; the other plugins still load.
 """
+
 from __future__ import annotations
 
 import difflib
@@ -23,10 +24,10 @@ import re
 import sys
 import traceback
 import types
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from importlib import metadata
 from pathlib import Path
-from typing import Mapping
 
 from .config import PLUGIN_GROUP, BookConfig
 from .errors import AuthorError, SourceLoc
@@ -59,11 +60,21 @@ class Registry:
     problems: tuple[AuthorError, ...] = ()  # plugins that failed to load or declare; names defined twice
     broken: Mapping[str, SourceLoc] = field(default_factory=dict)  # plugin name -> where it failed
 
-    def adding(self, models: Mapping = (), figures: Mapping = (), source: str = "the caller") -> "Registry":
+    def adding(self, models: Mapping = (), figures: Mapping = (), source: str = "the caller") -> Registry:
         """This registry with more models and figures (for a program that builds with models of its own)."""
-        origins = {**self.origins, **{f"model {n}": source for n in dict(models)}, **{f"figure {n}": source for n in dict(figures)}}
-        return Registry({**self.models, **dict(models)}, {**self.figures, **dict(figures)}, self.reports, origins,
-                        self.problems, self.broken)
+        origins = {
+            **self.origins,
+            **{f"model {n}": source for n in dict(models)},
+            **{f"figure {n}": source for n in dict(figures)},
+        }
+        return Registry(
+            {**self.models, **dict(models)},
+            {**self.figures, **dict(figures)},
+            self.reports,
+            origins,
+            self.problems,
+            self.broken,
+        )
 
 
 @dataclass(frozen=True)
@@ -112,7 +123,10 @@ def _entry_point_plugins(book: BookConfig | None):
             continue
         if not isinstance(module, types.ModuleType):
             where = SourceLoc(_shown(inspect.getsourcefile(type(module)) or entry.value, book), 1)
-            yield entry.name, AuthorError(where, f"{source} must name a module (e.g. 'mypackage.pendulum'), not an object")
+            yield (
+                entry.name,
+                AuthorError(where, f"{source} must name a module (e.g. 'mypackage.pendulum'), not an object"),
+            )
             continue
         yield entry.name, Plugin(entry.name, source, module, SourceLoc(_shown(module.__file__, book), 1))
 
@@ -140,20 +154,32 @@ def _gathered(plugins: list[Plugin], problems: list, broken: dict, book: BookCon
     for plugin in plugins:
         declared = {kind: getattr(plugin.module, kind, None) for kind in ("MODELS", "FIGURES", "REPORTS")}
         if declared["MODELS"] is None and declared["FIGURES"] is None:
-            problems.append(AuthorError(plugin.where, f"{plugin.source} defines neither MODELS nor FIGURES "
-                                                      "(dicts of its models and figure views by name)"))
+            problems.append(
+                AuthorError(
+                    plugin.where,
+                    f"{plugin.source} defines neither MODELS nor FIGURES "
+                    "(dicts of its models and figure views by name)",
+                )
+            )
             broken[plugin.name] = plugin.where
             continue
-        for kind, target, check in (("MODELS", models, _model_problem), ("FIGURES", figures, _figure_problem),
-                                    ("REPORTS", reports, None)):
+        for kind, target, check in (
+            ("MODELS", models, _model_problem),
+            ("FIGURES", figures, _figure_problem),
+            ("REPORTS", reports, None),
+        ):
             for name, thing in dict(declared[kind] or {}).items():
                 what = f"{kind[:-1].lower()} {name}"
                 problem = check(name, thing) if check else None
                 if problem:
                     problems.append(AuthorError(_defined_at(thing, plugin, book), f"{plugin.source}: {problem}"))
                 elif what in origins:
-                    problems.append(AuthorError(_defined_at(thing, plugin, book),
-                                                f"{kind[:-1].lower()} '{name}' is defined twice: by {origins[what]} and by {plugin.source}"))
+                    problems.append(
+                        AuthorError(
+                            _defined_at(thing, plugin, book),
+                            f"{kind[:-1].lower()} '{name}' is defined twice: by {origins[what]} and by {plugin.source}",
+                        )
+                    )
                 else:
                     target[name], origins[what] = thing, plugin.source
     return Registry(models, figures, reports, origins, tuple(problems), broken)
@@ -175,7 +201,9 @@ def _figure_problem(name: str, view) -> str | None:
     """What is wrong with a FIGURES entry (a view instance with a label, layers and draw), or None."""
     if isinstance(view, type):
         return f"FIGURES['{name}'] is the class {view.__name__}; give an instance, {view.__name__}()"
-    missing = [m for m in FIGURE_METHODS if not callable(getattr(view, m, None))] + ([] if hasattr(view, "label") else ["label"])
+    missing = [m for m in FIGURE_METHODS if not callable(getattr(view, m, None))] + (
+        [] if hasattr(view, "label") else ["label"]
+    )
     return f"figure '{name}' ({type(view).__name__}) has no {', '.join(missing)}" if missing else None
 
 
@@ -243,7 +271,7 @@ def _shown(filename: str, book: BookConfig | None) -> str:
 
 
 def unknown_model_hint(name: str, registry: Registry) -> str:
-    """" — did you mean 'x'?" for a misspelt model name, else ""."""
+    """ " — did you mean 'x'?" for a misspelt model name, else ""."""
     close = difflib.get_close_matches(name, list(registry.models), n=1)
     return f"; did you mean '{close[0]}'?" if close else ""
 
@@ -271,8 +299,9 @@ class _BookFinder(importlib.abc.MetaPathFinder):
         base = self.folder.joinpath(*fullname.split(".")[1:])
         if (base / "__init__.py").is_file():
             init = base / "__init__.py"
-            return importlib.util.spec_from_file_location(fullname, init, loader=_SourceOnlyLoader(fullname, str(init)),
-                                                          submodule_search_locations=[str(base)])
+            return importlib.util.spec_from_file_location(
+                fullname, init, loader=_SourceOnlyLoader(fullname, str(init)), submodule_search_locations=[str(base)]
+            )
         file = base.with_suffix(".py")
         if file.is_file():
             return importlib.util.spec_from_file_location(fullname, file, loader=_SourceOnlyLoader(fullname, str(file)))

@@ -10,6 +10,7 @@ every plugin declared by an entry point; the Python version and every installed 
 build could depend on is not an input: the clock, the load and the machine's speed never change
 its output.
 """
+
 from __future__ import annotations
 
 import hashlib
@@ -37,8 +38,13 @@ def inputs_digest(book: BookConfig) -> str | None:
     sha.update(f"target {os.environ.get('SITEGEN_COMPILE_TARGET', 'generic')}\n".encode())
     versions = sorted({(d.metadata["Name"] or "", d.version) for d in importlib.metadata.distributions()})
     sha.update(json.dumps(versions).encode())
-    for label, folder in [("sitegen", PACKAGE), *plugins, ("content", book.content), ("models", book.models),
-                          ("theme", book.theme)]:
+    for label, folder in [
+        ("sitegen", PACKAGE),
+        *plugins,
+        ("content", book.content),
+        ("models", book.models),
+        ("theme", book.theme),
+    ]:
         _add_files(sha, label, folder)
     _add_files(sha, "config", book.root / CONFIG_FILE)
     return sha.hexdigest()

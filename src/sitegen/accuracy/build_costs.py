@@ -4,6 +4,7 @@ cross product, the values it stores and the bytes of its inline data; per page i
 "Cold" means no table cache and no model-level memo (the bubble keeps an LRU of solved points):
 each timed run tabulates the scene from nothing, as a first build on a fresh checkout would.
 """
+
 from __future__ import annotations
 
 import re
@@ -35,8 +36,13 @@ def scene_cold_times(root: Path, repeats: int = 3, progress=None) -> dict[str, d
     times = {}
     for record in book.scenes:
         name = record.name
-        times[name] = {"seconds": timed[name].seconds, "repeats": timed[name].repeats, "model": record.scene.model.name,
-                       "stops": record.stops, "stored_values": timed[name].result}
+        times[name] = {
+            "seconds": timed[name].seconds,
+            "repeats": timed[name].repeats,
+            "model": record.scene.model.name,
+            "stops": record.stops,
+            "stored_values": timed[name].result,
+        }
         if progress:
             progress(f"  {name:<40} {timed[name].seconds:8.3f} s (median of {timed[name].repeats})")
     return times
@@ -63,10 +69,16 @@ def page_bytes(site: Path, page: Path) -> dict:
     """Raw and gzip bytes of a built page, alone and with every asset it loads (the stylesheet's
     font included)."""
     html = page.read_text()
-    assets = set(re.findall(r'(?:href|src|data-index)="(assets/[^"]+)"', html))  # data-index: the search script, loaded on first use
+    assets = set(
+        re.findall(r'(?:href|src|data-index)="(assets/[^"]+)"', html)
+    )  # data-index: the search script, loaded on first use
     for sheet in [a for a in assets if a.endswith(".css")]:
         assets |= {f"assets/{u}" for u in re.findall(r'url\("?([^")]+)"?\)', (site / sheet).read_text())}
     files = [page, *(site / a for a in sorted(assets) if (site / a).is_file())]
     packed = [gzip_bytes(f.read_bytes()) for f in files]
-    return {"html_raw": page.stat().st_size, "html_gzip": packed[0],
-            "total_raw": sum(f.stat().st_size for f in files), "total_gzip": sum(packed)}
+    return {
+        "html_raw": page.stat().st_size,
+        "html_gzip": packed[0],
+        "total_raw": sum(f.stat().st_size for f in files),
+        "total_gzip": sum(packed),
+    }

@@ -7,6 +7,7 @@ boundary*: no solver short of the reference's own accuracy can promise that digi
 listed rather than hidden. The reference is the compiled solvers at tight settings (DOP853 at rtol
 1e-12; Radau at 1e-10 where the terms are stiff), which the test suite checks against scipy's.
 """
+
 from __future__ import annotations
 
 import math
@@ -38,7 +39,10 @@ def digit_sweep(root: Path, rtols=RTOLS, progress=None) -> dict:
         name = f"{item.page.slug}#{item.scene.id}"
         results[name] = _scene_sweep(item.scene, rtols)
         if progress:
-            runs = ", ".join(f"{r['rtol']:.0e}: {r['wrong']} wrong, {r['near']} near, {r['seconds']:.2f} s" for r in results[name]["runs"])
+            runs = ", ".join(
+                f"{r['rtol']:.0e}: {r['wrong']} wrong, {r['near']} near, {r['seconds']:.2f} s"
+                for r in results[name]["runs"]
+            )
             progress(f"  {name:<40} {runs}")
     return results
 
@@ -61,8 +65,13 @@ def _scene_sweep(scene, rtols) -> dict:
             solved.append((run, read_run(run, pb, scales, scene.effects)))
         seconds = time.perf_counter() - start
         runs.append({"rtol": rtol, "seconds": seconds, **_compare(scene, points, problems, solved, references, shown)})
-    return {"stops": len(points), "shown": shown, "runs": runs, "chosen": EXPLICIT_RTOL,
-            "reference": "compiled DOP853 at rtol 1e-12; Radau at rtol 1e-10 (atol 1e-11) where stiff"}
+    return {
+        "stops": len(points),
+        "shown": shown,
+        "runs": runs,
+        "chosen": EXPLICIT_RTOL,
+        "reference": "compiled DOP853 at rtol 1e-12; Radau at rtol 1e-10 (atol 1e-11) where stiff",
+    }
 
 
 def _reference(pb):
@@ -86,8 +95,13 @@ def _compare(scene, points, problems, solved, references, shown) -> dict:
         wrong += [f"{_stop_text(scene, stop)}: {n}" for n in bad if n in shown]
         near += [f"{_stop_text(scene, stop)}: {n}" for n in close if n in shown]
         worst = max([worst] + [_units(mine, theirs, n) for n in shown])
-    return {"wrong": len(wrong), "near": len(near), "max_units": worst if math.isfinite(worst) else None,
-            "wrong_stops": wrong[:NEAR_LISTED], "near_stops": near[:NEAR_LISTED]}
+    return {
+        "wrong": len(wrong),
+        "near": len(near),
+        "max_units": worst if math.isfinite(worst) else None,
+        "wrong_stops": wrong[:NEAR_LISTED],
+        "near_stops": near[:NEAR_LISTED],
+    }
 
 
 def _units(mine: dict, theirs: dict, name: str) -> float:
@@ -95,7 +109,10 @@ def _units(mine: dict, theirs: dict, name: str) -> float:
     output = Bubble.output(name)
     if output.labels:
         return 0.0 if np.array_equal(mine[name.split("_", 1)[1]], theirs[name.split("_", 1)[1]]) else math.inf
-    a, b = np.atleast_1d(np.asarray(mine[name.split("_", 1)[1]], float)), np.atleast_1d(np.asarray(theirs[name.split("_", 1)[1]], float))
+    a, b = (
+        np.atleast_1d(np.asarray(mine[name.split("_", 1)[1]], float)),
+        np.atleast_1d(np.asarray(theirs[name.split("_", 1)[1]], float)),
+    )
     both = np.isfinite(a) & np.isfinite(b)
     if not np.array_equal(np.isfinite(a), np.isfinite(b)):
         return math.inf

@@ -4,6 +4,7 @@ Each experiment returns plain data (dicts of numbers and strings, ready for JSON
 method and setting its error against a reference, its evaluation count and the median wall
 time of repeated runs. Errors are deterministic; only the times depend on the machine.
 """
+
 from __future__ import annotations
 
 import math
@@ -15,9 +16,9 @@ from ..models.bubble.presets import preset_problem
 from ..models.bubble.run import MACH, OK, Caps, Run
 from ..models.bubble.solve import ANALYTIC, choose_method, integrate, rayleigh_run
 from ..models.bubble.terms import EPSILON, Problem, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau
+from ..models.chain.integrators import integrate_ivp, velocity_verlet
 from ..models.chain.modes import LENGTH, RIGHT_MOVING, SPEED, mass_and_stiffness, positions, spacing
 from ..models.chain.motion import evolve, initial_state
-from ..models.chain.integrators import integrate_ivp, velocity_verlet
 from .timing import time_medians
 
 RTOLS = tuple(10.0**-k for k in range(3, 13))  # 1e-3 … 1e-12
@@ -46,9 +47,18 @@ class Plan:
 
 
 FULL = Plan()
-QUICK = Plan(chain_sizes=(16,), courant_numbers=(0.5, 0.25), chain_rtols=(1e-3, 1e-6), cases=("A",),
-             bubble_methods=("DOP853", "LSODA", "compiled-DOP853"), bubble_rtols=(1e-3, 1e-6), max_repeats=1, cross_check=False,
-             scene_repeats=1, sweep_rtols=(1e-6,))
+QUICK = Plan(
+    chain_sizes=(16,),
+    courant_numbers=(0.5, 0.25),
+    chain_rtols=(1e-3, 1e-6),
+    cases=("A",),
+    bubble_methods=("DOP853", "LSODA", "compiled-DOP853"),
+    bubble_rtols=(1e-3, 1e-6),
+    max_repeats=1,
+    cross_check=False,
+    scene_repeats=1,
+    sweep_rtols=(1e-6,),
+)
 
 
 def finite(value) -> float | None:
@@ -120,7 +130,9 @@ def chain_experiment(plan: Plan = FULL) -> dict:
     runs = [_chain_row(key, timed[key], exact[key[0]]) for key in jobs]
     return {
         "what": "a right-moving Gaussian pulse on a fixed-end chain over one round trip",
-        "T": CHAIN_T, "sigma": CHAIN_SIGMA, "x0": 0.3 * LENGTH,
+        "T": CHAIN_T,
+        "sigma": CHAIN_SIGMA,
+        "x0": 0.3 * LENGTH,
         "error": "max_j |u_j − u_DST| / A at t = 2L/c",
         "reference": "exact DST-I modal solution (its own row: DST against a dense eigendecomposition)",
         "chosen": {"method": "exact DST"},
@@ -133,10 +145,17 @@ def _chain_row(key: tuple, timed, exact: np.ndarray) -> dict:
     n, method, setting = key
     row = {"N": n, "method": method, "courant": None, "rtol": None, "time_s": timed.seconds, "repeats": timed.repeats}
     if method == "exact DST":
-        return {**row, "setting": "one transform pair", "evaluations": 0, "steps": 1,
-                "error": finite(chain_error(chain_by_eigh(n), exact))}
+        return {
+            **row,
+            "setting": "one transform pair",
+            "evaluations": 0,
+            "steps": 1,
+            "error": finite(chain_error(chain_by_eigh(n), exact)),
+        }
     result = timed.result
-    row.update(evaluations=int(result.evaluations), steps=int(result.steps), error=finite(chain_error(result.u[-1], exact)))
+    row.update(
+        evaluations=int(result.evaluations), steps=int(result.steps), error=finite(chain_error(result.u[-1], exact))
+    )
     if method == "velocity Verlet":
         return {**row, "setting": f"ν = {setting:g}", "courant": setting}
     row.update(setting=f"rtol {setting:.0e}".replace("e-0", "e-"), rtol=setting)
@@ -148,17 +167,30 @@ def _chain_row(key: tuple, timed, exact: np.ndarray) -> dict:
 # §11.2's case C is the model's "stiff" preset (the viscous micro-bubble); B and C run one
 # acoustic period, as in physics.md (the page's scenes run two).
 CASES = {
-    "A": {"preset": "A", "title": "A: empty Rayleigh collapse (R_max 1 mm, p∞ 1 atm)", "short": "A: empty Rayleigh collapse", "periods": 0,
-          "metric": "max |ΔR|/R₀ over the sampled curve, up to |Ṙ| = c",
-          "reference": "analytic: R(t) from betaincinv"},
-    "B": {"preset": "B", "title": "B: driven bubble with Keller–Miksis (4.5 µm, 1.3 atm, 26.5 kHz), one period",
-          "short": "B: driven bubble, Keller–Miksis, one period",
-          "periods": 1, "metric": "max |ΔR|/R_max over the sampled curve",
-          "reference": "DOP853 rtol 1e-13, cross-checked with Radau rtol 1e-12"},
-    "C": {"preset": "stiff", "title": "C: stiff viscous micro-bubble (1 µm, µ = 1 Pa·s, 20 kHz), one period",
-          "short": "C: stiff viscous micro-bubble, one period",
-          "periods": 1, "metric": "max |ΔR|/R₀ over the sampled curve",
-          "reference": "Radau rtol 1e-13, cross-checked with LSODA rtol 1e-12"},
+    "A": {
+        "preset": "A",
+        "title": "A: empty Rayleigh collapse (R_max 1 mm, p∞ 1 atm)",
+        "short": "A: empty Rayleigh collapse",
+        "periods": 0,
+        "metric": "max |ΔR|/R₀ over the sampled curve, up to |Ṙ| = c",
+        "reference": "analytic: R(t) from betaincinv",
+    },
+    "B": {
+        "preset": "B",
+        "title": "B: driven bubble with Keller–Miksis (4.5 µm, 1.3 atm, 26.5 kHz), one period",
+        "short": "B: driven bubble, Keller–Miksis, one period",
+        "periods": 1,
+        "metric": "max |ΔR|/R_max over the sampled curve",
+        "reference": "DOP853 rtol 1e-13, cross-checked with Radau rtol 1e-12",
+    },
+    "C": {
+        "preset": "stiff",
+        "title": "C: stiff viscous micro-bubble (1 µm, µ = 1 Pa·s, 20 kHz), one period",
+        "short": "C: stiff viscous micro-bubble, one period",
+        "periods": 1,
+        "metric": "max |ΔR|/R₀ over the sampled curve",
+        "reference": "Radau rtol 1e-13, cross-checked with LSODA rtol 1e-12",
+    },
 }
 REFERENCE = {"B": (("DOP853", 1e-13), ("Radau", 1e-12)), "C": (("Radau", 1e-13), ("LSODA", 1e-12))}
 
@@ -180,8 +212,10 @@ def solve_case(case: str, method: str, rtol: float) -> Run:
 def skip_reason(case: str, method: str, rtol: float) -> str | None:
     """Why a combination is not run (hopeless or minutes long, physics.md §11.2), or None."""
     if case == "C" and method in EXPLICIT and rtol not in (1e-3, 1e-6):
-        return ("stability-limited: 3e5–4e5 evaluations and 3–10 s per solve at every rtol (measured at 1e-3 "
-                "and 1e-6); rtol changes only the error, never the cost")
+        return (
+            "stability-limited: 3e5–4e5 evaluations and 3–10 s per solve at every rtol (measured at 1e-3 "
+            "and 1e-6); rtol changes only the error, never the cost"
+        )
     if case == "B" and method == "Radau" and rtol < 1e-10:
         return "Radau beyond rtol 1e-10 on B takes 3e5–5e5 evaluations and 7–20 s per solve"
     return None
@@ -211,8 +245,12 @@ def driven_errors(run: Run, reference: Run, period: float) -> dict:
     """Case B: the curve relative to R_max, and the readouts R_max, R_min (relative) and t_min/T."""
     r_max, r_min, t_min = extrema(run, period)
     ref_max, ref_min, ref_t = extrema(reference, period)
-    return {"curve": finite(_curve_gap(run, reference) / ref_max), "R_max": finite(abs(r_max - ref_max) / ref_max),
-            "R_min": finite(abs(r_min - ref_min) / ref_min), "t_min": finite(abs(t_min - ref_t))}
+    return {
+        "curve": finite(_curve_gap(run, reference) / ref_max),
+        "R_max": finite(abs(r_max - ref_max) / ref_max),
+        "R_min": finite(abs(r_min - ref_min) / ref_min),
+        "t_min": finite(abs(t_min - ref_t)),
+    }
 
 
 def stiff_errors(run: Run, reference: Run) -> dict:
@@ -252,8 +290,12 @@ def case_reference(case: str, cross_check: bool) -> tuple[Run | None, dict]:
     other = solve_case(case, second, second_rtol)
     agreement = case_errors(case, other, reference)
     measured = [v for v in agreement.values() if v is not None]
-    return reference, {**note, "check": f"{second} rtol {second_rtol:.0e}", "agreement": max(measured, default=None),
-                       "check_seconds": other.seconds}
+    return reference, {
+        **note,
+        "check": f"{second} rtol {second_rtol:.0e}",
+        "agreement": max(measured, default=None),
+        "check_seconds": other.seconds,
+    }
 
 
 def bubble_experiment(case: str, plan: Plan = FULL) -> dict:
@@ -270,10 +312,23 @@ def bubble_experiment(case: str, plan: Plan = FULL) -> dict:
             continue
         run = timed[method, rtol]
         errors = case_errors(case, run.result, reference)
-        row = {"method": method, "rtol": rtol or None, "nfev": run.result.nfev, "status": run.result.status,
-               "error": errors["curve"], "errors": errors, "time_s": run.seconds, "repeats": run.repeats}
+        row = {
+            "method": method,
+            "rtol": rtol or None,
+            "nfev": run.result.nfev,
+            "status": run.result.status,
+            "error": errors["curve"],
+            "errors": errors,
+            "time_s": run.seconds,
+            "repeats": run.repeats,
+        }
         runs.append({**row, "exact": True} if method == ANALYTIC else row)
     method, rtol = choose_method(preset_problem(CASES[case]["preset"])[0])
     info = {k: v for k, v in CASES[case].items() if k != "periods"}
-    return {**info, "reference_check": check, "chosen": {"method": method, "rtol": rtol or None}, "runs": runs,
-            "expected_status": MACH if case == "A" else OK}
+    return {
+        **info,
+        "reference_check": check,
+        "chosen": {"method": method, "rtol": rtol or None},
+        "runs": runs,
+        "expected_status": MACH if case == "A" else OK,
+    }

@@ -6,6 +6,7 @@ which the output is exactly affine or quadratic), interpolate back to every slid
 measure the largest error against the model itself. The page ships every stop instead; its
 bytes are the last row of each group.
 """
+
 from __future__ import annotations
 
 import json
@@ -35,7 +36,9 @@ class Line:
     def exact(self, x) -> np.ndarray:
         """The model's value at x (the other parameters at their defaults and `fixed`)."""
         inputs = {**dict(self.fixed), self.param: np.asarray(x, float)}
-        return np.asarray(builtin_registry().models[self.model]().evaluate(inputs, wanted=[self.output])[self.output], float)
+        return np.asarray(
+            builtin_registry().models[self.model]().evaluate(inputs, wanted=[self.output])[self.output], float
+        )
 
 
 def _stops(lo: float, hi: float, step: float) -> np.ndarray:
@@ -44,12 +47,36 @@ def _stops(lo: float, hi: float, step: float) -> np.ndarray:
 
 # physics.md §12, on the slider ranges of physics.md I1, I2 and I4.
 LINES = {
-    "v1f": Line("I2 v₁f(m₁), m₂ = 2 kg", "collision", "v1f", "m1", _stops(0.1, 10.0, 0.1), 3,
-                (("m2", 2.0), ("v1i", 3.0), ("v2i", -1.0), ("e", 1.0)), "newtons-laws#collision"),
-    "K_after": Line("I2 K_after(e)", "collision", "K_after", "e", _stops(0.0, 1.0, 0.01), 2,
-                    (("m1", 1.0), ("m2", 2.0), ("v1i", 3.0), ("v2i", -1.0)), "newtons-laws#collision"),
-    "dv": Line("I1 Δv(m)", "impulse", "dv", "m", _stops(0.1, 10.0, 0.1), 3, (("F_pk", 12.0), ("tau", 0.2)),
-               "newtons-laws#impulse"),
+    "v1f": Line(
+        "I2 v₁f(m₁), m₂ = 2 kg",
+        "collision",
+        "v1f",
+        "m1",
+        _stops(0.1, 10.0, 0.1),
+        3,
+        (("m2", 2.0), ("v1i", 3.0), ("v2i", -1.0), ("e", 1.0)),
+        "newtons-laws#collision",
+    ),
+    "K_after": Line(
+        "I2 K_after(e)",
+        "collision",
+        "K_after",
+        "e",
+        _stops(0.0, 1.0, 0.01),
+        2,
+        (("m1", 1.0), ("m2", 2.0), ("v1i", 3.0), ("v2i", -1.0)),
+        "newtons-laws#collision",
+    ),
+    "dv": Line(
+        "I1 Δv(m)",
+        "impulse",
+        "dv",
+        "m",
+        _stops(0.1, 10.0, 0.1),
+        3,
+        (("F_pk", 12.0), ("tau", 0.2)),
+        "newtons-laws#impulse",
+    ),
     "MA": Line("I4 MA(x_p)", "lever", "MA", "x_p", _stops(0.0, 2.0, 0.01), 2, (), "newtons-laws#lever"),
 }
 
@@ -89,14 +116,25 @@ AXES = {
     "inverse": lambda line, x, n: (lambda v: 1.0 / v, np.array([x[0], x[-1]])),
     "quadratic": lambda line, x, n: (lambda v: v, np.linspace(x[0], x[-1], n)),
 }
-AXIS_TEXT = {"linear": "linear {p}", "log": "log {p}", "w1": "w₁ = m₁/(m₁+m₂)", "inverse": "1/{p}",
-             "quadratic": "quadratic in {p}", "per stop": "every stop"}
+AXIS_TEXT = {
+    "linear": "linear {p}",
+    "log": "log {p}",
+    "w1": "w₁ = m₁/(m₁+m₂)",
+    "inverse": "1/{p}",
+    "quadratic": "quadratic in {p}",
+    "per stop": "every stop",
+}
 
 # (line, axis, node counts): physics.md §12's rows.
 CASES = (
-    ("v1f", "linear", (17, 33, 65)), ("v1f", "log", (17, 33, 65)), ("v1f", "w1", (2,)),
-    ("K_after", "linear", (2, 3, 5, 9, 17)), ("K_after", "quadratic", (3,)),
-    ("dv", "linear", (17, 33, 65)), ("dv", "log", (17, 33, 65)), ("dv", "inverse", (2,)),
+    ("v1f", "linear", (17, 33, 65)),
+    ("v1f", "log", (17, 33, 65)),
+    ("v1f", "w1", (2,)),
+    ("K_after", "linear", (2, 3, 5, 9, 17)),
+    ("K_after", "quadratic", (3,)),
+    ("dv", "linear", (17, 33, 65)),
+    ("dv", "log", (17, 33, 65)),
+    ("dv", "inverse", (2,)),
     ("MA", "linear", (65,)),
 )
 
@@ -123,7 +161,17 @@ def resolution_experiment() -> list[dict]:
 
 
 def _row(key: str, line: Line, axis: str, count: int, error: float, values: np.ndarray) -> dict:
-    return {"line": key, "output": line.name, "scene": line.scene, "axis": axis,
-            "axis_text": AXIS_TEXT[axis].format(p=line.param), "nodes": count, "stops": len(line.stops),
-            "error": error, "display_resolution": 0.5 * 10.0**-line.decimals, "decimals": line.decimals,
-            "bytes_float32": FLOAT32 * count, "bytes_json_gzip": json_gzip_bytes(values, line.decimals)}
+    return {
+        "line": key,
+        "output": line.name,
+        "scene": line.scene,
+        "axis": axis,
+        "axis_text": AXIS_TEXT[axis].format(p=line.param),
+        "nodes": count,
+        "stops": len(line.stops),
+        "error": error,
+        "display_resolution": 0.5 * 10.0**-line.decimals,
+        "decimals": line.decimals,
+        "bytes_float32": FLOAT32 * count,
+        "bytes_json_gzip": json_gzip_bytes(values, line.decimals),
+    }

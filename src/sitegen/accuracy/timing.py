@@ -3,6 +3,7 @@
 A build never reads a clock into a page: times reach the accuracy page only through the
 committed bench.json, so the same sources still give byte-identical builds.
 """
+
 from __future__ import annotations
 
 import datetime
@@ -56,8 +57,12 @@ def time_medians(functions: dict, max_repeats: int = 5) -> dict:
                 for _ in range(loops[key]):
                     function()
                 samples[key].append((time.perf_counter() - start) / loops[key])
-    return {key: Timed(results[key], statistics.median(samples[key]), len(samples[key])) if samples[key]
-            else Timed(results[key], first[key], 1) for key in functions}
+    return {
+        key: Timed(results[key], statistics.median(samples[key]), len(samples[key]))
+        if samples[key]
+        else Timed(results[key], first[key], 1)
+        for key in functions
+    }
 
 
 def _repeats(first: float, max_repeats: int) -> int:
@@ -69,7 +74,7 @@ def _repeats(first: float, max_repeats: int) -> int:
 
 def machine_info() -> dict:
     """CPU model, cores, the Python and library versions, and the date (UTC) of this run."""
-    now = datetime.datetime.now(datetime.timezone.utc)
+    now = datetime.datetime.now(datetime.UTC)
     return {
         "cpu": _cpu_model(),
         "cores": os.cpu_count(),

@@ -1,4 +1,5 @@
 """What the build measured about one scene's numerics, as the accuracy page and captions show it."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass

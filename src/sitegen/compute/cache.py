@@ -6,6 +6,7 @@ imports of the model's module: its plugin's own modules and what they use of sit
 tabulator, and the numpy/scipy/matplotlib versions — and nothing that cannot (prose, other scenes,
 other models, file times). Freshness is never judged by modification time.
 """
+
 from __future__ import annotations
 
 import hashlib
@@ -122,8 +123,15 @@ class TableCache:
             return "cached"
         if before is None:
             return "computed: new"
-        changed = [what for field, what in (("spec", "spec changed"), ("code", "model code changed"),
-                                             ("libraries", "library version changed")) if before.get(field) != getattr(key, field)]
+        changed = [
+            what
+            for field, what in (
+                ("spec", "spec changed"),
+                ("code", "model code changed"),
+                ("libraries", "library version changed"),
+            )
+            if before.get(field) != getattr(key, field)
+        ]
         return "computed: " + (", ".join(changed) if changed else "not in the cache")
 
     def _entry(self, key: CacheKey) -> Path:
@@ -146,13 +154,36 @@ def _encode(tables: dict) -> bytes:
     meta, arrays = [], {}
     for i, (name, t) in enumerate(sorted(tables.items())):
         if isinstance(t, Structured):
-            meta.append({"name": name, "expr": t.expr, "decimals": t.decimals, "labels": list(t.labels), "width": t.width,
-                         "special": t.special, "parts": sorted(t.parts), "bounds": list(t.bounds), "sliders": len(t.sliders)})
+            meta.append(
+                {
+                    "name": name,
+                    "expr": t.expr,
+                    "decimals": t.decimals,
+                    "labels": list(t.labels),
+                    "width": t.width,
+                    "special": t.special,
+                    "parts": sorted(t.parts),
+                    "bounds": list(t.bounds),
+                    "sliders": len(t.sliders),
+                }
+            )
             arrays.update({f"s{i}_{k}": v for k, v in enumerate(t.sliders)})
             continue
-        meta.append({"name": name, "axes": list(t.axes), "shape": list(t.shape), "decimals": t.decimals,
-                     "labels": list(t.labels), "width": t.width, "special": t.special, "ragged": t.lengths is not None,
-                     "summed": t.summed_axes, "raw": t.raw, "digits": t.digits})
+        meta.append(
+            {
+                "name": name,
+                "axes": list(t.axes),
+                "shape": list(t.shape),
+                "decimals": t.decimals,
+                "labels": list(t.labels),
+                "width": t.width,
+                "special": t.special,
+                "ragged": t.lengths is not None,
+                "summed": t.summed_axes,
+                "raw": t.raw,
+                "digits": t.digits,
+            }
+        )
         arrays[f"q{i}"] = t.quanta
         if t.exponents is not None:
             arrays[f"e{i}"] = t.exponents
@@ -167,17 +198,35 @@ def _decode(payload: bytes) -> dict:
     with np.load(io.BytesIO(payload), allow_pickle=False) as archive:
         meta = json.loads(archive["meta"].tobytes().decode())
         tables = {
-            m["name"]: Table(m["name"], tuple(m["axes"]), tuple(m["shape"]), archive[f"q{i}"], m["decimals"],
-                             tuple(m["labels"]), m["width"], archive[f"n{i}"] if m["ragged"] else None, m["special"],
-                             m.get("summed", False), m.get("raw", False),
-                             archive[f"e{i}"] if m.get("digits") else None, m.get("digits", 0))
-            for i, m in enumerate(meta) if "expr" not in m
+            m["name"]: Table(
+                m["name"],
+                tuple(m["axes"]),
+                tuple(m["shape"]),
+                archive[f"q{i}"],
+                m["decimals"],
+                tuple(m["labels"]),
+                m["width"],
+                archive[f"n{i}"] if m["ragged"] else None,
+                m["special"],
+                m.get("summed", False),
+                m.get("raw", False),
+                archive[f"e{i}"] if m.get("digits") else None,
+                m.get("digits", 0),
+            )
+            for i, m in enumerate(meta)
+            if "expr" not in m
         }
         for i, m in enumerate(meta):
             if "expr" in m:
                 tables[m["name"]] = Structured(
-                    m["name"], m["expr"], m["decimals"], tuple(m["labels"]), m["width"], m["special"],
-                    {p: tables[p] for p in m["parts"]}, tuple(archive[f"s{i}_{k}"] for k in range(m["sliders"])),
+                    m["name"],
+                    m["expr"],
+                    m["decimals"],
+                    tuple(m["labels"]),
+                    m["width"],
+                    m["special"],
+                    {p: tables[p] for p in m["parts"]},
+                    tuple(archive[f"s{i}_{k}"] for k in range(m["sliders"])),
                     tuple(m["bounds"]),
                 )
         return tables

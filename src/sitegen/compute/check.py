@@ -7,6 +7,7 @@ the scene's `SceneAccuracy` record; a scene whose error exceeds its declared tol
 error naming the worst stop. Results are cached under the scene's key, so a rebuild with nothing
 changed solves nothing; records hold no times (those go to the progress lines only).
 """
+
 from __future__ import annotations
 
 import hashlib
@@ -38,7 +39,9 @@ class Checked:
     worst: str
 
 
-def check_scenes(items, remember=compute_now, progress=None, shown=None) -> tuple[list[SceneAccuracy], list[AuthorError]]:
+def check_scenes(
+    items, remember=compute_now, progress=None, shown=None
+) -> tuple[list[SceneAccuracy], list[AuthorError]]:
     """Records of every numerically computed scene, in the order given, and an error per scene over its
     tolerance or showing a digit the reference does not.
 
@@ -54,7 +57,9 @@ def check_scenes(items, remember=compute_now, progress=None, shown=None) -> tupl
         key = digest(scene_key(scene, []).digest, item.page.slug, source_digest(CHECK_MODULES), "accuracy")
         names = sorted(shown(scene) if shown else (o.name for o in scene.readouts))
         key = digest(key, *names)
-        measured = json.loads(remember("accuracy", key, lambda scene=scene, names=names: _measure(scene, names).encode()))
+        measured = json.loads(
+            remember("accuracy", key, lambda scene=scene, names=names: _measure(scene, names).encode())
+        )
         checked = _checked(item.page.slug, scene, measured)
         records.append(checked.record)
         if checked.record.error > checked.record.tolerance:
@@ -69,10 +74,15 @@ def check_scenes(items, remember=compute_now, progress=None, shown=None) -> tupl
 def _progress_line(page: str, record: SceneAccuracy, seconds: float) -> str:
     """One line of the build's log for a checked scene (the only place its time appears)."""
     error = written(record.error, ".1e") if record.error else "0"
-    digits = (f"; digits: {len(record.digits_wrong)} wrong, {len(record.near_boundary)} near a rounding boundary"
-              if record.digits_checked else "")
-    return (f"check     {page + '#' + record.scene:<44} {record.stops_checked:>3} stops {seconds:7.2f} s  "
-            f"error {error} (tolerance {written(record.tolerance)}){digits}")
+    digits = (
+        f"; digits: {len(record.digits_wrong)} wrong, {len(record.near_boundary)} near a rounding boundary"
+        if record.digits_checked
+        else ""
+    )
+    return (
+        f"check     {page + '#' + record.scene:<44} {record.stops_checked:>3} stops {seconds:7.2f} s  "
+        f"error {error} (tolerance {written(record.tolerance)}){digits}"
+    )
 
 
 def _measure(scene: ResolvedScene, shown: list[str]) -> str:
@@ -89,11 +99,19 @@ def _measure(scene: ResolvedScene, shown: list[str]) -> str:
     worst = max(rows, key=lambda row: row[0])
     methods = list(dict.fromkeys(m.method for _, m, _ in rows))
     references = list(dict.fromkeys(m.reference for _, m, _ in rows))
-    return json.dumps({
-        "error": repr(worst[0]), "worst": worst[2], "stops": len(rows),
-        "evaluations": sum(m.evaluations for _, m, _ in rows), "methods": methods, "references": references,
-        "wrong": wrong, "near": near,
-    }, sort_keys=True)
+    return json.dumps(
+        {
+            "error": repr(worst[0]),
+            "worst": worst[2],
+            "stops": len(rows),
+            "evaluations": sum(m.evaluations for _, m, _ in rows),
+            "methods": methods,
+            "references": references,
+            "wrong": wrong,
+            "near": near,
+        },
+        sort_keys=True,
+    )
 
 
 def _checked(page: str, scene: ResolvedScene, measured: dict) -> Checked:
@@ -103,10 +121,20 @@ def _checked(page: str, scene: ResolvedScene, measured: dict) -> Checked:
     methods = measured["methods"]
     method = f"{settings.method}: {', '.join(methods)}" if settings.method == "auto" else methods[0]
     record = SceneAccuracy(
-        page=page, scene=scene.id, model=scene.model.name, method=method, settings=knobs or "—",
-        tolerance=settings.tolerance, error=float(measured["error"]), metric=scene.model.error_metric,
-        reference="; ".join(measured["references"]), stops_checked=measured["stops"], evaluations=measured["evaluations"],
-        digits_checked=scene.model.checks_digits, digits_wrong=tuple(measured["wrong"]), near_boundary=tuple(measured["near"]),
+        page=page,
+        scene=scene.id,
+        model=scene.model.name,
+        method=method,
+        settings=knobs or "—",
+        tolerance=settings.tolerance,
+        error=float(measured["error"]),
+        metric=scene.model.error_metric,
+        reference="; ".join(measured["references"]),
+        stops_checked=measured["stops"],
+        evaluations=measured["evaluations"],
+        digits_checked=scene.model.checks_digits,
+        digits_wrong=tuple(measured["wrong"]),
+        near_boundary=tuple(measured["near"]),
     )
     return Checked(record, measured["worst"])
 
@@ -122,17 +150,23 @@ def tolerance_error(scene: ResolvedScene, checked: Checked) -> AuthorError:
     else:
         remedy = "choose another method"
     where = scene.spec.loc_of("numerics")
-    message = (f"measured error {written(record.error, '.1e')} ({record.metric}, against {record.reference}) at {checked.worst} "
-               f"exceeds the declared tolerance {written(settings.tolerance)} of '{settings.text()}'; "
-               f"{remedy} or loosen the tolerance on the scene's 'numerics:' line")
+    message = (
+        f"measured error {written(record.error, '.1e')} ({record.metric}, against {record.reference}) at {checked.worst} "
+        f"exceeds the declared tolerance {written(settings.tolerance)} of '{settings.text()}'; "
+        f"{remedy} or loosen the tolerance on the scene's 'numerics:' line"
+    )
     return AuthorError(where, message, scene.id)
 
 
 def digits_error(scene: ResolvedScene, record: SceneAccuracy) -> AuthorError:
     """The author error of a scene that shows a digit its reference does not, away from any rounding boundary."""
-    shown = "; ".join(record.digits_wrong[:3]) + (f" and {len(record.digits_wrong) - 3} more" if len(record.digits_wrong) > 3 else "")
-    message = (f"displayed values differ from {record.reference} at {shown}; tighten rtol on the scene's 'numerics:' "
-               f"line (a value within the tolerance {written(record.tolerance)} of a rounding boundary is only listed)")
+    shown = "; ".join(record.digits_wrong[:3]) + (
+        f" and {len(record.digits_wrong) - 3} more" if len(record.digits_wrong) > 3 else ""
+    )
+    message = (
+        f"displayed values differ from {record.reference} at {shown}; tighten rtol on the scene's 'numerics:' "
+        f"line (a value within the tolerance {written(record.tolerance)} of a rounding boundary is only listed)"
+    )
     return AuthorError(scene.spec.loc_of("numerics"), message, scene.id)
 
 
@@ -143,7 +177,9 @@ def sample_stops(scene: ResolvedScene) -> list[tuple[int, ...]]:
     budget = min(scene.model.check_stops, math.prod(counts))
     rng = np.random.default_rng(int(hashlib.sha256(scene_key(scene, []).spec.encode()).hexdigest()[:16], 16))
     highest = tuple(count - 1 for count in counts)
-    corners = [tuple(int(c) for c in np.multiply(highest, rng.integers(2, size=len(counts)))) for _ in range((budget - 3) // 2)]
+    corners = [
+        tuple(int(c) for c in np.multiply(highest, rng.integers(2, size=len(counts)))) for _ in range((budget - 3) // 2)
+    ]
     chosen = list(dict.fromkeys([scene.default_stops, (0,) * len(counts), highest, *corners]))[:budget]
     while len(chosen) < budget:
         stop = tuple(int(rng.integers(count)) for count in counts)
@@ -161,8 +197,10 @@ def stop_text(scene: ResolvedScene, stop: tuple[int, ...]) -> str:
 def caption_sentence(record: SceneAccuracy, link: bool) -> str:
     """The caption's closing sentence (HTML): the measured error, against what, and a link to the row."""
     see = f', see <a href="accuracy.html#{record.anchor}">accuracy and cost</a>' if link else ""
-    return (f"Measured error {_number_html(record.error)} ({escape(record.metric)}) against "
-            f"{_exponents_html(escape(record.reference))}{see}.")
+    return (
+        f"Measured error {_number_html(record.error)} ({escape(record.metric)}) against "
+        f"{_exponents_html(escape(record.reference))}{see}."
+    )
 
 
 def _number_html(value: float) -> str:
@@ -178,6 +216,7 @@ def _number_html(value: float) -> str:
 
 def _exponents_html(text: str) -> str:
     """Numbers like 1e-12 written as 10<sup>−12</sup>, kept on the line of the word before them."""
+
     def power(match: re.Match) -> str:
         mantissa, exponent = match[1], int(match[2])
         shown = f"10<sup>{exponent}</sup>".replace("-", "−")

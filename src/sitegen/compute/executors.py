@@ -3,6 +3,7 @@
 All three are `concurrent.futures.Executor`s; the build submits work units and collects their
 results in plan order, so the output is the same byte for byte whichever runs it.
 """
+
 from __future__ import annotations
 
 import ctypes
@@ -14,11 +15,10 @@ import signal
 import subprocess
 import sys
 import threading
+from collections.abc import Iterable, Iterator
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from contextlib import contextmanager
-from typing import Iterable, Iterator
-
 
 _PR_SET_PDEATHSIG = 1  # prctl's option: the signal a process gets when its parent ends (linux/prctl.h)
 
@@ -99,12 +99,13 @@ class Beside:
         self._pool = pool
 
     @classmethod
-    def start(cls) -> "Beside | None":
+    def start(cls) -> Beside | None:
         """A new process beside this one, forked now, or None where forking is unsafe or fails."""
         if threading.active_count() > 1 or "fork" not in multiprocessing.get_all_start_methods():
             return None
-        pool = ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("fork"),
-                                   initializer=_beside, initargs=(os.getpid(),))
+        pool = ProcessPoolExecutor(
+            max_workers=1, mp_context=multiprocessing.get_context("fork"), initializer=_beside, initargs=(os.getpid(),)
+        )
         try:
             pool.submit(int)  # the pool forks at its first call, here rather than wherever a caller makes one
         except OSError:
@@ -171,8 +172,12 @@ class Background:
         # -P: the current folder does not come first on the path, where a file of its could shadow a module.
         # A process group of its own: a Ctrl-C at the terminal reaches this process only, which ends the call
         # (`stop`), rather than interrupting the new interpreter while it starts (and printing its traceback).
-        self._process = subprocess.Popen([sys.executable, "-P", "-c", _CHILD, str(write), str(os.getpid())],
-                                         stdin=subprocess.PIPE, pass_fds=(write,), process_group=0)
+        self._process = subprocess.Popen(
+            [sys.executable, "-P", "-c", _CHILD, str(write), str(os.getpid())],
+            stdin=subprocess.PIPE,
+            pass_fds=(write,),
+            process_group=0,
+        )
         os.close(write)
         with self._process.stdin as calls:
             calls.write(call)

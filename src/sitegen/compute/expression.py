@@ -1,6 +1,7 @@
 """The page script's arithmetic in numpy, over many stops at once: what an expression shown by the
 page evaluates to, in the script's order of operations (so that what the build proves is what the
 page shows)."""
+
 from __future__ import annotations
 
 import itertools
@@ -70,8 +71,8 @@ def _poly_value(expr: dict, parts, sliders, stops: np.ndarray) -> np.ndarray:
     return total
 
 
-def shown(table: "Structured", stops: np.ndarray) -> np.ndarray:
-    """What the page shows at each row of `stops`: a label index, or integers of the last digit
+def shown(table, stops: np.ndarray) -> np.ndarray:
+    """What the page shows of a `Structured` table at each row of `stops`: a label index, or integers of the last digit
     (rounded half up: floor(x·10^d + 0.5), as the script rounds)."""
     value = evaluate(table.expr, table.parts, table.sliders, stops)
     if table.labels:

@@ -1,10 +1,11 @@
 """Slider grids: the exact stops of each control."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
 from decimal import Decimal
 from fractions import Fraction
+from functools import cached_property
 
 import numpy as np
 
@@ -26,7 +27,7 @@ class Axis:
     labels: tuple[str, ...] = ()
 
     @classmethod
-    def evenly(cls, param: str, lo: Decimal, step: Decimal | Fraction, count: int) -> "Axis":
+    def evenly(cls, param: str, lo: Decimal, step: Decimal | Fraction, count: int) -> Axis:
         """An evenly spaced grid of `count` stops (listed when the step is a fraction such as 1/60)."""
         if isinstance(step, Fraction) and isinstance(as_decimal(step), Fraction):
             return cls(param, tuple(as_decimal(Fraction(lo) + step * k) for k in range(count)), LIST)

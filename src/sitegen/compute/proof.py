@@ -1,6 +1,7 @@
 """Proving a declared structure against the model: the page's value (the expression, evaluated as the
 script does) against a direct evaluation of the model at every corner and edge of the slider box,
 the defaults, and a seeded random sample of stops; the build fails on any displayed difference."""
+
 from __future__ import annotations
 
 import hashlib

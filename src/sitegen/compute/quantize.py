@@ -1,4 +1,5 @@
 """Numbers as the page shows them: integers counting units of the last displayed digit."""
+
 from __future__ import annotations
 
 import re

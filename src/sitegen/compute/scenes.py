@@ -1,11 +1,12 @@
 """Resolving a scene block against the model registry: every author mistake becomes an error."""
+
 from __future__ import annotations
 
 import difflib
+from collections.abc import Mapping
 from dataclasses import dataclass
 from decimal import Decimal
 from fractions import Fraction
-from typing import Mapping
 
 from ..content.scenes import CHOICE_FORM, ChoiceSpec, SceneSpec, SliderSpec
 from ..errors import AuthorError, SourceLoc
@@ -45,8 +46,9 @@ class ResolvedScene:
         return values
 
 
-def resolve_scene(spec: SceneSpec, models: Mapping[str, type[Model]],
-                  broken: Mapping[str, SourceLoc] | None = None) -> tuple[ResolvedScene | None, list[AuthorError]]:
+def resolve_scene(
+    spec: SceneSpec, models: Mapping[str, type[Model]], broken: Mapping[str, SourceLoc] | None = None
+) -> tuple[ResolvedScene | None, list[AuthorError]]:
     """Check a scene block against its model; return the resolved scene or every error found.
 
     `broken`: plugins that failed to load, by name (a scene naming one is told where it failed)."""
@@ -54,7 +56,9 @@ def resolve_scene(spec: SceneSpec, models: Mapping[str, type[Model]],
         message = f"model '{spec.model}' could not be loaded: see the error at {broken[spec.model]}"
         return None, [AuthorError(spec.loc_of("model"), message, spec.id)]
     if spec.model not in models:
-        message = f"unknown model '{spec.model}'{_suggest(spec.model, models)} Known models: {', '.join(sorted(models))}"
+        message = (
+            f"unknown model '{spec.model}'{_suggest(spec.model, models)} Known models: {', '.join(sorted(models))}"
+        )
         return None, [AuthorError(spec.loc_of("model"), message, spec.id)]
     model = models[spec.model]()
     errors: list[AuthorError] = []
@@ -74,7 +78,9 @@ def resolve_scene(spec: SceneSpec, models: Mapping[str, type[Model]],
     _check_readouts(spec, model, known, error)
     if errors:
         return None, errors
-    readouts = tuple(known[n] for n in spec.readouts) if spec.readouts else tuple(o for o in known.values() if not o.size)
+    readouts = (
+        tuple(known[n] for n in spec.readouts) if spec.readouts else tuple(o for o in known.values() if not o.size)
+    )
     scene = ResolvedScene(spec, type(model)(settings), tuple(axes), tuple(stops), tuple(fixed), effects, readouts)
     return scene, []
 
@@ -106,7 +112,9 @@ def _check_animation(spec: SceneSpec, axes: list[Axis], error) -> None:
         error("animate", f"animate '{spec.animate}' is not one of the scene's sliders: {', '.join(sliders) or 'none'}")
 
 
-def _fixed_values(spec: SceneSpec, model: Model, controlled: set[str], effects: frozenset[str], error) -> list[tuple[str, float]]:
+def _fixed_values(
+    spec: SceneSpec, model: Model, controlled: set[str], effects: frozenset[str], error
+) -> list[tuple[str, float]]:
     """The `fix` lines that name a parameter without a control, at a value in its domain."""
     fixed = []
     for item in spec.fixed:
@@ -143,16 +151,27 @@ def _check_params_need_their_effects(model: Model, names: list[str], effects: fr
 def _check_params_not_replaced(spec: SceneSpec, model: Model, effects: frozenset[str], errors: list) -> None:
     """No control for a parameter that one of the scene's effects takes the place of."""
     for control in [*spec.sliders, *spec.fixed]:
-        if control.param in {p.name for p in model.params} and (replacing := model.param(control.param).unused_under(effects)):
-            errors.append(AuthorError(control.loc, f"parameter '{control.param}' is not used with effect '{replacing}', which "
-                                      "takes its place; remove its control", spec.id))
+        if control.param in {p.name for p in model.params} and (
+            replacing := model.param(control.param).unused_under(effects)
+        ):
+            errors.append(
+                AuthorError(
+                    control.loc,
+                    f"parameter '{control.param}' is not used with effect '{replacing}', which "
+                    "takes its place; remove its control",
+                    spec.id,
+                )
+            )
 
 
 def _check_readouts(spec: SceneSpec, model: Model, known: dict[str, Output], error) -> None:
     """Every readout is an output of the model under the scene's effects."""
     for name in spec.readouts:
         if name not in known:
-            error("readouts", f"model '{model.name}' has no output '{name}'{_suggest(name, known)} Its outputs: {', '.join(known)}")
+            error(
+                "readouts",
+                f"model '{model.name}' has no output '{name}'{_suggest(name, known)} Its outputs: {', '.join(known)}",
+            )
 
 
 def _settings(spec: SceneSpec, model: Model, effects: frozenset[str], error):
@@ -170,11 +189,15 @@ def _settings(spec: SceneSpec, model: Model, effects: frozenset[str], error):
         return model.settings
 
 
-def _slider_axis(s: SliderSpec, model: Model, seen: set[str], effects: frozenset[str]) -> tuple[Axis | None, str | None]:
+def _slider_axis(
+    s: SliderSpec, model: Model, seen: set[str], effects: frozenset[str]
+) -> tuple[Axis | None, str | None]:
     """The slider's grid, or what is wrong with it (said after "slider 'NAME' ")."""
-    problem = _control_problem(s.param, model, seen) or (
-        "is a choice of the model; write it as " + CHOICE_FORM if model.param(s.param).choices else None
-    ) or (_list_problem(s, model, effects) if s.listed else _range_problem(s, model, effects))
+    problem = (
+        _control_problem(s.param, model, seen)
+        or ("is a choice of the model; write it as " + CHOICE_FORM if model.param(s.param).choices else None)
+        or (_list_problem(s, model, effects) if s.listed else _range_problem(s, model, effects))
+    )
     if problem:
         return None, problem
     if s.listed:
@@ -264,13 +287,18 @@ def _no_such_param(name: str, model: Model) -> str:
     return f"names no parameter of model '{model.name}'{_suggest(name, names)} Its parameters: {', '.join(names)}"
 
 
-def _domain_problem(model: Model, name: str, value: Decimal, what: str, effects: frozenset[str] = frozenset()) -> str | None:
+def _domain_problem(
+    model: Model, name: str, value: Decimal, what: str, effects: frozenset[str] = frozenset()
+) -> str | None:
     """What is wrong with `value` for parameter `name` under the scene's effects (said after the subject), or None."""
     param = model.param(name).under(effects)
     if param.contains(float(value)):
         return None
-    widen = "".join(f" (effect '{effect}' allows {'larger values' if hi == float('inf') else f'up to {_bound(hi)}'})"
-                    for effect, hi in param.wider if float(value) <= hi)
+    widen = "".join(
+        f" (effect '{effect}' allows {'larger values' if hi == float('inf') else f'up to {_bound(hi)}'})"
+        for effect, hi in param.wider
+        if float(value) <= hi
+    )
     if float(value) > param.hi:
         return f"{what} {value} exceeds the model's bound {_bound(param.hi)}{widen}"
     return f"{what} {value} is outside the model's domain {param.domain_text()}"

@@ -4,6 +4,7 @@ sitegen and within the module's own package, transitively), and the versions of 
 A module's imports are read from its source (import statements anywhere in its body), so a key follows the
 files a model really uses and nothing else; sources are hashed, never judged by their modification time.
 """
+
 from __future__ import annotations
 
 import ast
@@ -54,13 +55,15 @@ def forget_sources() -> None:
     _module_record.cache_clear()
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _module_record(name: str) -> tuple[str, tuple[str, ...]]:
     """A module's source hash and the modules it imports that have source files (read once per process)."""
     path = _module_path(name)
     source = path.read_bytes()
     sha = hashlib.sha256(source).hexdigest()
-    return sha, tuple(f for f in _imported_names(name, source, sha, path.name == "__init__.py") if _module_path(f) is not None)
+    return sha, tuple(
+        f for f in _imported_names(name, source, sha, path.name == "__init__.py") if _module_path(f) is not None
+    )
 
 
 _IMPORTED: dict[tuple[str, str, bool], tuple[str, ...]] = {}  # (module, source hash, is package) -> what it names
@@ -79,13 +82,13 @@ def digest(*parts: str) -> str:
     return sha("\x00".join(parts))
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def library_digest() -> str:
     """Hash of the versions of the numerical and plotting libraries and of the compiled code's target CPU."""
     return sha(",".join(f"{lib}=={library_version(lib)}" for lib in LIBRARIES) + f",target={compiled.target_name()}")
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def library_version(name: str) -> str:
     """An installed package's version (looked up once per process)."""
     return metadata.version(name)
@@ -120,7 +123,9 @@ def _imports(name: str, source: bytes, is_package: bool) -> list[str]:
             base = package
             for _ in range(max(node.level - 1, 0)):
                 base = base.rpartition(".")[0]
-            target = f"{base}.{node.module}" if node.level and node.module else (base if node.level else node.module or "")
+            target = (
+                f"{base}.{node.module}" if node.level and node.module else (base if node.level else node.module or "")
+            )
             found.append(target)
             found.extend(f"{target}.{alias.name}" for alias in node.names)  # `from . import x` imports a module
         elif isinstance(node, ast.Import):

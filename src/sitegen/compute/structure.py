@@ -7,6 +7,7 @@ same order of operations, so that what the build proves is what the page shows; 
 it with a direct evaluation of the model at every corner and edge of the slider box and at a
 seeded random sample of stops, and the build fails on any displayed difference.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
@@ -92,10 +93,17 @@ class _Compiler:
         if isinstance(piece, Choose):
             return {"sel": self.compile(piece.by), "of": [self.compile(b) for b in piece.branches]}
         if isinstance(piece, Threshold):
-            return {"cut": self.compile(piece.value), "edges": [float(e) for e in piece.edges], "map": list(piece.labels)}
+            return {
+                "cut": self.compile(piece.value),
+                "edges": [float(e) for e in piece.edges],
+                "map": list(piece.labels),
+            }
         if isinstance(piece, Ratio):
-            return {"ratio": [self.compile(piece.numerator), self.compile(piece.denominator)],
-                    "k": float(piece.scale), "zero": float(piece.when_zero)}
+            return {
+                "ratio": [self.compile(piece.numerator), self.compile(piece.denominator)],
+                "k": float(piece.scale),
+                "zero": float(piece.when_zero),
+            }
         if isinstance(piece, Log10):
             return {"log10": self.compile(piece.value), "k": float(piece.scale)}
         if isinstance(piece, ChoiceOf):
@@ -197,7 +205,9 @@ def structured_pieces(scene: ResolvedScene, names) -> dict[str, object]:
     return pieces
 
 
-def compile_structured(scene: ResolvedScene, pieces: dict[str, object], per_stop: dict[str, Table]) -> dict[str, object]:
+def compile_structured(
+    scene: ResolvedScene, pieces: dict[str, object], per_stop: dict[str, Table]
+) -> dict[str, object]:
     """Each declared output as a proven expression, plus the coordinate tables they read (named "~…")."""
     compiler = _Compiler(scene, per_stop)
     stops = proof_stops(scene) if pieces else None
@@ -208,8 +218,16 @@ def compile_structured(scene: ResolvedScene, pieces: dict[str, object], per_stop
             expr = compiler.compile(piece)
         except ValueError as error:
             raise AuthorError(scene.spec.loc, f"output '{name}': {error}", scene.id) from None
-        table = Structured(name, expr, output.decimals, output.labels, output.size, output.special,
-                           dict(compiler.parts), compiler.sliders)
+        table = Structured(
+            name,
+            expr,
+            output.decimals,
+            output.labels,
+            output.size,
+            output.special,
+            dict(compiler.parts),
+            compiler.sliders,
+        )
         bounds = prove(scene, table, stops)
         out[name] = replace(table, bounds=bounds)
     out.update({n: t for n, t in compiler.parts.items() if n not in out})

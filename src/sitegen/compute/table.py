@@ -1,4 +1,5 @@
 """A table: one output over the stops of the sliders it depends on, as integers of its last digit."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass

@@ -1,4 +1,5 @@
 """Tabulation: each output evaluated over only the sliders it depends on, quantised for display."""
+
 from __future__ import annotations
 
 from collections import defaultdict
@@ -8,12 +9,11 @@ import numpy as np
 
 from ..errors import AuthorError
 from ..physics.structure import outputs_read
+from .proof import require_showable, stop_text
 from .quantize import quantize, significant
 from .scenes import ResolvedScene
-from .proof import require_showable, stop_text
 from .structure import compile_structured, structured_pieces
 from .table import Table, drop_constant_axes
-
 
 MAX_POINTS = 20_000_000  # per group of outputs: beyond this a scene would exhaust memory
 
@@ -47,8 +47,12 @@ def plan_scene(scene: ResolvedScene, names: list[str], max_stops: int | None = N
         whole = WorkUnit(scene, axes, tuple(group))
         if whole.stops() > MAX_POINTS:
             sliders = ", ".join(scene.axes[a].param for a in axes)
-            raise AuthorError(scene.spec.loc, f"outputs {', '.join(group)} would be tabulated at {whole.stops():,} points "
-                              f"(sliders {sliders}), more than {MAX_POINTS:,}; use fewer stops", scene.id)
+            raise AuthorError(
+                scene.spec.loc,
+                f"outputs {', '.join(group)} would be tabulated at {whole.stops():,} points "
+                f"(sliders {sliders}), more than {MAX_POINTS:,}; use fewer stops",
+                scene.id,
+            )
         if not max_stops or not axes or whole.stops() <= max_stops:
             units.append(whole)
             continue
@@ -89,8 +93,9 @@ def per_stop_outputs(scene: ResolvedScene, names) -> list[str]:
     return [n for n in names if n not in pieces] + sorted(read - set(names))
 
 
-def assemble_tables(scene: ResolvedScene, units: list[WorkUnit], results: list[dict[str, np.ndarray]],
-                    names=()) -> dict:
+def assemble_tables(
+    scene: ResolvedScene, units: list[WorkUnit], results: list[dict[str, np.ndarray]], names=()
+) -> dict:
     """Join the units' blocks (in plan order) into tables, then add the outputs among `names` that
     have a declared structure (compiled and proven against the model here)."""
     blocks: dict[tuple[int, ...], list[dict[str, np.ndarray]]] = defaultdict(list)
@@ -133,17 +138,34 @@ def _finish_table(scene: ResolvedScene, axes: tuple[int, ...], name: str, array:
     if output.digits and not output.size:  # mantissa and exponent, kept together while axes are dropped
         mantissas, exponents = significant(array, output.digits, special=bool(output.special), floor=output.floor)
         kept, mantissas, exponents = drop_constant_axes(axes, mantissas, exponents)
-        return Table(name, kept, mantissas.shape, mantissas.reshape(-1), 0, special=output.special,
-                     exponents=exponents.reshape(-1), digits=output.digits)
-    quanta = array.astype(np.int64) if output.is_text else quantize(array, output.decimals, special=bool(output.special))
+        return Table(
+            name,
+            kept,
+            mantissas.shape,
+            mantissas.reshape(-1),
+            0,
+            special=output.special,
+            exponents=exponents.reshape(-1),
+            digits=output.digits,
+        )
+    quanta = (
+        array.astype(np.int64) if output.is_text else quantize(array, output.decimals, special=bool(output.special))
+    )
     if lengths is not None:  # drop axes only where the lengths are constant too
         kept, quanta, lengths = drop_constant_axes(axes, quanta, lengths)
     else:
         kept, quanta = drop_constant_axes(axes, quanta)
     grid = quanta.shape[: len(kept)]
     return Table(
-        name, kept, grid, quanta.reshape(-1), output.decimals, output.labels, output.size,
-        None if lengths is None else lengths.reshape(-1), output.special,
+        name,
+        kept,
+        grid,
+        quanta.reshape(-1),
+        output.decimals,
+        output.labels,
+        output.size,
+        None if lengths is None else lengths.reshape(-1),
+        output.special,
     )
 
 
@@ -153,7 +175,9 @@ def _ragged_lengths(scene: ResolvedScene, axes, output, present: np.ndarray) -> 
     padded_at_end = np.arange(output.size) < lengths[..., None]
     if not np.array_equal(present, padded_at_end):
         bad = np.argwhere(~np.all(present == padded_at_end, axis=-1))[0]
-        raise AuthorError(scene.spec.loc, f"output '{output.name}' has NaN inside its values {stop_text(scene, axes, bad)}", scene.id)
+        raise AuthorError(
+            scene.spec.loc, f"output '{output.name}' has NaN inside its values {stop_text(scene, axes, bad)}", scene.id
+        )
     return lengths
 
 

@@ -1,4 +1,5 @@
 """Where the bench's results live and how they are written and read (strict, sorted JSON)."""
+
 from __future__ import annotations
 
 import json

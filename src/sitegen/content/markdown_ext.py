@@ -5,6 +5,7 @@ each scene or formula is replaced by an empty placeholder element (raw HTML, whi
 through untouched) that `fill_slots` swaps for the final HTML. Markdown's own stash cannot be used
 this early: its whitespace normaliser strips the stash markers.
 """
+
 from __future__ import annotations
 
 import re
@@ -14,8 +15,8 @@ import markdown
 from markdown.extensions import Extension
 from markdown.preprocessors import Preprocessor
 
-from .reports import ReportBlock, parse_report_block
 from ..errors import AuthorError, SourceLoc
+from .reports import ReportBlock, parse_report_block
 from .scenes import SceneSpec, parse_scene_block
 
 _SCENE_FENCE = re.compile(r"^```\s*scene\s*$")
@@ -78,7 +79,11 @@ class _SlotPreprocessor(Preprocessor):
         for label, where in self.found.references[first_reference:]:
             if label not in self.found.numbers:
                 known = ", ".join(self.found.numbers) or "none"
-                self.found.errors.append(AuthorError(where, f"reference (@{label}) names no equation on this page; labelled equations: {known}"))
+                self.found.errors.append(
+                    AuthorError(
+                        where, f"reference (@{label}) names no equation on this page; labelled equations: {known}"
+                    )
+                )
         return out
 
     def _scene(self, lines, i, loc, out) -> int:
@@ -116,8 +121,12 @@ class _SlotPreprocessor(Preprocessor):
                 return j
             if _CODE_FENCE.match(lines[j].lstrip()):
                 line = self.first_line + j
-                self.found.errors.append(AuthorError(
-                    loc, f"{kind} block is not closed: line {line} opens another block; end this one with a line '```' before it"))
+                self.found.errors.append(
+                    AuthorError(
+                        loc,
+                        f"{kind} block is not closed: line {line} opens another block; end this one with a line '```' before it",
+                    )
+                )
                 return None
         self.found.errors.append(AuthorError(loc, f"{kind} block is not closed; end it with a line '```'"))
         return None

@@ -1,4 +1,5 @@
 """TeX to MathML at build time, with Temml (vendored in temml/) run once per build by node."""
+
 from __future__ import annotations
 
 import hashlib
@@ -27,14 +28,19 @@ def convert_math(items: list[MathItem], remember=None) -> tuple[list[str], list[
     if not unique:
         return [], []
     key = hashlib.sha256(json.dumps([unique, _converter_version()]).encode()).hexdigest()
-    converted = remember("math", key, lambda: json.dumps(_run_temml(unique)).encode()) if remember \
+    converted = (
+        remember("math", key, lambda: json.dumps(_run_temml(unique)).encode())
+        if remember
         else json.dumps(_run_temml(unique)).encode()
+    )
     results = dict(zip(unique, json.loads(converted)))
     mathml, errors = [], []
     for item in items:
         result = results[(item.tex, item.display)]
         if "error" in result:
-            errors.append(AuthorError(item.loc, f"TeX cannot be converted: {_first_line(result['error'])} (in '{item.tex}')"))
+            errors.append(
+                AuthorError(item.loc, f"TeX cannot be converted: {_first_line(result['error'])} (in '{item.tex}')")
+            )
         mathml.append(result.get("mathml", ""))
     return mathml, errors
 
@@ -46,11 +52,14 @@ def _converter_version() -> str:
 
 def _run_temml(formulas: list[tuple[str, bool]]) -> list[dict]:
     try:
-        done = subprocess.run(["node", str(SCRIPT), str(TEMML)], input=json.dumps(formulas), capture_output=True,
-                              text=True, check=False)
+        done = subprocess.run(
+            ["node", str(SCRIPT), str(TEMML)], input=json.dumps(formulas), capture_output=True, text=True, check=False
+        )
     except FileNotFoundError:
-        raise MathToolMissing("node is not on PATH: sitegen converts TeX to MathML with Temml, run by Node.js "
-                              "(install it, e.g. 'apt-get install nodejs', and build again)") from None
+        raise MathToolMissing(
+            "node is not on PATH: sitegen converts TeX to MathML with Temml, run by Node.js "
+            "(install it, e.g. 'apt-get install nodejs', and build again)"
+        ) from None
     if done.returncode != 0:
         raise MathToolMissing(f"Temml failed: {done.stderr.strip()}")
     return json.loads(done.stdout)

@@ -1,4 +1,5 @@
 """Pages: discovery under content/, TOML front matter, and Markdown with slots."""
+
 from __future__ import annotations
 
 import difflib
@@ -47,7 +48,9 @@ def read_page(path: Path, root: Path) -> tuple[Page | None, list[AuthorError]]:
         lines = data.decode("utf-8-sig").split("\n")  # -sig: a byte-order mark some editors add is dropped
     except UnicodeDecodeError as error:
         where = SourceLoc(source, data.count(b"\n", 0, error.start) + 1)
-        return None, [AuthorError(where, f"the file is not UTF-8 text (byte 0x{data[error.start]:02x}); save it as UTF-8")]
+        return None, [
+            AuthorError(where, f"the file is not UTF-8 text (byte 0x{data[error.start]:02x}); save it as UTF-8")
+        ]
     meta, body_start, errors = _front_matter(lines, source)
     if body_start is None:  # a front matter that never closes leaves no way to tell where the body starts
         return None, errors
@@ -73,7 +76,16 @@ def _front_matter(lines: list[str], source: str) -> tuple[dict | None, int | Non
     """(metadata or None if unusable, the line where the body starts or None if unknown, errors)."""
     top = SourceLoc(source, 1)
     if not lines or lines[0].strip() != FRONT_MATTER:
-        return None, 0, [AuthorError(top, f"a page starts with TOML front matter between '{FRONT_MATTER}' lines, e.g. title = \"Newton's laws\"")]
+        return (
+            None,
+            0,
+            [
+                AuthorError(
+                    top,
+                    f"a page starts with TOML front matter between '{FRONT_MATTER}' lines, e.g. title = \"Newton's laws\"",
+                )
+            ],
+        )
     end = next((i for i in range(1, len(lines)) if lines[i].strip() == FRONT_MATTER), None)
     if end is None:
         return None, None, [AuthorError(top, f"front matter is not closed; add a line '{FRONT_MATTER}' after it")]
@@ -90,7 +102,9 @@ def _front_matter(lines: list[str], source: str) -> tuple[dict | None, int | Non
     if not isinstance(meta.get("order", 0), int):
         problems.append(AuthorError(top, "front matter 'order' must be a whole number"))
     if "parent" in meta and not isinstance(meta["parent"], str):
-        problems.append(AuthorError(top, "front matter 'parent' must be the name of another page, e.g. \"newtons-laws\""))
+        problems.append(
+            AuthorError(top, "front matter 'parent' must be the name of another page, e.g. \"newtons-laws\"")
+        )
     return (None if problems else meta), end + 1, problems
 
 
@@ -103,5 +117,10 @@ def _unknown_keys(meta: dict, lines: list[str], source: str) -> list[AuthorError
         line = next((n for n, text in enumerate(lines, start=2) if re.match(rf"\s*{re.escape(key)}\s*=", text)), 1)
         close = difflib.get_close_matches(key, FRONT_MATTER_KEYS, n=1)
         hint = f"did you mean '{close[0]}'? " if close else ""
-        problems.append(AuthorError(SourceLoc(source, line), f"unknown front matter key '{key}'; {hint}a page takes {', '.join(FRONT_MATTER_KEYS)}"))
+        problems.append(
+            AuthorError(
+                SourceLoc(source, line),
+                f"unknown front matter key '{key}'; {hint}a page takes {', '.join(FRONT_MATTER_KEYS)}",
+            )
+        )
     return problems

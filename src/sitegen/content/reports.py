@@ -9,6 +9,7 @@ the page is assembled, from bench.json and the build's own accuracy records (sit
 parts exist depends on the models of the build, so the part's name is checked when scenes are
 resolved, at the line where the author wrote it.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -27,7 +28,9 @@ class ReportBlock:
 
 def parse_report_block(lines: list[str], loc: SourceLoc) -> tuple[ReportBlock | None, list[AuthorError]]:
     """The block's one directive, `show: <part>`; an error names the line and says what to write."""
-    directives = [(i, line.strip()) for i, line in enumerate(lines) if line.strip() and not line.strip().startswith("#")]
+    directives = [
+        (i, line.strip()) for i, line in enumerate(lines) if line.strip() and not line.strip().startswith("#")
+    ]
     if len(directives) != 1 or not directives[0][1].startswith("show:"):
         return None, [AuthorError(loc, "an accuracy-report block holds one line 'show: <part>'")]
     offset, text = directives[0]

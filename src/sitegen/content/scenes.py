@@ -1,15 +1,16 @@
 """Scene blocks: the author's declaration of an interactive figure, parsed line by line.
 
-    ```scene
-    model: collision
-    id: collision
-    slider m1: 0.5..5 step 0.5 default 1
-    fix e: 1
-    effects: restitution_law
-    readouts: v1f v2f
-    caption: Two carts meet on a frictionless track.
-    ```
+```scene
+model: collision
+id: collision
+slider m1: 0.5..5 step 0.5 default 1
+fix e: 1
+effects: restitution_law
+readouts: v1f v2f
+caption: Two carts meet on a frictionless track.
+```
 """
+
 from __future__ import annotations
 
 import re
@@ -161,7 +162,15 @@ def _parse_slider(name: str, value: str, loc: SourceLoc) -> SliderSpec:
     listed = _LIST.match(value)
     if listed:
         stops = tuple(_decimal(v.strip(), loc, f"slider '{name}' stop") for v in listed["values"].split(","))
-        return SliderSpec(name, min(stops), max(stops), Decimal(0), _decimal(listed["default"], loc, f"slider '{name}' default"), loc, stops)
+        return SliderSpec(
+            name,
+            min(stops),
+            max(stops),
+            Decimal(0),
+            _decimal(listed["default"], loc, f"slider '{name}' default"),
+            loc,
+            stops,
+        )
     match = _SLIDER.match(value)
     if not match:
         raise AuthorError(loc, f"malformed slider '{name}': '{value}'; write {SLIDER_FORM}")

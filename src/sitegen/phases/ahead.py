@@ -7,6 +7,7 @@ the pages built before it, and they keep the machine's other core busy. Their re
 wherever they are made. Nothing is forked with --jobs or a scheduler (they spread the tabulating already),
 nor where forking is unsafe (see `Beside`): then everything is done here, as it is needed.
 """
+
 from __future__ import annotations
 
 from ..compute.executors import Beside
@@ -23,8 +24,15 @@ def work_ahead(book: Book, run: BuildRun) -> Book:
     """Start the compiled scenes' tabulating and the report's diagrams in a process beside the build."""
     if run.failed or not run.may_fork:
         return book
-    scenes = _in_writing_order([r for r in book.scenes if r.scene.model.name in run.kernels_loaded
-                                and not (run.cache and run.cache.has(r.key))], book, run)
+    scenes = _in_writing_order(
+        [
+            r
+            for r in book.scenes
+            if r.scene.model.name in run.kernels_loaded and not (run.cache and run.cache.has(r.key))
+        ],
+        book,
+        run,
+    )
     parts = [block.part for page in book.pages for block in page.found.reports]
     bench = load_results(run.config.content / BENCH_NAME) if parts else None
     if bench and run.cache and bench_figures_cached(bench, parts, run.models, run.registry.reports, run.cache):
@@ -43,8 +51,10 @@ def work_ahead(book: Book, run: BuildRun) -> Book:
         run.ahead[record.name] = Ahead(record.scene.model.name, units, futures)
     for model in sorted({a.model for a in run.ahead.values()}):
         count = sum(a.model == model for a in run.ahead.values())
-        run.say(f"ahead     {model}: {count} scene{'s' * (count != 1)} tabulating in a process beside the build; "
-                f"pages with them are built last")
+        run.say(
+            f"ahead     {model}: {count} scene{'s' * (count != 1)} tabulating in a process beside the build; "
+            f"pages with them are built last"
+        )
     if bench:  # after the scenes: the report's page is written last
         run.drawn_ahead = run.beside.submit(bench_figures, bench, parts, run.models, run.registry.reports, run.cache)
         run.say("ahead     the accuracy report's diagrams that the cache lacks: drawing in the same process")

@@ -9,6 +9,7 @@ build's log and its records come out in the order of a build without it: this pr
 wrong there (an author error, a crash, the process gone), the block is built here, where errors name their
 place as usual.
 """
+
 from __future__ import annotations
 
 import time
@@ -39,15 +40,21 @@ class Facts(NamedTuple):
     stored_values: int
 
     @classmethod
-    def of(cls, record: SceneRecord) -> "Facts":
+    def of(cls, record: SceneRecord) -> Facts:
         """The facts of a written page's scene."""
-        return cls(record.page.slug, record.index, record.status, record.accuracy, record.data_bytes,
-                   record.stored_values)
+        return cls(
+            record.page.slug, record.index, record.status, record.accuracy, record.data_bytes, record.stored_values
+        )
 
     def onto(self, record: SceneRecord) -> SceneRecord:
         """`record` as it is once its page is written."""
-        return replace(record.finished(), status=self.status, accuracy=self.accuracy, data_bytes=self.data_bytes,
-                       stored_values=self.stored_values)
+        return replace(
+            record.finished(),
+            status=self.status,
+            accuracy=self.accuracy,
+            data_bytes=self.data_bytes,
+            stored_values=self.stored_values,
+        )
 
 
 @dataclass(frozen=True)
@@ -89,10 +96,13 @@ def hand_over_pages(book: Book, run: BuildRun, order: list[Page], phases) -> Non
             break  # the middle of this page's work would lie past the half
         block.insert(0, page)
         share += cost[page.slug]
-    earlier = order[:order.index(block[0])] if block else []
+    earlier = order[: order.index(block[0])] if block else []
     shared = set().union(*(keys[p.slug] for p in earlier)) & set().union(*(keys[p.slug] for p in block))
-    if (sum(len(uncached[p.slug]) for p in block) < MIN_SCENES or total - share < cost_of(MIN_SCENES)
-            or (run.cache and shared)):
+    if (
+        sum(len(uncached[p.slug]) for p in block) < MIN_SCENES
+        or total - share < cost_of(MIN_SCENES)
+        or (run.cache and shared)
+    ):
         # A fork to wait on; or a table on both sides, which a serial build computes once and then takes from the
         # cache (or, its entry damaged, computes and caches again): two processes would do it at once.
         return
@@ -132,10 +142,18 @@ def build_pages(slugs: tuple[str, ...], staging: str, phases, before: int, scene
         return None
     report = run.report
     facts = tuple(Facts.of(r) for r in book.scenes if r.page.slug in slugs)
-    return PagesBuilt(facts, tuple(run.log.errors), tuple(lines), tuple(report.scene_lines),
-                      (report.cached, report.computed - before, report.evaluations),
-                      tuple(run.cache.problems[problems:]) if run.cache else (), frozenset(run.math_characters),
-                      run.searchable, run.tree.sizes, time.perf_counter() - start)
+    return PagesBuilt(
+        facts,
+        tuple(run.log.errors),
+        tuple(lines),
+        tuple(report.scene_lines),
+        (report.cached, report.computed - before, report.evaluations),
+        tuple(run.cache.problems[problems:]) if run.cache else (),
+        frozenset(run.math_characters),
+        run.searchable,
+        run.tree.sizes,
+        time.perf_counter() - start,
+    )
 
 
 def _working_beside(run: BuildRun, staging: str, scenes: int, before: int) -> list[str]:
@@ -172,8 +190,9 @@ def take_pages(book: Book, run: BuildRun) -> Book:
     for error in built.errors:
         run.error(error)
     report.scene_lines += built.scene_lines
-    report.cached, report.computed, report.evaluations = (a + b for a, b in zip(
-        (report.cached, report.computed, report.evaluations), built.counts))
+    report.cached, report.computed, report.evaluations = (
+        a + b for a, b in zip((report.cached, report.computed, report.evaluations), built.counts)
+    )
     if run.cache:
         run.cache.problems += built.problems
     run.math_characters |= built.math_characters
@@ -182,6 +201,8 @@ def take_pages(book: Book, run: BuildRun) -> Book:
     run.built_beside = set(handed.slugs)
     facts = {(f.slug, f.index): f for f in built.facts}
     records = [facts[r.page.slug, r.index].onto(r) for r in book.scenes if (r.page.slug, r.index) in facts]
-    run.say(f"beside    {len(handed.slugs)} page{'s' * (len(handed.slugs) != 1)} built beside the build in "
-            f"{built.seconds:.2f} s; waited {waited:.2f} s for them")
+    run.say(
+        f"beside    {len(handed.slugs)} page{'s' * (len(handed.slugs) != 1)} built beside the build in "
+        f"{built.seconds:.2f} s; waited {waited:.2f} s for them"
+    )
     return book.with_records(records)

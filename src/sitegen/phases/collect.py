@@ -1,4 +1,5 @@
 """A build collects its cyclic garbage once per page, not whenever allocations pile up."""
+
 from __future__ import annotations
 
 import gc

@@ -1,5 +1,6 @@
 """The phases that make files: each scene's element and inline data, each page (its accuracy-report
 parts filled from the build's records, not read back from HTML), and the shared assets."""
+
 from __future__ import annotations
 
 import hashlib
@@ -73,7 +74,9 @@ def _report_context(book: Book, run: BuildRun) -> ReportContext:
     records = tuple(r.accuracy for r in book.scenes if r.accuracy is not None)
     sizes = {r.name: r.data_bytes for r in book.scenes}
     bench = load_results(run.config.content / BENCH_NAME)
-    return ReportContext(bench, records, book.pages, book.scenes, sizes, _remember_drawn(run), run.models, run.registry.reports)
+    return ReportContext(
+        bench, records, book.pages, book.scenes, sizes, _remember_drawn(run), run.models, run.registry.reports
+    )
 
 
 def _remember_drawn(run: BuildRun):

@@ -1,4 +1,5 @@
 """The phases that read: the pages, each scene block against the models and figures, and the math."""
+
 from __future__ import annotations
 
 from dataclasses import replace
@@ -30,9 +31,19 @@ def read_pages(book: Book, run: BuildRun) -> Book:
     slugs = {p.slug for p in pages}
     for page in pages:
         if page.parent and page.parent not in slugs:
-            run.error(AuthorError(SourceLoc(page.source, 1), f"parent '{page.parent}' is not a page; pages: {', '.join(sorted(slugs))}"))
+            run.error(
+                AuthorError(
+                    SourceLoc(page.source, 1),
+                    f"parent '{page.parent}' is not a page; pages: {', '.join(sorted(slugs))}",
+                )
+            )
     if pages and "index" not in slugs:
-        run.error(AuthorError(SourceLoc(str(config.content.relative_to(config.root)), 1), "the book needs a home page, content/index.md"))
+        run.error(
+            AuthorError(
+                SourceLoc(str(config.content.relative_to(config.root)), 1),
+                "the book needs a home page, content/index.md",
+            )
+        )
     return replace(book, pages=tuple(pages))
 
 
@@ -44,7 +55,11 @@ def resolve_scenes(book: Book, run: BuildRun) -> Book:
         seen: set[str] = set()
         for index, spec in enumerate(page.found.scenes):
             if spec.id in seen:
-                run.error(AuthorError(spec.loc, f"another scene on this page has id '{spec.id}'; add 'id: <unique-name>'", spec.id))
+                run.error(
+                    AuthorError(
+                        spec.loc, f"another scene on this page has id '{spec.id}'; add 'id: <unique-name>'", spec.id
+                    )
+                )
                 continue
             seen.add(spec.id)
             record = resolve_record(SceneRecord(page, index, spec), run)
@@ -60,13 +75,19 @@ def resolve_record(record: SceneRecord, run: BuildRun) -> SceneRecord | None:
     scene, errors = resolve_scene(spec, run.models, run.registry.broken)
     figure = figure_name(spec)
     if scene is not None and figure not in run.figures:
-        errors.append(AuthorError(spec.loc_of("figure"), f"unknown figure '{figure}'; figures: {', '.join(sorted(run.figures))}", spec.id))
+        errors.append(
+            AuthorError(
+                spec.loc_of("figure"), f"unknown figure '{figure}'; figures: {', '.join(sorted(run.figures))}", spec.id
+            )
+        )
     for error in errors:
         run.error(error)
     if errors:
         return None
     record = replace(record, scene=scene, view=run.figures[figure])
-    with run.scene(record, "listing its figure's layers"):  # the figure's own code: a mistake in it is named at its line
+    with run.scene(
+        record, "listing its figure's layers"
+    ):  # the figure's own code: a mistake in it is named at its line
         outputs = needed_outputs(scene, record.view)
     caption = markdown_to_html(spec.caption, page.source, spec.loc_of("caption").line, page.found, inline=True)
     return replace(record, caption=caption, outputs=tuple(outputs), key=scene_key(scene, outputs))

@@ -3,10 +3,11 @@
 Each phase returns a new book whose records have the phase's part filled in (MkDocs' `Page`
 goes through its build the same way); nothing travels in dicts keyed by "page#scene".
 """
+
 from __future__ import annotations
 
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Collection, Mapping
 
 from ..compute.accuracy import SceneAccuracy
 from ..compute.cache import CacheKey
@@ -51,7 +52,7 @@ class SceneRecord:
             count *= axis.count
         return count
 
-    def finished(self) -> "SceneRecord":
+    def finished(self) -> SceneRecord:
         """The record once its page is written: the small facts kept, the tables, figure and HTML let go."""
         return replace(self, tables=None, figure=None, html="")
 
@@ -69,16 +70,16 @@ class Book:
         """The records the scene phases work on now: the current page's, or all."""
         return tuple(s for s in self.scenes if self.page is None or s.page is self.page)
 
-    def with_records(self, records) -> "Book":
+    def with_records(self, records) -> Book:
         """The book with some records replaced (matched by page and position)."""
         new = {(r.page.slug, r.index): r for r in records}
         return replace(self, scenes=tuple(new.get((s.page.slug, s.index), s) for s in self.scenes))
 
-    def only(self, record: SceneRecord) -> "Book":
+    def only(self, record: SceneRecord) -> Book:
         """The book with one scene (to work on it alone)."""
         return replace(self, scenes=(record,), page=None)
 
-    def at(self, page: Page | None) -> "Book":
+    def at(self, page: Page | None) -> Book:
         """The book with the scene phases pointed at `page`."""
         return replace(self, page=page)
 

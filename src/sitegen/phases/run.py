@@ -1,4 +1,5 @@
 """One run of the build: its settings, errors, cache, progress lines and counters, and the phase clock."""
+
 from __future__ import annotations
 
 import time
@@ -8,9 +9,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..compute.accuracy import SceneAccuracy
-from ..config import BookConfig, read_book
 from ..compute.cache import TableCache, compute_now
 from ..compute.executors import Background, BackgroundFailed, Beside
+from ..config import BookConfig, read_book
 from ..errors import AuthorError, ErrorLog, SceneCrashed
 from ..registry import Registry, raising_line
 
@@ -34,7 +35,7 @@ class BuildConfig:
             object.__setattr__(self, "book", BookConfig(self.root, content=self.content, output=self.out))
 
     @classmethod
-    def at(cls, root: Path, out: Path | None = None, **options) -> "BuildConfig":
+    def at(cls, root: Path, out: Path | None = None, **options) -> BuildConfig:
         """The book in folder `root` as its book.toml lays it out (cache in ROOT/.cache)."""
         book = read_book(root)
         options.setdefault("cache", book.root / ".cache")
@@ -80,7 +81,9 @@ class BuildReport:
     files: dict[str, int] = field(default_factory=dict)
     scene_lines: list[str] = field(default_factory=list)  # one line per scene: cached or computed and why
     accuracy: list[SceneAccuracy] = field(default_factory=list)  # numerically computed scenes, in page/scene order
-    data_bytes: dict[str, tuple[int, int]] = field(default_factory=dict)  # "page#scene" -> raw, gzip bytes of its inline tables
+    data_bytes: dict[str, tuple[int, int]] = field(
+        default_factory=dict
+    )  # "page#scene" -> raw, gzip bytes of its inline tables
 
 
 class BuildRun:
@@ -135,7 +138,9 @@ class BuildRun:
         start = time.perf_counter()
         for part in parts:
             while not part.finished(PROGRESS_EVERY):  # a log that says nothing for many seconds looks stuck
-                self.say(f"  {model.name}'s kernels still compiling beside the build, {time.perf_counter() - start:.0f} s waited")
+                self.say(
+                    f"  {model.name}'s kernels still compiling beside the build, {time.perf_counter() - start:.0f} s waited"
+                )
         outcomes = [_outcome(part) for part in parts]
         del self.compiling[model.name]  # only now: until every part has answered, a stopped build ends them
         failed = [o for o in outcomes if isinstance(o, BackgroundFailed)]
@@ -144,12 +149,16 @@ class BuildRun:
         else:
             any_fresh = any(compiled for _, compiled in outcomes)
             beside = f"{'compiled' if any_fresh else 'loaded'} in {max(s for s, _ in outcomes):.2f} s beside the build"
-        seconds, fresh = model.prepare_kernels(self.compiled_cache)  # a model compiling beside the build has compiled code
+        seconds, fresh = model.prepare_kernels(
+            self.compiled_cache
+        )  # a model compiling beside the build has compiled code
         waited = time.perf_counter() - start
         self.report.phases["compile"] = self.report.phases.get("compile", 0.0) + waited
         self.report.phases[self._phase] = self.report.phases.get(self._phase, 0.0) - waited  # the phase adds them too
-        self.say(f"compile   {model.name}: {beside}, waited for {waited:.2f} s; "
-                 f"then {'compiled' if fresh else 'loaded'} in {seconds:.2f} s")
+        self.say(
+            f"compile   {model.name}: {beside}, waited for {waited:.2f} s; "
+            f"then {'compiled' if fresh else 'loaded'} in {seconds:.2f} s"
+        )
 
     def late_models(self) -> set[str]:
         """The models whose work runs beside the build: the pages with their scenes are built last."""
@@ -166,7 +175,9 @@ class BuildRun:
             first, last = self._ahead_seen.setdefault(name, (now, now))
             if now - last >= PROGRESS_EVERY and now > first:
                 self._ahead_seen[name] = (first, now)
-                self.say(f"  {name:<40} {done:>12,} of {total:,} stops, {done / (now - first):,.0f} stops/s, beside the build")
+                self.say(
+                    f"  {name:<40} {done:>12,} of {total:,} stops, {done / (now - first):,.0f} stops/s, beside the build"
+                )
 
     def figures_drawn_ahead(self) -> dict[str, bytes]:
         """The report's diagrams drawn beside the build, by key (once; none if they were not, or failed there:
@@ -215,7 +226,9 @@ class BuildRun:
         except (KeyboardInterrupt, SystemExit, MemoryError):
             raise
         except Exception as error:
-            code = raising_line(error, [type(record.scene.model), type(record.view)] if record.scene else [], self.config.book)
+            code = raising_line(
+                error, [type(record.scene.model), type(record.view)] if record.scene else [], self.config.book
+            )
             raise SceneCrashed(record.spec.loc, record.spec.id, doing, error, code) from error
 
 

@@ -1,5 +1,6 @@
 """The phases that work on scenes, a page at a time: tabulate (from the cache or by the executor),
 check the numerics against each model's reference, and render each figure."""
+
 from __future__ import annotations
 
 import pickle
@@ -31,8 +32,10 @@ def compile_kernels(book: Book, run: BuildRun) -> Book:
     pending = {r.scene.model.name: r.scene.model for r in book.scenes if not run.cache or not run.cache.has(r.key)}
     for name, model in sorted(pending.items()):
         if not model.kernels_cached(run.compiled_cache) and _other_pages(book, name) and _compiling_beside(model, run):
-            run.say(f"compile   {name}: compiling in {len(run.compiling[name])} processes beside the build; "
-                    f"pages with its scenes are built last")
+            run.say(
+                f"compile   {name}: compiling in {len(run.compiling[name])} processes beside the build; "
+                f"pages with its scenes are built last"
+            )
             continue
         prepared = model.prepare_kernels(run.compiled_cache)
         if prepared:

@@ -1,12 +1,14 @@
 """The small numerical API every model follows: declared parameters, outputs, effects and a
 vectorised evaluation. Physics only: nothing here knows about pages or plotting."""
+
 from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import ClassVar, Iterable, Mapping
+from typing import ClassVar
 
 import numpy as np
 
@@ -31,23 +33,25 @@ class Param:
     wider: tuple[tuple[str, float], ...] = ()  # (effect, hi): a larger upper bound while that effect is on
 
     @classmethod
-    def choice(cls, name: str, symbol: str, choices: tuple[str, ...], default: str, description: str = "") -> "Param":
+    def choice(cls, name: str, symbol: str, choices: tuple[str, ...], default: str, description: str = "") -> Param:
         """A parameter that takes one of a few named values, coded 0, 1, ..."""
-        return cls(name, symbol, "", float(choices.index(default)), 0.0, float(len(choices) - 1), False, description, choices)
+        return cls(
+            name, symbol, "", float(choices.index(default)), 0.0, float(len(choices) - 1), False, description, choices
+        )
 
-    def with_effect(self, effect: str) -> "Param":
+    def with_effect(self, effect: str) -> Param:
         """The same parameter, marked as belonging to `effect`."""
         return replace(self, effect=effect)
 
-    def replaced_by(self, *effects: str) -> "Param":
+    def replaced_by(self, *effects: str) -> Param:
         """The same parameter, unused (and not to be given a control) when one of `effects` is on."""
         return replace(self, replaced_in=self.replaced_in + effects)
 
-    def widened_by(self, effect: str, hi: float) -> "Param":
+    def widened_by(self, effect: str, hi: float) -> Param:
         """The same parameter, allowed up to `hi` when `effect` is on (e.g. e > 1 when explosive)."""
         return replace(self, wider=self.wider + ((effect, hi),))
 
-    def under(self, effects: Iterable[str]) -> "Param":
+    def under(self, effects: Iterable[str]) -> Param:
         """The parameter with the domain it has when `effects` are enabled."""
         on = set(effects)
         his = [hi for effect, hi in self.wider if effect in on]

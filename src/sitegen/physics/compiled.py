@@ -7,6 +7,7 @@ source files, numba's and llvmlite's versions and the target; the build points t
 `.cache/compiled/` and reports compiling (or loading) as its own step. Set SITEGEN_COMPILE_TARGET=host
 to compile for the host CPU instead (used to test that the shown numbers do not change).
 """
+
 from __future__ import annotations
 
 import fcntl

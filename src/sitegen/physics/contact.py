@@ -19,6 +19,7 @@ end up moving together (e = 0) and t_c is infinite. Time samples of F(t) for a f
 
 Pure numpy, vectorised over arrays of (μ, k_c, c_d, Δ).
 """
+
 from __future__ import annotations
 
 import numpy as np

@@ -5,12 +5,13 @@ declares its default `Numerics`, chosen from the measured work–precision front
 and the methods a scene may choose instead, with the settings each takes. The build checks every
 such scene against the model's reference and fails when the measured error exceeds `tolerance`.
 """
+
 from __future__ import annotations
 
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
-from typing import Mapping
 
 KEYS = ("method", "rtol", "atol", "nodes", "tolerance")  # everything a scene's `numerics:` line may set
 MAX_NODES = 1024
@@ -38,7 +39,9 @@ class Numerics:
     def knobs(self) -> str:
         """The settings that change the computed numbers (all but the tolerance), as an author writes them."""
         parts = [f"method {self.method}"]
-        parts += [f"{key} {written(value)}" for key in ("rtol", "atol", "nodes") if (value := getattr(self, key)) is not None]
+        parts += [
+            f"{key} {written(value)}" for key in ("rtol", "atol", "nodes") if (value := getattr(self, key)) is not None
+        ]
         return ", ".join(parts)
 
 
@@ -73,7 +76,11 @@ def configure(default: Numerics, methods: Mapping[str, Mapping[str, object]], ch
         if key not in ("method", "tolerance") and key not in taken:
             offers = f"takes {', '.join(taken)} and tolerance" if taken else "takes only tolerance"
             raise ValueError(f"method {method} has no setting '{key}'; it {offers}")
-    start = default if method == default.method else replace(default, **{**dict.fromkeys(("rtol", "atol", "nodes")), **taken})
+    start = (
+        default
+        if method == default.method
+        else replace(default, **{**dict.fromkeys(("rtol", "atol", "nodes")), **taken})
+    )
     return replace(start, method=method, **{key: _value(key, text) for key, text in changes.items() if key != "method"})
 
 

@@ -6,10 +6,11 @@ build turns the declaration into small tables (polynomial nodes, one coordinate 
 proves it against the model at sampled stops. These classes are pure mathematics: nothing here
 knows about pages, tables or scripts.
 """
+
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Callable, Mapping, Union
 
 import numpy as np
 
@@ -57,8 +58,8 @@ class Choose:
     """The value of one of `branches`, picked by an integer-valued piece (a choice parameter's
     index, a threshold, or another output's label)."""
 
-    by: "Piece"
-    branches: tuple["Piece", ...]
+    by: Piece
+    branches: tuple[Piece, ...]
 
 
 @dataclass(frozen=True)
@@ -66,7 +67,7 @@ class Threshold:
     """An index from comparing a value with increasing `edges`: the number of edges the value
     exceeds, mapped through `labels` (so a value equal to an edge counts as not above it)."""
 
-    value: "Piece"
+    value: Piece
     edges: tuple[float, ...]
     labels: tuple[int, ...]
 
@@ -75,8 +76,8 @@ class Threshold:
 class Ratio:
     """scale * numerator / denominator, and `when_zero` where the denominator is exactly 0."""
 
-    numerator: "Piece"
-    denominator: "Piece"
+    numerator: Piece
+    denominator: Piece
     scale: float = 1.0
     when_zero: float = 0.0
 
@@ -85,7 +86,7 @@ class Ratio:
 class Log10:
     """scale * log10(value), e.g. a level in decibels of a ratio the other pieces give exactly."""
 
-    value: "Piece"
+    value: Piece
     scale: float = 1.0
 
 
@@ -96,8 +97,6 @@ class ChoiceOf:
     name: str
 
 
-
-
 @dataclass(frozen=True)
 class OutputOf:
     """Another output of the same model, tabulated at every stop of its own dependencies (a pole or
@@ -106,13 +105,17 @@ class OutputOf:
     name: str
 
 
-Piece = Union[Poly, Choose, Threshold, Ratio, Log10, ChoiceOf, OutputOf]
+Piece = Poly | Choose | Threshold | Ratio | Log10 | ChoiceOf | OutputOf
 
 
 def outputs_read(piece) -> set[str]:
     """The other outputs a piece reads at every stop (its OutputOf leaves)."""
     if isinstance(piece, OutputOf):
         return {piece.name}
-    children = {Choose: lambda p: [p.by, *p.branches], Threshold: lambda p: [p.value], Log10: lambda p: [p.value],
-                Ratio: lambda p: [p.numerator, p.denominator]}.get(type(piece), lambda p: [])(piece)
+    children = {
+        Choose: lambda p: [p.by, *p.branches],
+        Threshold: lambda p: [p.value],
+        Log10: lambda p: [p.value],
+        Ratio: lambda p: [p.numerator, p.denominator],
+    }.get(type(piece), lambda p: [])(piece)
     return set().union(*(outputs_read(c) for c in children))

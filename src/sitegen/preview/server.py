@@ -6,6 +6,7 @@ With a `Live` state (`sitegen serve --watch`) every HTML page is sent with a sma
 event stream: it reloads the page after a good build and shows a failed build's errors over the
 last good page. Nothing is cached by the browser then, so a reload always gets the new files.
 """
+
 from __future__ import annotations
 
 import functools
@@ -22,7 +23,7 @@ PREFIX = "/__sitegen/"  # the preview's own addresses, beside the site's files
 EVENTS, SCRIPT = PREFIX + "events", PREFIX + "reload.js"
 RELOAD_JS = Path(__file__).with_name("reload.js")
 PING_SECONDS = 10.0  # an idle event stream sends a comment this often, so a closed page ends its thread
-NOT_BUILT = "<!DOCTYPE html><html lang=\"en\"><title>Not built</title><body><p>{}</p></body></html>"
+NOT_BUILT = '<!DOCTYPE html><html lang="en"><title>Not built</title><body><p>{}</p></body></html>'
 
 
 class Live:
@@ -94,7 +95,12 @@ class SiteHandler(http.server.SimpleHTTPRequestHandler):
             with open(path, "rb") as file:
                 status, page = 200, file.read()
         except (FileNotFoundError, IsADirectoryError, NotADirectoryError):
-            status, page = 404, NOT_BUILT.format(html.escape(f"No page {urllib.parse.urlsplit(self.path).path} in this build.")).encode()
+            status, page = (
+                404,
+                NOT_BUILT.format(
+                    html.escape(f"No page {urllib.parse.urlsplit(self.path).path} in this build.")
+                ).encode(),
+            )
         tag = f'<script src="{SCRIPT}" data-build="{build}"></script>\n'.encode()
         at = page.rfind(b"</body>")
         page = page[:at] + tag + page[at:] if at >= 0 else page + tag
@@ -137,7 +143,7 @@ class SiteHandler(http.server.SimpleHTTPRequestHandler):
         self.send_error(404, "No listing; link to a file")
         return None
 
-    def log_message(self, format, *args):  # noqa: A002 - signature fixed by the base class
+    def log_message(self, format, *args):
         if not (self.live and self.path.startswith(PREFIX)):  # not a line per page view's event stream
             super().log_message(format, *args)
 

@@ -6,16 +6,17 @@ this process with what is already loaded: the registry of models is kept unless 
 changed, and the cache keeps every scene whose key did not change, so a prose edit evaluates no model
 and an edit to a model recomputes only the scenes that use it.
 """
+
 from __future__ import annotations
 
 import gc
 import queue
 import threading
 import time
+from collections.abc import Iterator
 from dataclasses import dataclass
 from http.server import ThreadingHTTPServer
 from pathlib import Path
-from typing import Iterator
 
 import watchfiles
 
@@ -39,7 +40,10 @@ def serve_watching(book: BookConfig, out: Path, server: ThreadingHTTPServer, liv
         builder.rebuild(set())
         serving.start()
         host, port = server.server_address[:2]
-        say(f"serving {builder.out} at http://{host}:{port}/index.html, rebuilding on changes (Ctrl-C stops)", flush=True)
+        say(
+            f"serving {builder.out} at http://{host}:{port}/index.html, rebuilding on changes (Ctrl-C stops)",
+            flush=True,
+        )
         for changed in BookWatcher(builder.book, stop).batches():
             builder.rebuild(changed)
     except KeyboardInterrupt:
@@ -70,18 +74,29 @@ class Builder:
         errors = self._refresh(changed)
         report = None
         if not errors:
-            report, errors = attempt(BuildConfig(self.book.root, self.book.content, self.out, cache=self.book.root / ".cache",
-                                                 book=self.book), self.registry, self._scene_line)
+            report, errors = attempt(
+                BuildConfig(
+                    self.book.root, self.book.content, self.out, cache=self.book.root / ".cache", book=self.book
+                ),
+                self.registry,
+                self._scene_line,
+            )
         self.live.publish(report is not None, errors)
         seconds = time.perf_counter() - start
         what = ", ".join(sorted(self.book.relative(p) for p in changed)) or "the book"
         if report is None:
-            self.say(f"build of {what} failed after {seconds:.2f} s ({len(errors)} error(s)); the pages show them:", flush=True)
+            self.say(
+                f"build of {what} failed after {seconds:.2f} s ({len(errors)} error(s)); the pages show them:",
+                flush=True,
+            )
             for error in errors:
                 self.say(f"  {error}", flush=True)
         else:
-            self.say(f"built {what} in {seconds:.2f} s: {report.pages} pages, {report.scenes} scenes "
-                     f"({report.computed} computed)", flush=True)
+            self.say(
+                f"built {what} in {seconds:.2f} s: {report.pages} pages, {report.scenes} scenes "
+                f"({report.computed} computed)",
+                flush=True,
+            )
         # What the attempt left in reference cycles (its records, a failed build's traceback) is freed by a
         # full collection; the watcher allocates next to nothing between rebuilds, so none would come by itself.
         gc.collect()
@@ -131,7 +146,11 @@ class BookWatcher:
     def batches(self) -> Iterator[set[Path]]:
         """Each batch of changes, as they come (until `stop` is set)."""
         top = {CONFIG_FILE} | {f.name for f in self._folders(existing=False) if f.parent == self.book.root}
-        self._start(lambda: self._watch([self.book.root], recursive=False, keep=lambda _, path: Path(path).name in top, stop=self.stop))
+        self._start(
+            lambda: self._watch(
+                [self.book.root], recursive=False, keep=lambda _, path: Path(path).name in top, stop=self.stop
+            )
+        )
         self._start(self._watch_folders)
         while not self.stop.is_set():
             try:
@@ -156,8 +175,17 @@ class BookWatcher:
             self._watch(folders, recursive=True, keep=watchfiles.DefaultFilter(), stop=_Either(self.stop, self.regroup))
 
     def _watch(self, paths: list[Path], recursive: bool, keep, stop) -> None:
-        for found in watchfiles.watch(*paths, watch_filter=keep, debounce=LONGEST_MS, step=SETTLE_MS, stop_event=stop,
-                                      recursive=recursive, rust_timeout=500, yield_on_timeout=False, raise_interrupt=False):
+        for found in watchfiles.watch(
+            *paths,
+            watch_filter=keep,
+            debounce=LONGEST_MS,
+            step=SETTLE_MS,
+            stop_event=stop,
+            recursive=recursive,
+            rust_timeout=500,
+            yield_on_timeout=False,
+            raise_interrupt=False,
+        ):
             self.changes.put({Path(path) for _, path in found})
 
     @staticmethod

@@ -1,4 +1,5 @@
 """Moving layers: shapes whose vertices are looked up from tables or read from sliders."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -32,7 +33,7 @@ class Layer:
     text: tuple[str, ...] = ()  # a text layer: phrases, and references "out:NAME" or "in:NAME"
 
     @classmethod
-    def note(cls, name: str, *text: str) -> "Layer":
+    def note(cls, name: str, *text: str) -> Layer:
         """A text layer: a note under the figure that changes with the sliders."""
         return cls(name, "text", -1, text=text)
 
@@ -40,8 +41,10 @@ class Layer:
         if self.kind not in KINDS:
             raise ValueError(f"layer '{self.name}': kind '{self.kind}' is none of {', '.join(KINDS)}")
         if self.kind == "dots" and self.style.get("fill", "none") != "none":
-            raise ValueError(f"layer '{self.name}': a dots layer draws each dot with its stroke, so a fill shows nothing; "
-                             f"give the dots' colour as 'stroke' (and their diameter as 'stroke-width'), not as 'fill'")
+            raise ValueError(
+                f"layer '{self.name}': a dots layer draws each dot with its stroke, so a fill shows nothing; "
+                f"give the dots' colour as 'stroke' (and their diameter as 'stroke-width'), not as 'fill'"
+            )
 
     def refs(self) -> list:
         """Every reference the layer reads."""
@@ -63,7 +66,9 @@ def resolve_ref(ref, scene: ResolvedScene, tables: dict[str, Table], stops: tupl
     if kind == "out":
         table = tables[name]
         if table.digits:
-            raise ValueError(f"a layer reads output '{name}', which is shown to significant digits: give the layer its own output")
+            raise ValueError(
+                f"a layer reads output '{name}', which is shown to significant digits: give the layer its own output"
+            )
         scale = 10.0**-table.decimals
         value = table.at(stops)
         return [float(q) * scale for q in value] if table.width else value * scale
@@ -73,6 +78,7 @@ def resolve_ref(ref, scene: ResolvedScene, tables: dict[str, Table], stops: tupl
 
 def layer_points(layers: list[Layer], scene, tables, stops) -> list[list[tuple[float, float]]]:
     """Every layer's vertices at a slider position."""
+
     def vertices(layer: Layer):
         if layer.kind == "text":  # written by the page (site/assemble.py), not drawn
             return []

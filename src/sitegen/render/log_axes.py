@@ -1,5 +1,6 @@
 """Log axes drawn cheaply, as the accuracy page's diagrams use them: decades labelled in plain text, minor
 ticks only where they help, ticks made only in view, and a tight layout that measures each axes once."""
+
 from __future__ import annotations
 
 import math

@@ -5,6 +5,7 @@ for the renderer that saves it), so a book's hundreds of figures measure the sam
 third of the cold build's figure time. Both results depend only on their arguments (matplotlib's own caches
 assume as much), so sharing them changes no byte of any figure. Imported for its effect by `style`.
 """
+
 from __future__ import annotations
 
 import functools
@@ -78,10 +79,25 @@ def _share_text_layouts() -> None:
         if self.get_wrap() or self.get_usetex() or type(getattr(renderer, "_renderer", renderer)) is not RendererSVG:
             return layout(self, renderer)
         font = self._fontproperties
-        key = (self._text, tuple(font.get_family()), font.get_slant(), font.get_variant(), font.get_weight(),
-               font.get_stretch(), font.get_size(), font.get_file(), font.get_math_fontfamily(),
-               self.get_figure(root=True).dpi, self._linespacing, self._get_multialignment(), self.get_rotation(),
-               self.get_rotation_mode(), self._horizontalalignment, self._verticalalignment, self.get_parse_math())
+        key = (
+            self._text,
+            tuple(font.get_family()),
+            font.get_slant(),
+            font.get_variant(),
+            font.get_weight(),
+            font.get_stretch(),
+            font.get_size(),
+            font.get_file(),
+            font.get_math_fontfamily(),
+            self.get_figure(root=True).dpi,
+            self._linespacing,
+            self._get_multialignment(),
+            self.get_rotation(),
+            self.get_rotation_mode(),
+            self._horizontalalignment,
+            self._verticalalignment,
+            self.get_parse_math(),
+        )
         found = shared.get(key)
         if found is None:
             if len(shared) >= 16384:

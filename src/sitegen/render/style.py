@@ -1,14 +1,17 @@
 """One visual language for every figure: fonts, colours, line weights, deterministic SVG."""
+
 from __future__ import annotations
 
 import matplotlib
 
 matplotlib.use("svg")
 
-import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.pyplot as plt
 
-from . import shared_measures  # noqa: E402,F401  (figures share matplotlib's text measurements)
-from . import tick_copies  # noqa: E402,F401  (an axis' new ticks are copies of one made matplotlib's way)
+from . import (
+    shared_measures,  # noqa: F401  (figures share matplotlib's text measurements)
+    tick_copies,  # noqa: F401  (an axis' new ticks are copies of one made matplotlib's way)
+)
 
 INK = "#1d2430"
 MUTED = "#5b6472"

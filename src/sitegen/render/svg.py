@@ -1,4 +1,5 @@
 """The static SVG of a figure (matplotlib, byte-stable) with its moving layers spliced in."""
+
 from __future__ import annotations
 
 import io
@@ -30,8 +31,9 @@ class AxesFrame:
     box: tuple[float, float, float, float]  # x, y, width, height in SVG units
 
 
-def figure_svg(fig, layers: list[Layer], points: list[list[tuple[float, float]]], prefix: str, label: str,
-               variant: str = "wide") -> str:
+def figure_svg(
+    fig, layers: list[Layer], points: list[list[tuple[float, float]]], prefix: str, label: str, variant: str = "wide"
+) -> str:
     """Save `fig` as inline SVG, add the layers at the given vertices, and make its ids unique.
 
     `variant` ("wide" or "narrow") becomes a class, by which the stylesheet shows the one that suits the screen.
@@ -47,7 +49,12 @@ def figure_svg(fig, layers: list[Layer], points: list[list[tuple[float, float]]]
     svg = re.sub(r"\s*<!--.*?-->", "", svg, flags=re.S)  # matplotlib's comments repeat the label TeX
     svg = _compact(svg)
     head = f'class="scene-svg {variant}" role="img" aria-label="{escape(label)}"'
-    svg = re.sub(r'<svg[^>]*?(viewBox="[^"]+")[^>]*>', lambda m: f'<svg xmlns="http://www.w3.org/2000/svg" {m[1]} {head}>', svg, count=1)
+    svg = re.sub(
+        r'<svg[^>]*?(viewBox="[^"]+")[^>]*>',
+        lambda m: f'<svg xmlns="http://www.w3.org/2000/svg" {m[1]} {head}>',
+        svg,
+        count=1,
+    )
     svg = svg.replace("</svg>", _layers_svg(layers, points, frames) + "</svg>")
     svg = _ID_ATTR.sub(lambda m: f'id="{prefix}-{m[1]}"', svg)
     return _ID_REF.sub(lambda m: f"{m[1]}{prefix}-{m[2]}", svg).strip() + "\n"
@@ -75,7 +82,10 @@ def _frame(fig, ax) -> AxesFrame:
     (x0, y0), (x1, y1) = ax.transData.transform([(0.0, 0.0), (1.0, 1.0)])
     bbox = ax.get_window_extent()
     matrix = (x1 - x0, -(y1 - y0), x0, height - y0)
-    return AxesFrame(tuple(round(v, 4) for v in matrix), tuple(round(v, 3) for v in (bbox.x0, height - bbox.y1, bbox.width, bbox.height)))
+    return AxesFrame(
+        tuple(round(v, 4) for v in matrix),
+        tuple(round(v, 3) for v in (bbox.x0, height - bbox.y1, bbox.width, bbox.height)),
+    )
 
 
 def _layers_svg(layers: list[Layer], points: list[list[tuple[float, float]]], frames: list[AxesFrame]) -> str:
@@ -89,12 +99,16 @@ def _layers_svg(layers: list[Layer], points: list[list[tuple[float, float]]], fr
         parts.append(f'<clipPath id="layers-clip-{index}"><rect x="{x}" y="{y}" width="{w}" height="{h}"/></clipPath>')
         parts.append(f'<g clip-path="url(#layers-clip-{index})"><g transform="matrix({a} 0 0 {d} {e} {f})">')
         for layer, pts in members:
-            attributes = {"fill": "none", **layer.style} if layer.kind == "polyline" else dict(layer.style)  # SVG fills by default
+            attributes = (
+                {"fill": "none", **layer.style} if layer.kind == "polyline" else dict(layer.style)
+            )  # SVG fills by default
             if layer.kind == "dots":  # a zero-length stroke with round caps is a dot
                 # inline style: matplotlib's stylesheet sets stroke-linecap: butt on every element
                 # (merged into the layer's own style: an element may carry one style attribute)
                 own = attributes.get("style", "")
-                attributes["style"] = own if "stroke-linecap" in own else "; ".join(filter(None, ["stroke-linecap: round", own]))
+                attributes["style"] = (
+                    own if "stroke-linecap" in own else "; ".join(filter(None, ["stroke-linecap: round", own]))
+                )
                 shape = f'path data-layer="{layer.name}" d="{format_dots(pts)}"'
             else:
                 shape = f'{layer.kind} data-layer="{layer.name}" points="{format_points(pts)}" stroke-linejoin="round"'

@@ -8,6 +8,7 @@ others the call needs are copies of it, each with artists, font properties and d
 changes by a byte, whatever its code sets on its ticks (a test compares a figure whose ticks carry an id, a
 rotation mode and wrapped labels, and a polar axes, against matplotlib's own). Imported for its effect by `style`.
 """
+
 from __future__ import annotations
 
 import copy

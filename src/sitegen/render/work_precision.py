@@ -6,6 +6,7 @@ ring that marks the chosen setting) sits above it, its title above the legend; p
 placed once the layout is fixed, each at the first spot around its point where its measured text
 box covers no marker, line or other label, and dropped where there is none.
 """
+
 from __future__ import annotations
 
 import math
@@ -26,7 +27,9 @@ LABEL_SIZE = 7.5
 LEGEND_SIZE = LABEL_SIZE + 1
 MARKER_HALF = 3.5  # pt: half the size of a marker, an obstacle for labels
 LINE_HALF = 1.5  # pt: half the width of a line, an obstacle for labels
-LABEL_MARGIN = 1.0  # pt kept clear round a label: a browser draws a text's box a little taller than matplotlib measures it
+LABEL_MARGIN = (
+    1.0  # pt kept clear round a label: a browser draws a text's box a little taller than matplotlib measures it
+)
 RING_SIZE = 15  # pt: the ring round the chosen setting
 
 
@@ -70,8 +73,9 @@ def work_precision_figure(panels: list[Panel], xlabel: str, ylabel: str, note: s
     """
     columns = 3 if narrow else 6
     with plt.rc_context(s.RC):
-        fig, axes = plt.subplots(len(panels), 1, figsize=(s.width(narrow), 0.5 + (4.0 if narrow else 3.6) * len(panels)),
-                                 squeeze=False)
+        fig, axes = plt.subplots(
+            len(panels), 1, figsize=(s.width(narrow), 0.5 + (4.0 if narrow else 3.6) * len(panels)), squeeze=False
+        )
         for ax, panel in zip(axes[:, 0], panels):
             _draw_panel(ax, panel, xlabel, ylabel)
             _legend_and_title(ax, panel, columns)
@@ -91,12 +95,20 @@ def resolution_figure(panels: list[Panel], note: str, narrow: bool = False) -> p
         for ax, panel in zip(axes.ravel(), panels):
             _draw_panel(ax, panel, "bytes stored (float32)", "error ÷ ½ last digit")
             ax.set_title(panel.title, fontsize=9.5, loc="left", color=s.INK)
-        for ax in axes.ravel()[len(panels):]:
+        for ax in axes.ravel()[len(panels) :]:
             ax.set_visible(False)
         names = [series.name for series in panels[0].series]
         handles = [plt.Line2D([], [], color=COLOURS[i], marker=MARKERS[i], lw=1.5, ms=5) for i in range(len(names))]
-        legend = fig.legend(handles, names, loc="upper center", ncol=2 if narrow else len(names), fontsize=LEGEND_SIZE,
-                            frameon=False, handlelength=1.5, columnspacing=1.0)
+        legend = fig.legend(
+            handles,
+            names,
+            loc="upper center",
+            ncol=2 if narrow else len(names),
+            fontsize=LEGEND_SIZE,
+            frameon=False,
+            handlelength=1.5,
+            columnspacing=1.0,
+        )
         _note(fig, note)
         top = 1 - (legend.get_window_extent().height + 6) / (fig.get_figheight() * 72)
         tight_layout_measured_once(fig, rect=(0, 0.03 * (1.6 if narrow else 1), 1, top), h_pad=1.2, w_pad=1.2)
@@ -117,8 +129,19 @@ def _legend_and_title(ax, panel: Panel, columns: int) -> None:
         labels.append(panel.chosen.text)
     width = ax.get_window_extent().width
     for ncol in range(min(columns, len(handles)), 0, -1):  # as many columns as fit over the axes
-        legend = ax.legend(handles, labels, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=ncol, fontsize=LEGEND_SIZE,
-                           frameon=False, handlelength=1.5, columnspacing=0.9, handletextpad=0.4, borderaxespad=0.2)
+        legend = ax.legend(
+            handles,
+            labels,
+            loc="lower left",
+            bbox_to_anchor=(0.0, 1.0),
+            ncol=ncol,
+            fontsize=LEGEND_SIZE,
+            frameon=False,
+            handlelength=1.5,
+            columnspacing=0.9,
+            handletextpad=0.4,
+            borderaxespad=0.2,
+        )
         if legend.get_window_extent().width <= width:
             break
     height = legend.get_window_extent().height
@@ -141,14 +164,32 @@ def _draw_panel(ax, panel: Panel, xlabel: str, ylabel: str) -> None:
         ax.plot([panel.exact.x], [panel.floor], marker="*", ms=12, color=s.INK, ls="none", zorder=5)
     if panel.line:
         ax.axhline(panel.line[0], color=s.MUTED, lw=1.0, ls=(0, (4, 3)), zorder=1)
-        ax.annotate(panel.line[1], (0.99, panel.line[0]), xycoords=("axes fraction", "data"), xytext=(0, 3),
-                    textcoords="offset points", ha="right", va="bottom", fontsize=LABEL_SIZE, color=s.MUTED)
+        ax.annotate(
+            panel.line[1],
+            (0.99, panel.line[0]),
+            xycoords=("axes fraction", "data"),
+            xytext=(0, 3),
+            textcoords="offset points",
+            ha="right",
+            va="bottom",
+            fontsize=LABEL_SIZE,
+            color=s.MUTED,
+        )
     _limits(ax, panel)
     minor_ticks(ax)
     ticks_in_view(ax)
     if panel.chosen:
-        ax.plot([panel.chosen.x], [_clamped(panel, panel.chosen.y)], marker="o", ms=RING_SIZE, mfc="none", mec=s.INK,
-                mew=1.8, ls="none", zorder=6)
+        ax.plot(
+            [panel.chosen.x],
+            [_clamped(panel, panel.chosen.y)],
+            marker="o",
+            ms=RING_SIZE,
+            mfc="none",
+            mec=s.INK,
+            mew=1.8,
+            ls="none",
+            zorder=6,
+        )
 
 
 def _clamped(panel: Panel, y: float) -> float:
@@ -211,7 +252,9 @@ def _line_boxes(vertices) -> list[tuple]:
     boxes = []
     for (x0, y0), (x1, y1) in zip(vertices, vertices[1:]):
         steps = max(1, math.ceil(math.hypot(x1 - x0, y1 - y0) / (2 * LINE_HALF)))
-        boxes += [_square((x, y), LINE_HALF) for x, y in zip(np.linspace(x0, x1, steps + 1), np.linspace(y0, y1, steps + 1))]
+        boxes += [
+            _square((x, y), LINE_HALF) for x, y in zip(np.linspace(x0, x1, steps + 1), np.linspace(y0, y1, steps + 1))
+        ]
     return boxes
 
 
@@ -235,8 +278,17 @@ def _free(box: tuple, bounds: tuple, obstacles: np.ndarray) -> bool:
 def _label(ax, panel: Panel, point: Point, colour: str, bounds, obstacles, renderer) -> tuple | None:
     """A point's label at the first free spot around it, measured as drawn; None (and no label) if none is free."""
     xy = (point.x, _clamped(panel, point.y))
-    label = ax.annotate(point.text, xy, xytext=(0, 0), textcoords="offset points", ha="left", va="bottom",
-                        fontsize=LABEL_SIZE, color=colour, zorder=4)
+    label = ax.annotate(
+        point.text,
+        xy,
+        xytext=(0, 0),
+        textcoords="offset points",
+        ha="left",
+        va="bottom",
+        fontsize=LABEL_SIZE,
+        color=colour,
+        zorder=4,
+    )
     if _well_inside(ax.transData.transform(xy), bounds):
         # matplotlib draws a label only while its point is in the axes, and checks that (through the data
         # transform and the axes' outline) each time the label is measured or drawn; a point this far inside

@@ -1,6 +1,7 @@
 """Review two builds: which pages, figures, tables and files changed, as an HTML report and a
 Markdown summary. `review_builds` compares two build folders; `git.revision_build` makes the old
 one from a git revision."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -13,8 +14,9 @@ from .tree import read_tree
 __all__ = ["Review", "review_builds", "render_figures", "headline"]
 
 
-def review_builds(old: Path, new: Path, out: Path, old_label: str | None = None, new_label: str | None = None,
-                  render: bool = True) -> Review:
+def review_builds(
+    old: Path, new: Path, out: Path, old_label: str | None = None, new_label: str | None = None, render: bool = True
+) -> Review:
     """Compare build folders `old` and `new`, render the changed figures and write the report to `out`."""
     review = compare_trees(read_tree(old), read_tree(new), old_label or str(old), new_label or str(new))
     if render:

@@ -1,4 +1,5 @@
 """`sitegen review`, `sitegen accept-figures` and `sitegen check-figures`: argument checks, progress lines and exit codes."""
+
 from __future__ import annotations
 
 import sys
@@ -8,14 +9,15 @@ from pathlib import Path
 from . import review_builds
 from .git import ReviewError, revision_build, working_tree_label
 from .goldens import accept_figures, check_figure, golden_names
-from .tree import page_figures
 from .report import headline
+from .tree import page_figures
 
 CHANGED, SAME, TROUBLE = 1, 0, 2
 
 
-def run_review(trees: list[Path], base: str | None, root: Path, out: Path | None, render: bool = True,
-               new: Path | None = None) -> int:
+def run_review(
+    trees: list[Path], base: str | None, root: Path, out: Path | None, render: bool = True, new: Path | None = None
+) -> int:
     """Compare OLD NEW (or revision BASE with NEW, default `new`: the book's output, else ROOT/build);
     exit 0 if identical, 1 if not."""
     if base is None and len(trees) != 2:
@@ -56,7 +58,9 @@ def run_accept(build: Path, goldens: Path) -> int:
     for word, names in (("new", done.new), ("changed", done.changed), ("removed", done.removed)):
         for name in names:
             _say(f"{word:<8} {goldens / name}.svg")
-    _say(f"goldens: {len(done.new)} new, {len(done.changed)} changed, {len(done.removed)} removed, {done.unchanged} unchanged")
+    _say(
+        f"goldens: {len(done.new)} new, {len(done.changed)} changed, {len(done.removed)} removed, {done.unchanged} unchanged"
+    )
     return 0
 
 
@@ -67,8 +71,11 @@ def run_check(build: Path, goldens: Path) -> int:
     if not figures:
         return _fail(f"no scene figures in {build}; build the book first (sitegen build)")
     problems = [p for name, svg in figures.items() if (p := check_figure(goldens, name, svg))]
-    problems += [f"golden '{name}' has no scene in {build}; run `sitegen accept-figures` to remove it"
-                 for name in golden_names(goldens) if name not in figures]
+    problems += [
+        f"golden '{name}' has no scene in {build}; run `sitegen accept-figures` to remove it"
+        for name in golden_names(goldens)
+        if name not in figures
+    ]
     for problem in problems:
         _say(problem)
     _say(f"figures: {len(figures)} checked against {goldens}, {len(problems)} problem(s)")

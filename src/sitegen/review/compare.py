@@ -1,4 +1,5 @@
 """Two build trees compared: which pages, scenes, figures, tables and other files changed, and how."""
+
 from __future__ import annotations
 
 import difflib
@@ -230,4 +231,3 @@ def markup_diff(old: str, new: str) -> list[str]:
     if len(lines) > MARKUP_LINES:
         lines = lines[:MARKUP_LINES] + [f"… {len(lines) - MARKUP_LINES} more lines"]
     return lines
-

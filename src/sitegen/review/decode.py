@@ -1,5 +1,6 @@
 """A scene's inline tables (the JSON a built page ships) decoded back into values: tables, summed
 differences, phrases and the expressions the page computes (evaluated as the script would)."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -112,8 +113,16 @@ def _evaluated(data: dict, entry: dict) -> Decoded | None:
     stops = np.zeros((int(np.prod(counts)), len(data["sliders"])), dtype=np.int64)
     for column, index in zip(axes, np.indices(counts).reshape(len(axes), -1)):
         stops[:, column] = index
-    table = Structured("", entry["expr"], entry["d"], tuple(entry.get("labels", ())), entry.get("n", 0), "", parts,
-                       tuple(_slider_values(s) for s in data["sliders"]))
+    table = Structured(
+        "",
+        entry["expr"],
+        entry["d"],
+        tuple(entry.get("labels", ())),
+        entry.get("n", 0),
+        "",
+        parts,
+        tuple(_slider_values(s) for s in data["sliders"]),
+    )
     values = shown(table, stops)
     params = tuple(data["sliders"][a]["param"] for a in axes)
     grid = tuple(counts) + ((table.width,) if table.width else ())
@@ -136,8 +145,16 @@ def _as_table(name: str, entry: dict) -> Table:
     quanta = np.asarray(entry["q"], dtype=float if entry.get("raw") else np.int64)
     if entry.get("enc") == "delta":
         quanta = np.cumsum(quanta)
-    return Table(name, tuple(entry["axes"]), tuple(entry["shape"]), quanta, entry["d"], tuple(entry.get("labels", ())),
-                 summed_axes=bool(entry.get("sum")), raw=bool(entry.get("raw")))
+    return Table(
+        name,
+        tuple(entry["axes"]),
+        tuple(entry["shape"]),
+        quanta,
+        entry["d"],
+        tuple(entry.get("labels", ())),
+        summed_axes=bool(entry.get("sum")),
+        raw=bool(entry.get("raw")),
+    )
 
 
 def _slider_values(slider: dict) -> np.ndarray:

@@ -1,4 +1,5 @@
 """Figures compared: what moved in the SVG, and pixels (Chromium renders, Pillow compares)."""
+
 from __future__ import annotations
 
 import base64
@@ -15,8 +16,14 @@ from .tree import standalone_svg
 
 CHROMIUM = "/usr/bin/chromium"
 # Running as root needs --no-sandbox; the other flags keep Chromium from calling home.
-LAUNCH_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
-               "--no-first-run", "--disable-sync"]
+LAUNCH_ARGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--no-first-run",
+    "--disable-sync",
+]
 SCALE = 2  # device pixels per SVG unit: crisp at 1:1 and when zoomed
 ADDED, REMOVED, RECOLOURED = (31, 99, 181), (214, 87, 20), (128, 60, 160)  # ink only new, only old, both
 FRAME = (90, 98, 112)  # the dashed frame around the change
@@ -61,8 +68,10 @@ class PixelDiff:
         if not self.changed:
             return "no pixel differs (the SVG text changed below the resolution)"
         x0, y0, x1, y1 = self.box
-        return (f"{percent(self.fraction)} of the figure ({self.changed:,} px at {SCALE}×) differs, "
-                f"within x {x0:g}–{x1:g}, y {y0:g}–{y1:g} pt")
+        return (
+            f"{percent(self.fraction)} of the figure ({self.changed:,} px at {SCALE}×) differs, "
+            f"within x {x0:g}–{x1:g}, y {y0:g}–{y1:g} pt"
+        )
 
 
 def percent(fraction: float) -> str:
@@ -109,12 +118,13 @@ def svg_data_uri(svg: str) -> str:
 class Rasterizer:
     """Chromium (through Playwright) turning SVG figures into PNGs at a fixed scale."""
 
-    def __enter__(self) -> "Rasterizer":
+    def __enter__(self) -> Rasterizer:
         try:
             from playwright.sync_api import Error, sync_playwright
         except ImportError:
-            raise RasterUnavailable("Playwright is not installed; `make review` installs it "
-                                    "(or: .venv/bin/pip install -e '.[test]')") from None
+            raise RasterUnavailable(
+                "Playwright is not installed; `make review` installs it (or: .venv/bin/pip install -e '.[test]')"
+            ) from None
         if not Path(CHROMIUM).exists():
             raise RasterUnavailable(f"no Chromium at {CHROMIUM}; install Debian's chromium (make tools-chromium)")
         self._playwright = sync_playwright().start()
@@ -156,7 +166,9 @@ def pixel_diff(old_png: bytes, new_png: bytes) -> PixelDiff:
     pixels = (int(xs.min()), int(ys.min()), int(xs.max()) + 1, int(ys.max()) + 1)
     image = _diff_image(a, b, differs, pixels)
     box = tuple(round(v / SCALE, 1) for v in pixels)
-    return PixelDiff(_png(a), _png(b), _png(image), int(differs.sum()), int(differs.size), box, _zoom((a, b, image), pixels))
+    return PixelDiff(
+        _png(a), _png(b), _png(image), int(differs.sum()), int(differs.size), box, _zoom((a, b, image), pixels)
+    )
 
 
 def _open(data: bytes) -> np.ndarray:
@@ -177,11 +189,20 @@ def _diff_image(a: np.ndarray, b: np.ndarray, differs: np.ndarray, box) -> np.nd
     image = np.repeat((255 - (255 - grey_b) * 0.22)[..., None], 3, axis=-1)
     if box is None:
         return image
-    for mask, colour in ((differs, RECOLOURED), (differs & (grey_a < grey_b - 8), REMOVED), (differs & (grey_b < grey_a - 8), ADDED)):
+    for mask, colour in (
+        (differs, RECOLOURED),
+        (differs & (grey_a < grey_b - 8), REMOVED),
+        (differs & (grey_b < grey_a - 8), ADDED),
+    ):
         image[_thicken(mask)] = colour
     x0, y0, x1, y1 = box
     pad = 3 * SCALE
-    x0, y0, x1, y1 = max(0, x0 - pad), max(0, y0 - pad), min(image.shape[1], x1 + pad) - 1, min(image.shape[0], y1 + pad) - 1
+    x0, y0, x1, y1 = (
+        max(0, x0 - pad),
+        max(0, y0 - pad),
+        min(image.shape[1], x1 + pad) - 1,
+        min(image.shape[0], y1 + pad) - 1,
+    )
     dash = (np.arange(image.shape[1]) // (3 * SCALE)) % 2 == 0
     for y in (y0, y1):
         image[y, x0 : x1 + 1][dash[x0 : x1 + 1]] = FRAME

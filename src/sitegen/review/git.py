@@ -1,14 +1,15 @@
 """The old side of a review made from a git revision: checked out in a temporary worktree and built
 with this checkout's Python environment but the revision's own sources."""
+
 from __future__ import annotations
 
 import os
 import subprocess
 import sys
 import tempfile
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Iterator
 
 from ..config import read_book
 
@@ -48,7 +49,9 @@ def revision_build(root: Path, rev: str, progress=print) -> Iterator[tuple[Path,
             _build(root, project)
             yield read_book(project).output, label
         finally:
-            subprocess.run(["git", "worktree", "remove", "--force", str(worktree)], cwd=root, capture_output=True, check=False)
+            subprocess.run(
+                ["git", "worktree", "remove", "--force", str(worktree)], cwd=root, capture_output=True, check=False
+            )
             subprocess.run(["git", "worktree", "prune"], cwd=root, capture_output=True, check=False)
 
 
@@ -58,8 +61,14 @@ def _build(root: Path, project: Path) -> None:
         (project / "node_modules").symlink_to(root / "node_modules")
     path = [str(project / "src"), *filter(None, [os.environ.get("PYTHONPATH")])]
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(path), "OPENBLAS_NUM_THREADS": "1"}
-    done = subprocess.run([sys.executable, "-m", "sitegen.cli", "build", "--root", str(project)],
-                          cwd=project, env=env, capture_output=True, text=True, check=False)
+    done = subprocess.run(
+        [sys.executable, "-m", "sitegen.cli", "build", "--root", str(project)],
+        cwd=project,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     if done.returncode:
         raise ReviewError(f"the build of the old revision failed:\n{done.stderr.strip() or done.stdout.strip()}")
 

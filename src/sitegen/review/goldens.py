@@ -4,6 +4,7 @@ A mismatch leaves NAME-changed.svg (and NAME-changed.png: golden, new and differ
 side) next to the golden for a person to look at. Goldens are rewritten only on purpose
 (`sitegen accept-figures`), never by a test and never in CI.
 """
+
 from __future__ import annotations
 
 import os
@@ -41,8 +42,11 @@ def changed_paths(goldens: Path, name: str) -> tuple[Path, Path]:
 
 def golden_names(goldens: Path) -> list[str]:
     """Every figure that has a golden."""
-    return sorted(p.relative_to(goldens).as_posix().removesuffix(".svg")
-                  for p in goldens.rglob("*.svg") if not p.name.endswith("-changed.svg"))
+    return sorted(
+        p.relative_to(goldens).as_posix().removesuffix(".svg")
+        for p in goldens.rglob("*.svg")
+        if not p.name.endswith("-changed.svg")
+    )
 
 
 def accept_figures(build: Path, goldens: Path) -> Accepted:
@@ -91,8 +95,10 @@ def check_figure(goldens: Path, name: str, svg: str) -> str | None:
         size = f"{diff.describe()}; see {changed_svg} and {changed_png}"
     except RasterUnavailable as problem:
         size = f"see {changed_svg} (no PNG: {problem})"
-    return (f"figure '{name}' differs from its golden {path}: {size}. "
-            "If the change is intended, run `sitegen accept-figures`.")
+    return (
+        f"figure '{name}' differs from its golden {path}: {size}. "
+        "If the change is intended, run `sitegen accept-figures`."
+    )
 
 
 def _remove_changed(goldens: Path, name: str) -> None:

@@ -1,4 +1,5 @@
 """The review written out: a self-contained HTML report and a Markdown summary for a pull request."""
+
 from __future__ import annotations
 
 import base64
@@ -30,12 +31,19 @@ def headline(review: Review) -> str:
     if not review.changed:
         return "no changes"
     scenes = review.scenes()
-    inside = [_count(len(review.figures()), "figure"), _count(len(review.tables()), "table"),
-              _count(len([s for s in scenes if s.panel]), "set of readouts", "sets of readouts")]
+    inside = [
+        _count(len(review.figures()), "figure"),
+        _count(len(review.tables()), "table"),
+        _count(len([s for s in scenes if s.panel]), "set of readouts", "sets of readouts"),
+    ]
     inside = [part for part in inside if part]
-    parts = [_count(len(scenes), "scene") + (f" ({', '.join(inside)})" if inside else "") if scenes else "",
-             _count(len([p for p in review.pages if p.text or p.markup or p.status != "changed"]), "page's text", "pages' text"),
-             _count(len(review.files), "other file")]
+    parts = [
+        _count(len(scenes), "scene") + (f" ({', '.join(inside)})" if inside else "") if scenes else "",
+        _count(
+            len([p for p in review.pages if p.text or p.markup or p.status != "changed"]), "page's text", "pages' text"
+        ),
+        _count(len(review.files), "other file"),
+    ]
     return ", ".join(part for part in parts if part) + " changed"
 
 
@@ -101,9 +109,12 @@ def figure_notes(scene: SceneChange) -> list[str]:
 
 def summary_markdown(review: Review, report: Path | None = None) -> str:
     """A short summary to paste into a pull-request comment."""
-    lines = [f"## Build review: {headline(review)}", "",
-             f"`{_md(review.old_label)}` → `{_md(review.new_label)}`: {_count(review.page_count, 'page') or '0 pages'}, "
-             f"{_count(review.scene_count, 'scene') or '0 scenes'} compared."]
+    lines = [
+        f"## Build review: {headline(review)}",
+        "",
+        f"`{_md(review.old_label)}` → `{_md(review.new_label)}`: {_count(review.page_count, 'page') or '0 pages'}, "
+        f"{_count(review.scene_count, 'scene') or '0 scenes'} compared.",
+    ]
     if not review.changed:
         return "\n".join(lines + ["", "Every file of the two builds is byte-identical."]) + "\n"
     lines += _figure_rows(review) + _table_rows(review) + _page_rows(review) + _file_rows(review)
@@ -141,14 +152,21 @@ def _table_rows(review: Review) -> list[str]:
     changes = review.tables()
     if not changes:
         return []
-    rows = ["", "**Numbers** (every stop of every slider)", "",
-            "| scene | output | stops changed | largest change | largest relative change |", "|---|---|---|---|---|"]
+    rows = [
+        "",
+        "**Numbers** (every stop of every slider)",
+        "",
+        "| scene | output | stops changed | largest change | largest relative change |",
+        "|---|---|---|---|---|",
+    ]
     for scene, table in changes[:MAX_SUMMARY_ROWS]:
         if table.status != "changed":
             rows.append(f"| {scene.id} | {table.output} | {table.status} | | |")
             continue
         stops = f"{table.changed:,} of {table.stops:,}"
-        rows.append(f"| {scene.id} | {table.output} | {stops} | {_md(_extreme(table.largest_abs))} | {_md(_extreme(table.largest_rel))} |")
+        rows.append(
+            f"| {scene.id} | {table.output} | {stops} | {_md(_extreme(table.largest_abs))} | {_md(_extreme(table.largest_rel))} |"
+        )
     return rows + _more(len(changes), "outputs")
 
 

@@ -1,4 +1,5 @@
 """Two versions of a scene's table compared stop by stop (decode.py reads them back from the pages)."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
@@ -58,8 +59,9 @@ def compare_table(name: str, unit: str, old: dict | None, new: dict | None) -> T
     changed = int((~stop_same).sum())
     if not changed and not notes:
         return None
-    change = TableChange(name, unit, "changed", int(stop_same.size), changed, notes=tuple(notes),
-                         where=_where(~stop_same, params, texts))
+    change = TableChange(
+        name, unit, "changed", int(stop_same.size), changed, notes=tuple(notes), where=_where(~stop_same, params, texts)
+    )
     if changed and not a.is_text:
         change = _with_extremes(change, va, vb, params, texts, a.decimals, b.decimals, a.is_vector)
     elif changed:
@@ -129,7 +131,9 @@ def _grid_notes(a: Decoded, b: Decoded, axes_old, axes_new) -> list[str]:
     for p in sorted(set(a.params) | set(b.params)):
         ao, an = axes_old.get(p), axes_new.get(p)
         if ao and an and ao.keys != an.keys:
-            notes.append(f"stops of {p} changed ({len(ao.keys)} → {len(an.keys)}); compared at the {len(set(ao.keys) & set(an.keys))} both have")
+            notes.append(
+                f"stops of {p} changed ({len(ao.keys)} → {len(an.keys)}); compared at the {len(set(ao.keys) & set(an.keys))} both have"
+            )
     return notes
 
 

@@ -1,4 +1,5 @@
 """A built site read back for review: its files, and each page split into scenes and the rest."""
+
 from __future__ import annotations
 
 import json

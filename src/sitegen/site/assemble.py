@@ -1,4 +1,5 @@
 """HTML through jinja2: scenes (controls, readouts, figure; their inline data is payload.py's) and whole pages."""
+
 from __future__ import annotations
 
 import functools
@@ -23,8 +24,12 @@ TEMPLATES = Path(__file__).with_name("templates")
 def templates(theme: Path | None = None) -> jinja2.Environment:
     """The page and scene templates: a book theme's `templates/` folder first, then the built-in ones."""
     folders = [theme / "templates"] if theme is not None and (theme / "templates").is_dir() else []
-    return jinja2.Environment(loader=jinja2.FileSystemLoader([*folders, TEMPLATES]), autoescape=True,
-                              keep_trailing_newline=True, trim_blocks=False)
+    return jinja2.Environment(
+        loader=jinja2.FileSystemLoader([*folders, TEMPLATES]),
+        autoescape=True,
+        keep_trailing_newline=True,
+        trim_blocks=False,
+    )
 
 
 SEARCH_SCRIPT = "assets/search.js"  # the search index and its code, loaded when the search box is first used
@@ -39,23 +44,37 @@ class RenderedScene:
     layers: tuple[Layer, ...]
 
 
-def scene_html(scene: ResolvedScene, tables: dict[str, Table], figure: RenderedScene, caption: str, payload: str,
-               book: BookConfig | None = None) -> str:
+def scene_html(
+    scene: ResolvedScene,
+    tables: dict[str, Table],
+    figure: RenderedScene,
+    caption: str,
+    payload: str,
+    book: BookConfig | None = None,
+) -> str:
     """The scene element: figure, labelled controls, readouts at the defaults, and its data (`payload`)."""
     stops = scene.default_stops
     sliders = [_slider_view(scene, i, stops[i]) for i in range(len(scene.axes))]
     readouts = [_readout_view(scene, tables, o, stops) for o in scene.readouts]
-    notes = [{"name": layer.name, "text": layer_text(layer, scene, tables, stops)} for layer in figure.layers if layer.kind == "text"]
-    html = templates(book and book.theme).get_template("scene.html").render(
-        id=dom_id(scene),
-        model=scene.model.name,
-        svg=_BIG_SVG,
-        notes=notes,
-        sliders=sliders,
-        readouts=readouts,
-        caption=caption,
-        animate=scene.spec.animate,
-        data=_BIG_DATA,
+    notes = [
+        {"name": layer.name, "text": layer_text(layer, scene, tables, stops)}
+        for layer in figure.layers
+        if layer.kind == "text"
+    ]
+    html = (
+        templates(book and book.theme)
+        .get_template("scene.html")
+        .render(
+            id=dom_id(scene),
+            model=scene.model.name,
+            svg=_BIG_SVG,
+            notes=notes,
+            sliders=sliders,
+            readouts=readouts,
+            caption=caption,
+            animate=scene.spec.animate,
+            data=_BIG_DATA,
+        )
     )
     # Large trusted fragments go in after rendering: passing megabytes through jinja2's Markup is slow.
     return html.replace(_BIG_SVG, figure.svg, 1).replace(_BIG_DATA, payload, 1)
@@ -86,8 +105,15 @@ def _readout_view(scene: ResolvedScene, tables: dict[str, Table], output, stops:
     why = why_text(output, tables, stops) if tables[output.name].at(stops) == SPECIAL and not output.is_text else ""
     digits = tables[output.name].digits
     note = f"{digits} significant digits; the unit's prefix follows the value" if digits else ""
-    return {"name": output.name, "label": output.label, "is_text": output.is_text, "text": text, "why": why,
-            "has_why": bool(output.why or output.why_from), "note": note}
+    return {
+        "name": output.name,
+        "label": output.label,
+        "is_text": output.is_text,
+        "text": text,
+        "why": why,
+        "has_why": bool(output.why or output.why_from),
+        "note": note,
+    }
 
 
 def why_text(output, tables: dict[str, Table], stops: tuple[int, ...]) -> str:
@@ -175,10 +201,22 @@ def page_html(page: Page, body: str, pages: list[Page], book_title: str, book: B
         parent = by_slug[parent].parent
     contents = _contents(pages) if page.slug == "index" else []
     previous, following = navigation.neighbours(page, pages)
-    html = templates(book and book.theme).get_template("base.html").render(
-        page=page, body=_BIG_BODY, crumbs=crumbs, contents=contents, book_title=book_title,
-        outline=navigation.outline(pages), previous=previous, next=following, has_scenes=bool(page.found.scenes),
-        search_index=SEARCH_SCRIPT, book=book or BookConfig(Path(".")),
+    html = (
+        templates(book and book.theme)
+        .get_template("base.html")
+        .render(
+            page=page,
+            body=_BIG_BODY,
+            crumbs=crumbs,
+            contents=contents,
+            book_title=book_title,
+            outline=navigation.outline(pages),
+            previous=previous,
+            next=following,
+            has_scenes=bool(page.found.scenes),
+            search_index=SEARCH_SCRIPT,
+            book=book or BookConfig(Path(".")),
+        )
     )
     return html.replace(_BIG_BODY, navigation.with_anchors(body), 1)
 

@@ -1,13 +1,13 @@
 """Static assets: the page script, the stylesheet (ours plus Temml's), and a subset math font."""
+
 from __future__ import annotations
 
 import hashlib
 import io
+import logging
 import re
 from html import unescape
 from pathlib import Path
-
-import logging
 
 import fontTools
 
@@ -83,4 +83,3 @@ def _subset_font(text: str) -> bytes:
     buffer = io.BytesIO()
     font.save(buffer)
     return buffer.getvalue()
-

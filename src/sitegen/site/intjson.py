@@ -1,5 +1,6 @@
 """JSON text of a table's integers, written by numpy: the same characters as `json.dumps` of the lists
 (compact separators), without making a Python object per entry."""
+
 from __future__ import annotations
 
 import json
@@ -20,8 +21,18 @@ def dumps(values: np.ndarray, lengths: np.ndarray | None = None, nulls: np.ndarr
         return json.dumps(listed(values, lengths, nulls), separators=(",", ":"), ensure_ascii=False, allow_nan=False)
     # A block of rows at a time: the scratch arrays (several times the table's own size) stay small.
     step = max(1, BLOCK_ENTRIES // (values.shape[1] if values.ndim == 2 else 1))
-    return "[" + ",".join(_entries(values[i:i + step], None if lengths is None else lengths[i:i + step],
-                                   None if nulls is None else nulls[i:i + step]) for i in range(0, len(values), step)) + "]"
+    return (
+        "["
+        + ",".join(
+            _entries(
+                values[i : i + step],
+                None if lengths is None else lengths[i : i + step],
+                None if nulls is None else nulls[i : i + step],
+            )
+            for i in range(0, len(values), step)
+        )
+        + "]"
+    )
 
 
 def _entries(values: np.ndarray, lengths: np.ndarray | None, nulls: np.ndarray | None) -> str:

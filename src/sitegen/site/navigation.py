@@ -1,5 +1,6 @@
 """The book's navigation: the reading order of its pages, their sections, anchor links on headings,
 and each page's previous and next page."""
+
 from __future__ import annotations
 
 import re
@@ -27,13 +28,15 @@ class Entry:
 
     page: Page
     sections: tuple[Section, ...]
-    children: tuple["Entry", ...]
+    children: tuple[Entry, ...]
 
 
 def sections(html: str) -> tuple[Section, ...]:
     """The h2 and h3 headings of a page's HTML, as plain text (tags, such as a formula's, dropped)."""
-    return tuple(Section(int(level), anchor, " ".join(unescape(_TAG.sub("", inner)).split()))
-                 for level, anchor, inner in _HEADING.findall(html))
+    return tuple(
+        Section(int(level), anchor, " ".join(unescape(_TAG.sub("", inner)).split()))
+        for level, anchor, inner in _HEADING.findall(html)
+    )
 
 
 def outline(pages: list[Page]) -> tuple[Entry, ...]:
@@ -79,10 +82,13 @@ def neighbours(page: Page, pages: list[Page]) -> tuple[Page | None, Page | None]
 
 def with_anchors(html: str) -> str:
     """Each h2 and h3 with a link to itself at its end, so that a reader can copy where they are."""
+
     def anchored(match: re.Match) -> str:
         level, anchor, inner = match[1], match[2], match[3]
-        link = (f'<a class="anchor" href="#{anchor}"><span aria-hidden="true">#</span>'
-                f'<span class="visually-hidden">Link to this section</span></a>')
+        link = (
+            f'<a class="anchor" href="#{anchor}"><span aria-hidden="true">#</span>'
+            f'<span class="visually-hidden">Link to this section</span></a>'
+        )
         return f'<h{level} id="{anchor}">{inner} {link}</h{level}>'
 
     return _HEADING.sub(anchored, html)

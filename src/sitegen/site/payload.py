@@ -1,5 +1,6 @@
 """The data a scene's script selects from: its tables, slider grids, readouts and layer recipes as JSON
 (inline in the page, inside a <script> element), each table in the smaller of two encodings as sent."""
+
 from __future__ import annotations
 
 import itertools
@@ -64,7 +65,9 @@ def _axis_json(scene: ResolvedScene, index: int) -> dict:
     if axis.kind == RANGE:
         out.update(lo=int(axis.lo.scaleb(axis.decimals)), step=int(axis.step.scaleb(axis.decimals)), d=axis.decimals)
     else:
-        out.update(values=[float(v) for v in axis.stops], texts=[slider_text(scene, index, k) for k in range(axis.count)])
+        out.update(
+            values=[float(v) for v in axis.stops], texts=[slider_text(scene, index, k) for k in range(axis.count)]
+        )
     return out
 
 
@@ -76,7 +79,15 @@ def _tables_json(tables: dict[str, Table], units: dict[str, str], encoded: list[
             out[name] = _structured_json(table)
             continue
         exponents = b"" if table.exponents is None else table.exponents.tobytes() + units.get(name, "").encode()
-        key = (table.axes, table.decimals, table.labels, table.quanta.tobytes(), table.summed_axes, table.raw, exponents)
+        key = (
+            table.axes,
+            table.decimals,
+            table.labels,
+            table.quanta.tobytes(),
+            table.summed_axes,
+            table.raw,
+            exponents,
+        )
         out[name] = {"same": first_of[key]} if key in first_of else _table_json(table, units.get(name, ""), encoded)
         first_of.setdefault(key, name)
     return out
@@ -140,7 +151,7 @@ def _structured_json(table: Structured) -> dict:
 
 def _deltas(values: np.ndarray) -> np.ndarray:
     """Differences between neighbours (within each vector, the first against 0), which compress better when smooth."""
-    if values.dtype == np.int64 and values.size and not -2**62 < values.min() <= values.max() < 2**62:
+    if values.dtype == np.int64 and values.size and not -(2**62) < values.min() <= values.max() < 2**62:
         values = values.astype(object)  # a difference could leave int64: as Python's integers
     out = values.copy()
     out[..., 1:] -= values[..., :-1]

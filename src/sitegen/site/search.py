@@ -1,5 +1,6 @@
 """The book's search index: the prose and captions of every page, section by section, shipped with the
 code that searches it as one classic script (assets/search.js), so that search works from disk."""
+
 from __future__ import annotations
 
 import hashlib
@@ -13,14 +14,18 @@ from .assemble import SEARCH_SCRIPT  # noqa: F401 - where the index goes, named 
 from .navigation import reading_order
 
 # Not prose: code and drawings, navigation, controls and readouts, a table's cells (its caption is prose).
-_SKIPPED = frozenset({"script", "style", "svg", "nav", "noscript", "thead", "tbody", "tfoot", "button", "output", "template"})
+_SKIPPED = frozenset(
+    {"script", "style", "svg", "nav", "noscript", "thead", "tbody", "tfoot", "button", "output", "template"}
+)
 _SKIPPED_CLASSES = frozenset({"scene-panel", "report-data", "anchor"})
 _SECTION = frozenset({"h1", "h2", "h3"})
 _BREAKS = frozenset({"p", "li", "figcaption", "caption", "div", "summary", "br", "dd", "dt", "td", "th", "math"})
 # Scripts (a scene's inline tables) and drawings hold most of a page's bytes and no prose: cut before parsing,
 # with comments first (one may mention a tag) and innermost drawings first (an <svg> may hold another).
 _NO_PROSE = re.compile(r"<!--.*?-->|<script\b.*?</script>|<svg\b(?:(?!<svg\b).)*?</svg>", re.S)
-_VOID = frozenset({"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"})
+_VOID = frozenset(
+    {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"}
+)
 
 
 class _Sections(HTMLParser):
@@ -92,8 +97,10 @@ def _sections(html: str) -> tuple[tuple[str, str, str], ...]:
     parser = _Sections()
     parser.feed(_NO_PROSE.sub("", html))
     parser.close()
-    return tuple((anchor if index else "", title, " ".join("".join(words).split()))
-                 for index, (anchor, title, words) in enumerate(parser.sections))
+    return tuple(
+        (anchor if index else "", title, " ".join("".join(words).split()))
+        for index, (anchor, title, words) in enumerate(parser.sections)
+    )
 
 
 def search_script(sections: dict[str, list], pages: list[Page]) -> bytes:
@@ -102,9 +109,11 @@ def search_script(sections: dict[str, list], pages: list[Page]) -> bytes:
     order = reading_order(pages)
     index = {
         "pages": [[page.output_name, page.title] for page in order],
-        "sections": [[number, anchor, title, text]
-                     for number, page in enumerate(order)
-                     for anchor, title, text in sections.get(page.output_name, [])],
+        "sections": [
+            [number, anchor, title, text]
+            for number, page in enumerate(order)
+            for anchor, title, text in sections.get(page.output_name, [])
+        ],
     }
     data = json.dumps(index, ensure_ascii=False, separators=(",", ":"))
     return f"window.sitegenSearchIndex = {data};\n".encode() + assets.search_code()

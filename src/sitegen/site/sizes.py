@@ -1,4 +1,5 @@
 """Bytes as a reader downloads them, the sizes every report and budget lists."""
+
 from __future__ import annotations
 
 import gzip

@@ -10,6 +10,7 @@ that call is missing, two renames are used, and a build killed between them leav
 tree aside as `.build.old`, which the next build puts back. Temporary folders of builds that
 died are removed by the next build; those of builds still running are left alone.
 """
+
 from __future__ import annotations
 
 import ctypes
@@ -18,9 +19,9 @@ import os
 import shutil
 import tempfile
 import time
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Iterator
 
 _AT_FDCWD = -100
 _RENAME_EXCHANGE = 2

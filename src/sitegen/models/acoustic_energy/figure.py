@@ -1,12 +1,13 @@
 """K5: kinetic and potential energy density and intensity along one wavelength, and the local balance."""
+
 from __future__ import annotations
 
 from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
 
-from .model import X_OVER_LAMBDA
 from ...render import style as s
 from ...render.layers import Layer
+from .model import X_OVER_LAMBDA
 
 XS = tuple(float(v) for v in X_OVER_LAMBDA)
 ENERGY_LIMITS = (-2.25, 4.35)  # e_k, e_p ≤ (1 + R)² ≤ 4; I/c between −2R² and 2 (units ⟨e⟩ᵢ)
@@ -32,22 +33,48 @@ class AcousticEnergyFigure:
         layers = [
             Layer("ek-average", "polyline", 0, xs=XS, ys="out:ek_avg_x", style={**average, "stroke": s.BLUE}),
             Layer("ep-average", "polyline", 0, xs=XS, ys="out:ep_avg_x", style={**average, "stroke": s.ORANGE}),
-            Layer("I-average", "polyline", 0, ((-1.0, "out:I_avg_n"), (0.0, "out:I_avg_n")), style={**average, "stroke": s.INK}),
-            Layer("I", "polyline", 0, xs=XS, ys="out:Ic_x", style={**line, "stroke": s.INK, "stroke-width": "1.6", "stroke-dasharray": "6 3"}),
+            Layer(
+                "I-average",
+                "polyline",
+                0,
+                ((-1.0, "out:I_avg_n"), (0.0, "out:I_avg_n")),
+                style={**average, "stroke": s.INK},
+            ),
+            Layer(
+                "I",
+                "polyline",
+                0,
+                xs=XS,
+                ys="out:Ic_x",
+                style={**line, "stroke": s.INK, "stroke-width": "1.6", "stroke-dasharray": "6 3"},
+            ),
             # e_p wide under a narrower e_k: where they coincide (a travelling wave) both stay visible.
             Layer("ep", "polyline", 0, xs=XS, ys="out:ep_x", style={**line, "stroke": s.ORANGE, "stroke-width": "3.6"}),
             Layer("ek", "polyline", 0, xs=XS, ys="out:ek_x", style={**line, "stroke": s.BLUE, "stroke-width": "1.8"}),
-            Layer("rate", "polyline", 1, xs=XS, ys="out:dedt_x", style={**line, "stroke": s.BLUE, "stroke-width": "1.8"}),
+            Layer(
+                "rate", "polyline", 1, xs=XS, ys="out:dedt_x", style={**line, "stroke": s.BLUE, "stroke-width": "1.8"}
+            ),
             Layer("convergence", "dots", 1, xs=XS, ys="out:neg_dIdx_x", style=DOTS),
         ]
         # The axes are in units of ⟨e⟩ᵢ and λ: the note gives them, so SPL and f visibly change the figure.
         layers.append(Layer.note("scale", "⟨e⟩ᵢ = ", "out:e_inc", " · λ = ", "out:wavelength"))
         if scene.axis_index("x_probe") is not None:
-            layers.insert(0, Layer("probe", "polyline", 0, (("in:x_probe", ENERGY_LIMITS[0]), ("in:x_probe", ENERGY_LIMITS[1])), style=probe))
+            layers.insert(
+                0,
+                Layer(
+                    "probe",
+                    "polyline",
+                    0,
+                    (("in:x_probe", ENERGY_LIMITS[0]), ("in:x_probe", ENERGY_LIMITS[1])),
+                    style=probe,
+                ),
+            )
         return layers
 
     def draw(self, scene, tables, narrow=False):
-        fig, (ax_e, ax_r) = s.new_rows(5.4 if narrow else 4.3, 2, narrow, sharex=True, gridspec_kw={"height_ratios": [3, 2]})
+        fig, (ax_e, ax_r) = s.new_rows(
+            5.4 if narrow else 4.3, 2, narrow, sharex=True, gridspec_kw={"height_ratios": [3, 2]}
+        )
         for ax, limits in ((ax_e, ENERGY_LIMITS), (ax_r, RATE_LIMITS)):
             ax.set_xlim(-1.0, 0.06)
             ax.set_ylim(*limits)
@@ -59,8 +86,19 @@ class AcousticEnergyFigure:
         ax_r.set_ylabel("rate (units\nof ω⟨e⟩ᵢ)")
         ax_r.set_xticks([-1, -0.75, -0.5, -0.25, 0], ["−1", "−¾", "−½", "−¼", "0"])
         ax_r.set_xlabel("position x/λ (reflector at x = 0)")
-        ax_e.legend(handles=_energy_legend(), loc="lower center", bbox_to_anchor=(0.47, 1.0), ncols=2 if narrow else 4, frameon=False, fontsize=9, handlelength=1.8, columnspacing=1.1)
-        ax_r.legend(handles=_rate_legend(), loc="lower left", bbox_to_anchor=(0.0, 0.98), ncols=2, frameon=False, fontsize=9)
+        ax_e.legend(
+            handles=_energy_legend(),
+            loc="lower center",
+            bbox_to_anchor=(0.47, 1.0),
+            ncols=2 if narrow else 4,
+            frameon=False,
+            fontsize=9,
+            handlelength=1.8,
+            columnspacing=1.1,
+        )
+        ax_r.legend(
+            handles=_rate_legend(), loc="lower left", bbox_to_anchor=(0.0, 0.98), ncols=2, frameon=False, fontsize=9
+        )
         fig.tight_layout(pad=0.4, h_pad=1.4)
         return fig
 
@@ -68,7 +106,9 @@ class AcousticEnergyFigure:
 def _reflector(ax, limits) -> None:
     """The reflector at x = 0 as a hatched wall to the right of the wave."""
     low, high = limits
-    ax.add_patch(Rectangle((0.0, low), 0.06, high - low, facecolor=s.LOST, edgecolor=s.MUTED, hatch="///", lw=0.8, zorder=3))
+    ax.add_patch(
+        Rectangle((0.0, low), 0.06, high - low, facecolor=s.LOST, edgecolor=s.MUTED, hatch="///", lw=0.8, zorder=3)
+    )
 
 
 def _energy_legend():

@@ -11,6 +11,7 @@ quarter turns: a node is an exact zero, so "both energies vanish here" is decide
 The figure's curves are in units of the incident wave's mean energy density ⟨e⟩ᵢ = P²/(2ρc²), so they
 depend on neither the level nor the frequency; the readouts carry the SI values.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -36,12 +37,30 @@ class AcousticEnergy(Model):
     params = (
         Param("SPL", "incident SPL", "dB", 94.0, description="level of the incident wave (rms re 20 µPa)"),
         Param("f", "f", "Hz", 1000.0, lo=0.0, lo_open=True, description="frequency"),
-        Param("R_r", "R<sub>r</sub>", "", 0.0, lo=0.0, hi=1.0, description="pressure reflection coefficient of the reflector at x = 0").with_effect("reflection"),
+        Param(
+            "R_r",
+            "R<sub>r</sub>",
+            "",
+            0.0,
+            lo=0.0,
+            hi=1.0,
+            description="pressure reflection coefficient of the reflector at x = 0",
+        ).with_effect("reflection"),
         Param("wt", "ωt", "°", 0.0, description="instant in the cycle"),
-        Param("x_probe", "x<sub>probe</sub>", "λ", 0.0, description="where the kinetic share is read, in wavelengths (reflector at 0)"),
-        Param("alpha", "α", "Np/m", 0.0, lo=0.0, description="pressure absorption coefficient").with_effect("absorption"),
+        Param(
+            "x_probe",
+            "x<sub>probe</sub>",
+            "λ",
+            0.0,
+            description="where the kinetic share is read, in wavelengths (reflector at 0)",
+        ),
+        Param("alpha", "α", "Np/m", 0.0, lo=0.0, description="pressure absorption coefficient").with_effect(
+            "absorption"
+        ),
         Param("d", "d", "m", 100.0, lo=0.0, description="distance the incident wave travels").with_effect("absorption"),
-        Param("r", "r", "m", 1.0, lo=0.0, lo_open=True, description="distance from a point source").with_effect("spherical_spreading"),
+        Param("r", "r", "m", 1.0, lo=0.0, lo_open=True, description="distance from a point source").with_effect(
+            "spherical_spreading"
+        ),
     )
     _frame = ("R_r", "wt")
     _curve = {"size": X_POINTS, "decimals": 2}  # 0.01 ⟨e⟩ᵢ on a 6 ⟨e⟩ᵢ axis: about a pixel
@@ -52,11 +71,27 @@ class AcousticEnergy(Model):
         Output("e_avg", "⟨e⟩ (any x)", "µJ/m³", ("SPL", "R_r"), decimals=4, digits=4),
         Output("I_avg", "⟨I⟩", "mW/m²", ("SPL", "R_r"), decimals=4, digits=4),
         Output("e_inc", "incident ⟨e⟩ᵢ = P²/2ρc²", "µJ/m³", ("SPL",), decimals=4, digits=4),
-        Output("L_I", "intensity level L<sub>I</sub>", "dB", ("SPL", "R_r"), decimals=2, special="—",
-               why="no net intensity: a standing wave's level is −∞ dB"),
+        Output(
+            "L_I",
+            "intensity level L<sub>I</sub>",
+            "dB",
+            ("SPL", "R_r"),
+            decimals=2,
+            special="—",
+            why="no net intensity: a standing wave's level is −∞ dB",
+        ),
         Output("transport", "⟨I⟩/(c⟨e⟩)", "", ("R_r",), decimals=3),
-        Output("ek_share", "e<sub>k</sub>/(e<sub>k</sub> + e<sub>p</sub>) at the probe", "%", ("R_r", "wt", "x_probe"), decimals=1, digits=4, floor=1e-9, special="—",
-               why="no energy at the probe at this instant"),
+        Output(
+            "ek_share",
+            "e<sub>k</sub>/(e<sub>k</sub> + e<sub>p</sub>) at the probe",
+            "%",
+            ("R_r", "wt", "x_probe"),
+            decimals=1,
+            digits=4,
+            floor=1e-9,
+            special="—",
+            why="no energy at the probe at this instant",
+        ),
         Output("validity", "linear acoustics", "", ("SPL",), labels=("valid", "invalid (P > 0.1 p₀ or U/c > 0.01)")),
         # The figure's curves along x, in units of ⟨e⟩ᵢ (I as I/c, derivatives per ω).
         Output("ek_x", "e<sub>k</sub>/⟨e⟩ᵢ", "", _frame, **_curve),
@@ -68,14 +103,18 @@ class AcousticEnergy(Model):
         Output("dedt_x", "∂e/∂t/(ω⟨e⟩ᵢ)", "", _frame, **_curve),
         Output("neg_dIdx_x", "−∂I/∂x/(ω⟨e⟩ᵢ)", "", _frame, **_curve),
         # Absorption: the incident wave after travelling d.
-        Output("I_abs", "⟨I⟩ of the incident wave after d", "mW/m²", ("SPL", "alpha", "d"), decimals=4, effect="absorption"),
+        Output(
+            "I_abs", "⟨I⟩ of the incident wave after d", "mW/m²", ("SPL", "alpha", "d"), decimals=4, effect="absorption"
+        ),
         Output("L_abs", "its level", "dB", ("SPL", "alpha", "d"), decimals=2, effect="absorption"),
         Output("absorbed", "power absorbed over d", "%", ("alpha", "d"), decimals=2, effect="absorption"),
         # Spherical spreading: an outgoing spherical wave, SPL given at r₀ = 1 m.
         Output("I_r", "⟨I⟩ at r", "mW/m²", ("SPL", "r"), decimals=4, effect="spherical_spreading"),
         Output("L_I_r", "L<sub>I</sub> at r", "dB", ("SPL", "r"), decimals=2, effect="spherical_spreading"),
         Output("power", "⟨I⟩·4πr² (conserved)", "mW", ("SPL", "r"), decimals=4, effect="spherical_spreading"),
-        Output("ek_ep_r", "⟨e<sub>k</sub>⟩/⟨e<sub>p</sub>⟩ at r", "", ("f", "r"), decimals=3, effect="spherical_spreading"),
+        Output(
+            "ek_ep_r", "⟨e<sub>k</sub>⟩/⟨e<sub>p</sub>⟩ at r", "", ("f", "r"), decimals=3, effect="spherical_spreading"
+        ),
         Output("transport_r", "⟨I⟩/(c⟨e⟩) at r", "", ("f", "r"), decimals=3, effect="spherical_spreading"),
     )
     effects = ("reflection", "absorption", "spherical_spreading")

@@ -1,8 +1,9 @@
 """The built-in model 'bubble': Bubble, and its figures."""
+
 from __future__ import annotations
 
-from .model import Bubble
 from .figure import BubbleEventsFigure, BubbleFigure
+from .model import Bubble
 from .report import BubbleReport
 
 MODELS = {"bubble": Bubble}

@@ -1,6 +1,7 @@
 """The bubble's run against its reference: the largest difference in R/R0, and the outputs whose
 shown digits differ (wrong, or near a rounding boundary the run's error may cross).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -11,8 +12,9 @@ from .run import Run
 from .terms import Problem
 
 
-def shown_difference(mine: dict, theirs: dict, prefix: str, error: float,
-                     outputs: tuple[Output, ...]) -> tuple[tuple[str, ...], tuple[str, ...]]:
+def shown_difference(
+    mine: dict, theirs: dict, prefix: str, error: float, outputs: tuple[Output, ...]
+) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """The `outputs` (`prefix`_key) whose displayed values differ between two read runs: those that are wrong,
     and those where the reference lies within the run's measured `error` (relative, at least 1e-12) of a
     rounding boundary, where the run cannot be expected to show the reference's digit.
@@ -51,7 +53,7 @@ def shown_difference(mine: dict, theirs: dict, prefix: str, error: float,
 def _last_digit(values: np.ndarray, output: Output):
     """The unit of the last displayed digit: 10**-decimals, or, shown to significant digits, per value."""
     if not output.digits:
-        return 10.0 ** -output.decimals
+        return 10.0**-output.decimals
     with np.errstate(divide="ignore", invalid="ignore"):
         lead = np.floor(np.log10(np.abs(values)))
     return 10.0 ** np.where(np.isfinite(lead), lead - (output.digits - 1), 0.0)
@@ -60,7 +62,9 @@ def _last_digit(values: np.ndarray, output: Output):
 def _shown(values: np.ndarray, unit: float) -> np.ndarray:
     """Values as the page shows them: counts of the displayed unit (inf and NaN kept apart)."""
     finite = np.isfinite(values)
-    return np.where(finite, np.rint(np.where(finite, values, 0.0) / unit), np.where(np.isnan(values), -1.5, np.sign(values) * 0.5))
+    return np.where(
+        finite, np.rint(np.where(finite, values, 0.0) / unit), np.where(np.isnan(values), -1.5, np.sign(values) * 0.5)
+    )
 
 
 def run_difference(run: Run, reference: Run, pb: Problem, scales, effects) -> float:

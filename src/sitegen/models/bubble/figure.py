@@ -1,5 +1,6 @@
 """K4: the bubble radius against time, in one of three views chosen by the scene's effects:
 the Rayleigh collapse (step), the driven bubble (drive) or the nucleus under a ramp (ramp)."""
+
 from __future__ import annotations
 
 from dataclasses import replace
@@ -7,12 +8,12 @@ from dataclasses import replace
 import numpy as np
 from matplotlib.lines import Line2D
 
+from ...render import style as s
+from ...render.figures.base import param_range, table_range
+from ...render.layers import Layer
 from .point import DRIVE_PERIODS
 from .run import CURVE_POINTS
 from .terms import rayleigh_radius
-from ...render import style as s
-from ...render.layers import Layer
-from ...render.figures.base import param_range, table_range
 
 # Inline style: matplotlib's SVG sheet sets * {stroke-linecap: butt}, which would hide zero-length dots.
 _DOT = {"fill": "none", "style": "stroke-linecap: round"}
@@ -47,13 +48,39 @@ class BubbleFigure:
         out = f"out:{_view(scene)}_"
         layers = [
             Layer("radius", "polyline", 0, xs=out + "curve_x", ys=out + "curve_y", style=_LINE),
-            Layer("stop", "dots", 0, xs=out + "stop_x", ys=out + "stop_y", style={**_DOT, "stroke": s.ORANGE, "stroke-width": "8"}),
+            Layer(
+                "stop",
+                "dots",
+                0,
+                xs=out + "stop_x",
+                ys=out + "stop_y",
+                style={**_DOT, "stroke": s.ORANGE, "stroke-width": "8"},
+            ),
         ]
         if _view(scene) != "ramp":
-            layers.insert(1, Layer("extrema", "dots", 0, xs=out + "mark_x", ys=out + "mark_y", style={**_DOT, "stroke": s.INK, "stroke-width": "6"}))
+            layers.insert(
+                1,
+                Layer(
+                    "extrema",
+                    "dots",
+                    0,
+                    xs=out + "mark_x",
+                    ys=out + "mark_y",
+                    style={**_DOT, "stroke": s.INK, "stroke-width": "6"},
+                ),
+            )
         if _view(scene) == "driven":
             xs = tuple(float(v) for v in np.round(np.linspace(0.0, _x_end(scene), CURVE_POINTS), 6))
-            layers.append(Layer("drive", "polyline", 1, xs=xs, ys="out:driven_p_far", style={**_LINE, "stroke": s.ORANGE, "stroke-width": "1.8"}))
+            layers.append(
+                Layer(
+                    "drive",
+                    "polyline",
+                    1,
+                    xs=xs,
+                    ys="out:driven_p_far",
+                    style={**_LINE, "stroke": s.ORANGE, "stroke-width": "1.8"},
+                )
+            )
         if _view(scene) == "collapse":  # R/R0 against t/t_c is universal: the note gives the scale R0 sets
             layers.append(Layer.note("scale", "scaled to R₀ = ", "in:R0", " and the collapse time ", "out:t_c"))
         return layers
@@ -61,14 +88,25 @@ class BubbleFigure:
     def draw(self, scene, tables, narrow=False):
         view = _view(scene)
         if view == "driven":
-            fig, (ax, ax_p) = s.new_rows(4.2 if narrow else 3.4, 2, narrow, sharex=True, gridspec_kw={"height_ratios": [3, 1]})
+            fig, (ax, ax_p) = s.new_rows(
+                4.2 if narrow else 3.4, 2, narrow, sharex=True, gridspec_kw={"height_ratios": [3, 1]}
+            )
             handles = _draw_driven(ax, ax_p, scene, tables)
         else:
             fig, (ax,) = s.new_figure(3.2 if narrow else 2.7, narrow=narrow)
             handles = (_draw_ramp if view == "ramp" else _draw_collapse)(ax, scene, tables)
         # Above the axes: the curve and its dots can reach any corner inside them.
-        ax.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=2 if narrow else len(handles),
-                  frameon=False, fontsize=9, handlelength=1.6, columnspacing=1.0, handletextpad=0.5)
+        ax.legend(
+            handles=handles,
+            loc="lower center",
+            bbox_to_anchor=(0.5, 1.0),
+            ncols=2 if narrow else len(handles),
+            frameon=False,
+            fontsize=9,
+            handlelength=1.6,
+            columnspacing=1.0,
+            handletextpad=0.5,
+        )
         fig.tight_layout(pad=0.4, h_pad=0.6)
         return fig
 
@@ -88,7 +126,10 @@ class BubbleEventsFigure(BubbleFigure):
     def layers(self, scene):
         # Without the curve to lead the eye to them, the event dots are drawn larger.
         layers = [layer for layer in super().layers(scene) if layer.name != "radius"]
-        return [replace(layer, style={**layer.style, "stroke-width": "11"}) if layer.name == "extrema" else layer for layer in layers]
+        return [
+            replace(layer, style={**layer.style, "stroke-width": "11"}) if layer.name == "extrema" else layer
+            for layer in layers
+        ]
 
 
 def _model_handles(stop_label: str, extrema_label: str | None = None, curve: bool = True) -> list:
@@ -144,7 +185,9 @@ def _log_ticks(ax) -> None:
 
 def _y_range(tables, view: str) -> tuple[float, float]:
     """The smallest and largest radius coordinate of the curve and its event dots over every stop."""
-    ranges = [table_range(tables[f"{view}_{name}"]) for name in ("curve_y", "mark_y", "stop_y") if f"{view}_{name}" in tables]
+    ranges = [
+        table_range(tables[f"{view}_{name}"]) for name in ("curve_y", "mark_y", "stop_y") if f"{view}_{name}" in tables
+    ]
     return min(r[0] for r in ranges), max(r[1] for r in ranges)
 
 

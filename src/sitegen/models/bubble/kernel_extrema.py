@@ -1,13 +1,14 @@
 """K4 compiled: the extrema of a window of a solved run (R_max, R_min, the fastest wall) and the folds that
 settle ties and NaNs as numpy's argmax/argmin, np.max, np.nanmax and Python's max() settle them."""
+
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
-from .kernel_march import CAP_CODE, CORE_CODE, FAILED_CODE, KM_CODE, MACH_CODE, UNBOUNDED_CODE
 from ...physics.compiled import kernel
+from .kernel_march import CAP_CODE, CORE_CODE, FAILED_CODE, KM_CODE, MACH_CODE, UNBOUNDED_CODE
 
 
 @kernel

@@ -6,18 +6,27 @@ on the step's interpolant (DOP853's of order 7, Radau's collocation polynomial),
 first terminal one are recorded, and the grid samples the step covers are read from the interpolant.
 Events are rows of a table (kind, level, direction, stop code, record code) built by run.py's `event_table`.
 """
+
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
+from ...physics.compiled import entry, kernel
 from .kernel_radau import CURRENT_JAC, FACTORISED, H_ABS, HAS_SOL, STATE_SIZE, radau_step
 from .kernel_steppers import (
-    DOP853_ORDER, RADAU_ORDER, STAGES, dop853_at, dop853_dense, dop853_step, initial_step, radau_at, set_jacobian,
+    DOP853_ORDER,
+    RADAU_ORDER,
+    STAGES,
+    dop853_at,
+    dop853_dense,
+    dop853_step,
+    initial_step,
+    radau_at,
+    set_jacobian,
 )
 from .kernel_terms import rhs, unpacked
-from ...physics.compiled import entry, kernel
 
 DOP853_METHOD, RADAU_METHOD = 0, 1
 G_SPEED, G_ACCELERATION, G_SPEED_LEVEL, G_RADIUS_LEVEL = 0, 1, 2, 3  # g = ṙ, r̈, ṙ − level, r − level
@@ -172,8 +181,26 @@ def march(method, packed, y0, rtol, atol, t_bound, grid, events, max_nfev):
         if method == DOP853_METHOD:
             ok, t, h_abs = dop853_step(p, t_old, y, f, h_abs, t_bound, rtol, atol, K, y_new, count)
         else:
-            ok, t = radau_step(p, t_old, y, f, state, J, inv_real, inv_complex, sol, dense, t_bound, rtol, atol,
-                               newton_tol, y_new, work, fc, count)
+            ok, t = radau_step(
+                p,
+                t_old,
+                y,
+                f,
+                state,
+                J,
+                inv_real,
+                inv_complex,
+                sol,
+                dense,
+                t_bound,
+                rtol,
+                atol,
+                newton_tol,
+                y_new,
+                work,
+                fc,
+                count,
+            )
         if not ok or not (math.isfinite(y_new[0]) and math.isfinite(y_new[1])):
             return FAILED_CODE, end, samples, hits[:n_hits], count[0]
         h = t - t_old
@@ -207,7 +234,9 @@ def march(method, packed, y0, rtol, atol, t_bound, grid, events, max_nfev):
                 hits = record(hits, n_hits, events[i, 4], roots[i], r, v)
                 n_hits += 1
         while next_sample < grid.shape[0] and grid[next_sample] <= stop_t:
-            samples[next_sample, 0], samples[next_sample, 1] = interpolate(method, dense, t_old, h, y, grid[next_sample])
+            samples[next_sample, 0], samples[next_sample, 1] = interpolate(
+                method, dense, t_old, h, y, grid[next_sample]
+            )
             next_sample += 1
         if stop >= 0:
             r, v = interpolate(method, dense, t_old, h, y, stop_t)

@@ -5,18 +5,32 @@ error_norm_old, current_jac, factorised] (NaN for "none yet"), J the Jacobian, t
 two iteration matrices, and the previous step's collocation polynomial (`sol`: t_old, h, y_old and
 Q), from which each step's Newton iteration starts.
 """
+
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
+from ...physics.compiled import kernel
 from .kernel_steppers import (
-    MAX_FACTOR, MIN_FACTOR, MU_COMPLEX, MU_REAL, NEWTON_MAXITER, RADAU_C, RADAU_E, RADAU_P, RADAU_T, RADAU_TI,
-    min_step, radau_at, radau_inverses, set_jacobian, times,
+    MAX_FACTOR,
+    MIN_FACTOR,
+    MU_COMPLEX,
+    MU_REAL,
+    NEWTON_MAXITER,
+    RADAU_C,
+    RADAU_E,
+    RADAU_P,
+    RADAU_T,
+    RADAU_TI,
+    min_step,
+    radau_at,
+    radau_inverses,
+    set_jacobian,
+    times,
 )
 from .kernel_terms import rhs
-from ...physics.compiled import kernel
 
 H_ABS, H_ABS_OLD, ERROR_OLD, CURRENT_JAC, FACTORISED, HAS_SOL = range(6)
 STATE_SIZE = 6
@@ -79,8 +93,9 @@ def newton(p, t, y, h, Z, scale, tol, inv_real, inv_complex, work, fc, count):
 
 
 @kernel
-def radau_step(p, t, y, f, state, J, inv_real, inv_complex, sol, Q, t_bound, rtol, atol, newton_tol, y_new, work, fc,
-               count):
+def radau_step(
+    p, t, y, f, state, J, inv_real, inv_complex, sol, Q, t_bound, rtol, atol, newton_tol, y_new, work, fc, count
+):
     """One accepted Radau step from (t, y) into y_new; updates the stepper's memory and the interpolant.
 
     `work` (6 × 3 × 2) and `fc` (2, complex) are scratch space, made once per run rather than at every step
@@ -113,7 +128,9 @@ def radau_step(p, t, y, f, state, J, inv_real, inv_complex, sol, Q, t_bound, rto
                 state[FACTORISED] = 1.0
             for i in range(3):  # element by element: see kernel_march.march
                 Z[i, 0], Z[i, 1] = start[i, 0], start[i, 1]
-            converged, iterations, rate = newton(p, t, y, h, Z, scale, newton_tol, inv_real, inv_complex, work, fc, count)
+            converged, iterations, rate = newton(
+                p, t, y, h, Z, scale, newton_tol, inv_real, inv_complex, work, fc, count
+            )
             if converged or state[CURRENT_JAC]:
                 break
             set_jacobian(p, t, y, J)

@@ -7,28 +7,59 @@ missing. Runs of both solving paths are read here. Ties and NaNs are settled as 
 them (argmax: the first maximum, a NaN first; max(): a later value only if larger), and every formula keeps
 the order of operations of the numpy reading it replaced, so the tables did not change by a bit.
 """
+
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
+from ...physics.compiled import entry, kernel
 from .kernel_extrema import larger_of, nan_max, window
 from .kernel_march import CAP_CODE, FAILED_CODE, MACH_CODE, UNBOUNDED_CODE
-from ...physics.compiled import entry, kernel
 
 CURVE_EXTREMA = 200  # event-detected extrema merged into the drawn curve (the deepest, if more)
 CURVE_GAP = 1e-3  # the drawn curve's resolution in y (its 3 decimals): extrema closer to the chord add nothing
 
 # The reading vector of a point (point.reading): its window, terms, figure axes, Blake point and units.
-(Q_TAU_END, Q_PART, Q_SOUND, Q_INVALID_SPEED, Q_ETA, Q_E3, Q_GAS, Q_KAPPA, Q_RAMP_TO, Q_Y_KIND, Q_Y_SCALE, Q_T_REF,
- Q_X_UNIT, Q_R_B, Q_P_BLAKE, Q_P0, Q_T0) = range(17)
+(
+    Q_TAU_END,
+    Q_PART,
+    Q_SOUND,
+    Q_INVALID_SPEED,
+    Q_ETA,
+    Q_E3,
+    Q_GAS,
+    Q_KAPPA,
+    Q_RAMP_TO,
+    Q_Y_KIND,
+    Q_Y_SCALE,
+    Q_T_REF,
+    Q_X_UNIT,
+    Q_R_B,
+    Q_P_BLAKE,
+    Q_P0,
+    Q_T0,
+) = range(17)
 READING_SIZE = 17
 Y_PLAIN, Y_LOG, Y_LOG_BLAKE = 0.0, 1.0, 2.0  # the figure's y: R/R0, log10(R/R0), log10(R/R_B)
 
 # The row: scalars, then why each number of WHY_OF is missing, the marks, the stop, and the curve.
-SCALARS = ("R_max", "t_Rmax", "R_min", "t_Rmin", "mach", "R_max2", "R_min2", "flag", "growth", "pg_peak", "Tg_peak",
-           "Rmin_h", "solver")
+SCALARS = (
+    "R_max",
+    "t_Rmax",
+    "R_min",
+    "t_Rmin",
+    "mach",
+    "R_max2",
+    "R_min2",
+    "flag",
+    "growth",
+    "pg_peak",
+    "Tg_peak",
+    "Rmin_h",
+    "solver",
+)
 (R_MAX, T_RMAX, R_MIN, T_RMIN, MACH_NO, R_MAX2, R_MIN2, FLAG, GROWTH, PG_PEAK, TG_PEAK, RMIN_H, SOLVER) = range(13)
 WHY_OF = (R_MAX, T_RMAX, R_MIN, T_RMIN, MACH_NO, PG_PEAK, TG_PEAK, RMIN_H, R_MAX2, R_MIN2)
 WHY, MARK_X, MARK_Y, STOP_X, STOP_Y, CURVE_X = 13, 23, 25, 27, 28, 29
@@ -245,5 +276,5 @@ def read(q, tau, r, v, end, code, maxima, minima, speeds):
         if t > 0 and (is_event(t, x, maxima, 0.0, part) or is_event(t, x, minima, 0.0, part)):
             row[MARK_X + marked], row[MARK_Y + marked] = to_x(q, t), to_y(q, x)
             marked += 1
-    curve(q, tau, r, end, code, maxima, minima, row[CURVE_X:CURVE_X + size], row[CURVE_X + size:])
+    curve(q, tau, r, end, code, maxima, minima, row[CURVE_X : CURVE_X + size], row[CURVE_X + size :])
     return row

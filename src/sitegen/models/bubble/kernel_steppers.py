@@ -6,6 +6,7 @@ output, specialised to the bubble's two-component state. Radau's Newton iteratio
 Jacobian of the composed right-hand side; its 2×2 real and complex systems are solved in closed form.
 `count[0]` counts right-hand-side evaluations.
 """
+
 from __future__ import annotations
 
 import math
@@ -13,15 +14,15 @@ import math
 import numpy as np
 from scipy.integrate import DOP853
 
-from .kernel_terms import jacobian, rhs
 from ...physics.compiled import kernel
+from .kernel_terms import jacobian, rhs
 
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
 STAGES = DOP853.n_stages  # 12; K[12] holds f at the step's end, K[13:16] the dense output's extra stages
 A = np.zeros((16, 16))
-A[:STAGES, :STAGES], A[STAGES + 1:] = DOP853.A, DOP853.A_EXTRA
+A[:STAGES, :STAGES], A[STAGES + 1 :] = DOP853.A, DOP853.A_EXTRA
 C = np.zeros(16)
-C[:STAGES], C[STAGES + 1:] = DOP853.C, DOP853.C_EXTRA
+C[:STAGES], C[STAGES + 1 :] = DOP853.C, DOP853.C_EXTRA
 B, E3, E5, D = DOP853.B.copy(), DOP853.E3.copy(), DOP853.E5.copy(), DOP853.D.copy()
 DOP853_ORDER = 7  # of its error estimator: sets the step-size exponent and the initial step
 
@@ -31,15 +32,27 @@ RADAU_E = np.array([-13 - 7 * S6, -13 + 7 * S6, -1.0]) / 3
 MU_REAL = 3 + 3 ** (2 / 3) - 3 ** (1 / 3)
 MU_COMPLEX = (3 + 0.5 * (3 ** (1 / 3) - 3 ** (2 / 3))) - 0.5j * (3 ** (5 / 6) + 3 ** (7 / 6))
 # T and its inverse: the eigenvector basis that splits the collocation system into a real and a complex one.
-RADAU_T = np.array([[0.09443876248897524, -0.14125529502095421, 0.03002919410514742],
-                    [0.25021312296533332, 0.20412935229379994, -0.38294211275726192],
-                    [1.0, 1.0, 0.0]])
-RADAU_TI = np.array([[4.17871859155190428, 0.32768282076106237, 0.52337644549944951],  # T⁻¹, as published
-                     [-4.17871859155190428, -0.32768282076106237, 0.47662355450055044],
-                     [0.50287263494578682, -2.57192694985560522, 0.59603920482822492]])
-RADAU_P = np.array([[13 / 3 + 7 * S6 / 3, -23 / 3 - 22 * S6 / 3, 10 / 3 + 5 * S6],
-                    [13 / 3 - 7 * S6 / 3, -23 / 3 + 22 * S6 / 3, 10 / 3 - 5 * S6],
-                    [1 / 3, -8 / 3, 10 / 3]])
+RADAU_T = np.array(
+    [
+        [0.09443876248897524, -0.14125529502095421, 0.03002919410514742],
+        [0.25021312296533332, 0.20412935229379994, -0.38294211275726192],
+        [1.0, 1.0, 0.0],
+    ]
+)
+RADAU_TI = np.array(
+    [
+        [4.17871859155190428, 0.32768282076106237, 0.52337644549944951],  # T⁻¹, as published
+        [-4.17871859155190428, -0.32768282076106237, 0.47662355450055044],
+        [0.50287263494578682, -2.57192694985560522, 0.59603920482822492],
+    ]
+)
+RADAU_P = np.array(
+    [
+        [13 / 3 + 7 * S6 / 3, -23 / 3 - 22 * S6 / 3, 10 / 3 + 5 * S6],
+        [13 / 3 - 7 * S6 / 3, -23 / 3 + 22 * S6 / 3, 10 / 3 - 5 * S6],
+        [1 / 3, -8 / 3, 10 / 3],
+    ]
+)
 NEWTON_MAXITER = 6
 RADAU_ORDER = 3  # the initial step's order, as scipy's Radau uses
 
@@ -193,7 +206,12 @@ def radau_inverses(h, J, inv_real, inv_complex):
     za, zd = MU_COMPLEX / h - J[0, 0], MU_COMPLEX / h - J[1, 1]
     zb, zc = -J[0, 1] + 0j, -J[1, 0] + 0j
     zdet = za * zd - zb * zc
-    inv_complex[0, 0], inv_complex[0, 1], inv_complex[1, 0], inv_complex[1, 1] = zd / zdet, -zb / zdet, -zc / zdet, za / zdet
+    inv_complex[0, 0], inv_complex[0, 1], inv_complex[1, 0], inv_complex[1, 1] = (
+        zd / zdet,
+        -zb / zdet,
+        -zc / zdet,
+        za / zdet,
+    )
 
 
 @kernel

@@ -4,19 +4,36 @@ The same terms as `terms.make_rhs`, in the same order of operations (so the two 
 last bit on the same state), with each term skipped when its coefficient is zero. A Problem is packed
 once into a float vector; `rhs` and `jacobian` read it by the indices below.
 """
+
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
-from .terms import CORE_MARGIN, KELLER_MIKSIS, KM_FLOOR, R_FLOOR, RADIATION, Problem
 from ...physics.compiled import kernel
+from .terms import CORE_MARGIN, KELLER_MIKSIS, KM_FLOOR, R_FLOOR, RADIATION, Problem
 
 # Indices into the packed parameter vector. The floors travel in it too: a kernel reads no constant of terms.py,
 # whose edits the compiled code's cache key (the kernel files' digest) would not see.
-(P_INF, GAS, KAPPA, E3, VAPOUR, SIGMA2, VISC4, SOUND, COMPRESSIBLE, DRIVE, OMEGA, RAMP_TO, RAMP_TIME, VOLUME_FLOOR, RADIUS_FLOOR,
- DENOMINATOR_FLOOR) = range(16)
+(
+    P_INF,
+    GAS,
+    KAPPA,
+    E3,
+    VAPOUR,
+    SIGMA2,
+    VISC4,
+    SOUND,
+    COMPRESSIBLE,
+    DRIVE,
+    OMEGA,
+    RAMP_TO,
+    RAMP_TIME,
+    VOLUME_FLOOR,
+    RADIUS_FLOOR,
+    DENOMINATOR_FLOOR,
+) = range(16)
 SIZE = 16
 PLAIN_FORM, RADIATION_FORM, KM_FORM = 0.0, 1.0, 2.0  # the value at COMPRESSIBLE
 
@@ -26,16 +43,51 @@ def pack(pb: Problem) -> np.ndarray:
     e3 = pb.eta**3
     form = {KELLER_MIKSIS: KM_FORM, RADIATION: RADIATION_FORM}.get(pb.compressible, PLAIN_FORM)
     # in the order of the indices above
-    return np.array((pb.p_inf, pb.gas, pb.kappa, e3, pb.vapour, 2.0 * pb.sigma, 4.0 * pb.visc, pb.sound, form, pb.drive,
-                     pb.omega, pb.ramp_to, pb.ramp_time, max(e3 * 3.0 * CORE_MARGIN, R_FLOOR**3), R_FLOOR, KM_FLOOR), float)
+    return np.array(
+        (
+            pb.p_inf,
+            pb.gas,
+            pb.kappa,
+            e3,
+            pb.vapour,
+            2.0 * pb.sigma,
+            4.0 * pb.visc,
+            pb.sound,
+            form,
+            pb.drive,
+            pb.omega,
+            pb.ramp_to,
+            pb.ramp_time,
+            max(e3 * 3.0 * CORE_MARGIN, R_FLOOR**3),
+            R_FLOOR,
+            KM_FLOOR,
+        ),
+        float,
+    )
 
 
 @kernel
 def unpacked(values):
     """The parameter vector as a tuple (SIZE floats), which kernels pass to kernels by value: an array
     would take and drop a reference count, two atomic operations, at every call of `rhs`."""
-    return (values[0], values[1], values[2], values[3], values[4], values[5], values[6], values[7], values[8],
-            values[9], values[10], values[11], values[12], values[13], values[14], values[15])
+    return (
+        values[0],
+        values[1],
+        values[2],
+        values[3],
+        values[4],
+        values[5],
+        values[6],
+        values[7],
+        values[8],
+        values[9],
+        values[10],
+        values[11],
+        values[12],
+        values[13],
+        values[14],
+        values[15],
+    )
 
 
 @kernel
@@ -66,7 +118,12 @@ def wall(p, r, v):
         p_gas = p[GAS] * ((1.0 - p[E3]) / volume) ** kappa
         p_gas_r = -kappa * p_gas / volume * volume_r
         g = -3.0 * kappa * p_gas * r * r * v / volume
-        g_r = -3.0 * kappa * v * (p_gas_r * r * r / volume + p_gas * 2.0 * r / volume - p_gas * r * r * volume_r / (volume * volume))
+        g_r = (
+            -3.0
+            * kappa
+            * v
+            * (p_gas_r * r * r / volume + p_gas * 2.0 * r / volume - p_gas * r * r * volume_r / (volume * volume))
+        )
         g_v = -3.0 * kappa * p_gas * r * r / volume
         pw, pw_r = pw + p_gas, p_gas_r
         q, q_r, q_v = g, g_r, g_v

@@ -7,6 +7,7 @@ threshold). The dynamic outputs of each history carry its prefix (collapse_, dri
 depend only on its own parameters. Each grid point is solved in nondimensional variables with
 terminal events and caps (solve.py; what a run is: run.py); points that are one nondimensional problem are solved once.
 """
+
 from __future__ import annotations
 
 import math
@@ -16,22 +17,43 @@ from pathlib import Path
 
 import numpy as np
 
-from . import terms
-from .compare import run_difference, shown_difference
 from ...physics import compiled
 from ...physics.base import Model, Output, Param
+from ...physics.numerics import Measurement, Numerics
+from . import terms
+from .compare import run_difference, shown_difference
 from .point import (
-    BLAKE_LABELS, CURVE_SIZE, DRIVE_PERIODS, FLAGS, MISSING, SOLVER_LABELS, ROW_OF, check_effects, compose,
-    read_row, read_run,
+    BLAKE_LABELS,
+    CURVE_SIZE,
+    DRIVE_PERIODS,
+    FLAGS,
+    MISSING,
+    ROW_OF,
+    SOLVER_LABELS,
+    check_effects,
+    compose,
+    read_row,
+    read_run,
 )
 from .run import CURVE_POINTS, REFERENCE_CAPS
 from .scipy_path import SOLVERS
 from .solve import AUTO, COMPILED, KERNEL_PARTS, STIFF, ensure_compiled, method_for, reference_for, solve
 from .terms import P0, WATER
-from ...physics.numerics import Measurement, Numerics
 
-EFFECTS = ("inertia", "gas", "vdw_hard_core", "vapour", "surface_tension", "viscosity", "thermal_damping",
-           "step", "drive", "ramp", "radiation", "keller_miksis")
+EFFECTS = (
+    "inertia",
+    "gas",
+    "vdw_hard_core",
+    "vapour",
+    "surface_tension",
+    "viscosity",
+    "thermal_damping",
+    "step",
+    "drive",
+    "ramp",
+    "radiation",
+    "keller_miksis",
+)
 THREADS = min(2, os.cpu_count() or 1)  # the solves of a block of points run on this many threads
 LIQUID_AND_GAS = ("R0", "rho", "c", "kappa", "h_frac", "p_v", "sigma", "mu", "D_g")
 HISTORY_PARAMS = {"step": ("p_inf", "gas_content"), "drive": ("p_a", "f"), "ramp": ("depth", "t_ramp", "t_hold")}
@@ -42,15 +64,21 @@ ALL = LIQUID_AND_GAS + tuple(p for names in HISTORY_PARAMS.values() for p in nam
 _T = "t/T at "
 DYNAMIC = {
     "step": (
-        ("R_min", "R<sub>min</sub>/R<sub>0</sub> (first collapse)", "", 5), ("t_Rmin", "t/t<sub>c</sub> at R<sub>min</sub>", "", 5),
+        ("R_min", "R<sub>min</sub>/R<sub>0</sub> (first collapse)", "", 5),
+        ("t_Rmin", "t/t<sub>c</sub> at R<sub>min</sub>", "", 5),
         ("mach", "max |Ṙ|/c", "", 4),
     ),
     "drive": (
-        ("R_max", "R<sub>max</sub>/R<sub>0</sub>", "", 4), ("t_Rmax", _T + "R<sub>max</sub>", "", 5),
-        ("R_min", "R<sub>min</sub>/R<sub>0</sub>", "", 5), ("t_Rmin", _T + "R<sub>min</sub>", "", 5),
-        ("mach", "max |Ṙ|/c (1st period)", "", 4), ("pg_peak", "peak gas pressure p<sub>g</sub>", "GPa", 2),
-        ("Tg_peak", "adiabatic T<sub>g</sub> at R<sub>min</sub>", "K", 0), ("Rmin_h", "R<sub>min</sub>/h", "", 2),
-        ("R_max2", "2nd cycle R<sub>max</sub>/R<sub>0</sub>", "", 4), ("R_min2", "2nd cycle R<sub>min</sub>/R<sub>0</sub>", "", 5),
+        ("R_max", "R<sub>max</sub>/R<sub>0</sub>", "", 4),
+        ("t_Rmax", _T + "R<sub>max</sub>", "", 5),
+        ("R_min", "R<sub>min</sub>/R<sub>0</sub>", "", 5),
+        ("t_Rmin", _T + "R<sub>min</sub>", "", 5),
+        ("mach", "max |Ṙ|/c (1st period)", "", 4),
+        ("pg_peak", "peak gas pressure p<sub>g</sub>", "GPa", 2),
+        ("Tg_peak", "adiabatic T<sub>g</sub> at R<sub>min</sub>", "K", 0),
+        ("Rmin_h", "R<sub>min</sub>/h", "", 2),
+        ("R_max2", "2nd cycle R<sub>max</sub>/R<sub>0</sub>", "", 4),
+        ("R_min2", "2nd cycle R<sub>min</sub>/R<sub>0</sub>", "", 5),
     ),
     "ramp": (("growth", "the nucleus", "", BLAKE_LABELS), ("R_max", "R<sub>max</sub>/R<sub>0</sub>", "", 4)),
 }
@@ -59,8 +87,14 @@ DYNAMIC = {
 SIGNIFICANT = {"mach": {"digits": 3}, "pg_peak": {"digits": 3}}
 COMMON = (("flag", "model check", "", FLAGS), ("solver", "solver", "", SOLVER_LABELS))
 # Figure geometry: x in the history's time unit (t/t_c, t/T, µs); y = R/R0, log10(R/R0), log10(R/R_B).
-GEOMETRY = (("curve_x", 3, CURVE_SIZE), ("curve_y", 3, CURVE_SIZE), ("stop_x", 5, 1), ("stop_y", 3, 1),
-            ("mark_x", 5, 2), ("mark_y", 3, 2))
+GEOMETRY = (
+    ("curve_x", 3, CURVE_SIZE),
+    ("curve_y", 3, CURVE_SIZE),
+    ("stop_x", 5, 1),
+    ("stop_y", 3, 1),
+    ("mark_x", 5, 2),
+    ("mark_y", 3, 2),
+)
 
 
 # The solver is chosen from the stiffness 4µT/ρR0² (µ with its thermal part) and from whether only
@@ -78,16 +112,33 @@ def _history_outputs() -> tuple[Output, ...]:
     for history, prefix in PREFIX.items():
         deps = LIQUID_AND_GAS + HISTORY_PARAMS[history]
         for key, label, unit, shown in DYNAMIC[history] + COMMON:
-            extra = {"labels": shown} if isinstance(shown, tuple) else {"decimals": shown, "special": "—", "why_from": f"{prefix}_{key}_why"}
+            extra = (
+                {"labels": shown}
+                if isinstance(shown, tuple)
+                else {"decimals": shown, "special": "—", "why_from": f"{prefix}_{key}_why"}
+            )
             extra.update(SIGNIFICANT.get(key, {}))
             output_deps = SOLVER_DEPS[history] if key == "solver" else deps
             outputs.append(Output(f"{prefix}_{key}", label, unit, output_deps, effect=history, **extra))
             if "why_from" in extra:  # why it has no value where it shows "—"
-                outputs.append(Output(f"{prefix}_{key}_why", f"why {label} has no value", "", deps, labels=MISSING, effect=history))
+                outputs.append(
+                    Output(f"{prefix}_{key}_why", f"why {label} has no value", "", deps, labels=MISSING, effect=history)
+                )
         for key, decimals, size in GEOMETRY:
             if key.startswith("mark") and history == "ramp":  # the ramp's growth has no extremum to mark
                 continue
-            outputs.append(Output(f"{prefix}_{key}", f"figure: {key}", "", deps, decimals=decimals, size=size, ragged=True, effect=history))
+            outputs.append(
+                Output(
+                    f"{prefix}_{key}",
+                    f"figure: {key}",
+                    "",
+                    deps,
+                    decimals=decimals,
+                    size=size,
+                    ragged=True,
+                    effect=history,
+                )
+            )
     return tuple(outputs)
 
 
@@ -100,34 +151,126 @@ class Bubble(Model):
         Param("R0", "R<sub>0</sub>", "µm", 4.5, lo=0.0, lo_open=True, description="radius at rest at t = 0"),
         Param("rho", "ρ", "kg/m³", WATER["rho"], lo=0.0, lo_open=True, description="liquid density"),
         Param("c", "c", "m/s", WATER["c"], lo=0.0, lo_open=True, description="speed of sound in the liquid"),
-        Param("kappa", "κ", "", 5 / 3, lo=1.0, hi=3.0, description="polytropic exponent (γ with thermal damping)").with_effect("gas"),
-        Param("h_frac", "h/R<sub>0</sub>", "", 1 / 8.86, lo=0.0, hi=0.9, description="van der Waals hard-core radius").with_effect("vdw_hard_core"),
-        Param("p_v", "p<sub>v</sub>", "Pa", WATER["p_v"], lo=0.0, hi=5e4, description="vapour pressure").with_effect("vapour"),
-        Param("sigma", "σ", "N/m", WATER["sigma"], lo=0.0, hi=1.0, description="surface tension").with_effect("surface_tension"),
-        Param("mu", "µ", "Pa·s", WATER["mu"], lo=0.0, hi=100.0, description="liquid viscosity").with_effect("viscosity"),
-        Param("D_g", "D<sub>g</sub>", "mm²/s", 20.5, lo=0.0, description="thermal diffusivity of the gas (argon)").with_effect("thermal_damping"),
-        Param("p_a", "p<sub>a</sub>/p<sub>0</sub>", "", 1.3, lo=0.0, hi=10.0, description="drive amplitude").with_effect("drive"),
+        Param(
+            "kappa", "κ", "", 5 / 3, lo=1.0, hi=3.0, description="polytropic exponent (γ with thermal damping)"
+        ).with_effect("gas"),
+        Param(
+            "h_frac", "h/R<sub>0</sub>", "", 1 / 8.86, lo=0.0, hi=0.9, description="van der Waals hard-core radius"
+        ).with_effect("vdw_hard_core"),
+        Param("p_v", "p<sub>v</sub>", "Pa", WATER["p_v"], lo=0.0, hi=5e4, description="vapour pressure").with_effect(
+            "vapour"
+        ),
+        Param("sigma", "σ", "N/m", WATER["sigma"], lo=0.0, hi=1.0, description="surface tension").with_effect(
+            "surface_tension"
+        ),
+        Param("mu", "µ", "Pa·s", WATER["mu"], lo=0.0, hi=100.0, description="liquid viscosity").with_effect(
+            "viscosity"
+        ),
+        Param(
+            "D_g", "D<sub>g</sub>", "mm²/s", 20.5, lo=0.0, description="thermal diffusivity of the gas (argon)"
+        ).with_effect("thermal_damping"),
+        Param(
+            "p_a", "p<sub>a</sub>/p<sub>0</sub>", "", 1.3, lo=0.0, hi=10.0, description="drive amplitude"
+        ).with_effect("drive"),
         Param("f", "f", "kHz", 26.5, lo=0.0, hi=1e4, lo_open=True, description="drive frequency").with_effect("drive"),
-        Param("p_inf", "p<sub>∞</sub>", "atm", 1.0, lo=0.0, hi=1e3, lo_open=True, description="liquid pressure from t = 0").with_effect("step"),
-        Param("gas_content", "p<sub>gi</sub>/p<sub>∞</sub>", "", 0.0, lo=0.0, hi=1.0, description="initial gas pressure").with_effect("step"),
-        Param("depth", "depth x", "", 0.99, description="how far the ramp goes from p0 towards the Blake threshold: "
-              "x = (p0 − p_target)/(p0 − p_Blake), 1 at the threshold").with_effect("ramp"),
-        Param("t_ramp", "t<sub>ramp</sub>", "µs", 200.0, lo=0.0, hi=1e3, lo_open=True, description="ramp duration").with_effect("ramp"),
-        Param("t_hold", "t<sub>hold</sub>", "µs", 100.0, lo=0.0, hi=1e3, description="hold after the ramp").with_effect("ramp"),
+        Param(
+            "p_inf", "p<sub>∞</sub>", "atm", 1.0, lo=0.0, hi=1e3, lo_open=True, description="liquid pressure from t = 0"
+        ).with_effect("step"),
+        Param(
+            "gas_content", "p<sub>gi</sub>/p<sub>∞</sub>", "", 0.0, lo=0.0, hi=1.0, description="initial gas pressure"
+        ).with_effect("step"),
+        Param(
+            "depth",
+            "depth x",
+            "",
+            0.99,
+            description="how far the ramp goes from p0 towards the Blake threshold: "
+            "x = (p0 − p_target)/(p0 − p_Blake), 1 at the threshold",
+        ).with_effect("ramp"),
+        Param(
+            "t_ramp", "t<sub>ramp</sub>", "µs", 200.0, lo=0.0, hi=1e3, lo_open=True, description="ramp duration"
+        ).with_effect("ramp"),
+        Param("t_hold", "t<sub>hold</sub>", "µs", 100.0, lo=0.0, hi=1e3, description="hold after the ramp").with_effect(
+            "ramp"
+        ),
     )
     outputs = (
-        Output("t_c", "Rayleigh collapse time t<sub>c</sub>", "µs", ("R0", "rho", "p_inf", "p_v"), decimals=3, special="∞ (no collapse: p∞ ≤ p_v)", effect="step"),
-        Output("R_mach", "R/R<sub>0</sub> where |Ṙ| = c (incompressible)", "", ("rho", "c", "p_inf", "p_v"), decimals=4, effect="step"),
+        Output(
+            "t_c",
+            "Rayleigh collapse time t<sub>c</sub>",
+            "µs",
+            ("R0", "rho", "p_inf", "p_v"),
+            decimals=3,
+            special="∞ (no collapse: p∞ ≤ p_v)",
+            effect="step",
+        ),
+        Output(
+            "R_mach",
+            "R/R<sub>0</sub> where |Ṙ| = c (incompressible)",
+            "",
+            ("rho", "c", "p_inf", "p_v"),
+            decimals=4,
+            effect="step",
+        ),
         Output("t_mach", "t/t<sub>c</sub> where |Ṙ| = c", "", ("rho", "c", "p_inf", "p_v"), decimals=5, effect="step"),
-        Output("f0", "linear f<sub>0</sub>", "kHz", ("R0", "rho", "kappa", "h_frac", "p_v", "sigma", "D_g", "f"), decimals=1, effect="gas"),
-        Output("beta", "viscous damping β = 2µ/ρR<sub>0</sub><sup>2</sup>", "1/ms", ("R0", "rho", "mu"), decimals=1, effect="viscosity"),
+        Output(
+            "f0",
+            "linear f<sub>0</sub>",
+            "kHz",
+            ("R0", "rho", "kappa", "h_frac", "p_v", "sigma", "D_g", "f"),
+            decimals=1,
+            effect="gas",
+        ),
+        Output(
+            "beta",
+            "viscous damping β = 2µ/ρR<sub>0</sub><sup>2</sup>",
+            "1/ms",
+            ("R0", "rho", "mu"),
+            decimals=1,
+            effect="viscosity",
+        ),
         # Closed forms over nuclei of 0.1–100 µm: four significant digits.
-        Output("two_sigma_R0", "2σ/R<sub>0</sub>", "kPa", ("R0", "sigma"), decimals=1, digits=4, effect="surface_tension"),
-        Output("R_B", "Blake radius R<sub>B</sub>", "µm", ("R0", "sigma", "p_v"), decimals=4, digits=4, special="—",
-               why="no surface tension, so no Blake radius", effect="surface_tension"),
-        Output("p_blake", "Blake threshold p<sub>Blake</sub>", "kPa", ("R0", "sigma", "p_v"), decimals=1, digits=4, effect="surface_tension"),
-        Output("p_end", "p<sub>∞</sub> after the ramp", "kPa", ("R0", "sigma", "p_v", "depth"), decimals=1, digits=4, effect="ramp"),
-        Output("driven_p_far", "figure: p∞(t)/p0 over two periods", "", ("p_a",), decimals=3, size=CURVE_POINTS, effect="drive"),
+        Output(
+            "two_sigma_R0", "2σ/R<sub>0</sub>", "kPa", ("R0", "sigma"), decimals=1, digits=4, effect="surface_tension"
+        ),
+        Output(
+            "R_B",
+            "Blake radius R<sub>B</sub>",
+            "µm",
+            ("R0", "sigma", "p_v"),
+            decimals=4,
+            digits=4,
+            special="—",
+            why="no surface tension, so no Blake radius",
+            effect="surface_tension",
+        ),
+        Output(
+            "p_blake",
+            "Blake threshold p<sub>Blake</sub>",
+            "kPa",
+            ("R0", "sigma", "p_v"),
+            decimals=1,
+            digits=4,
+            effect="surface_tension",
+        ),
+        Output(
+            "p_end",
+            "p<sub>∞</sub> after the ramp",
+            "kPa",
+            ("R0", "sigma", "p_v", "depth"),
+            decimals=1,
+            digits=4,
+            effect="ramp",
+        ),
+        Output(
+            "driven_p_far",
+            "figure: p∞(t)/p0 over two periods",
+            "",
+            ("p_a",),
+            decimals=3,
+            size=CURVE_POINTS,
+            effect="drive",
+        ),
     ) + _history_outputs()
     effects = EFFECTS
     # `auto`: the analytic collapse when only inertia (+ vapour) acts, the compiled DOP853 otherwise, the
@@ -135,15 +278,20 @@ class Bubble(Model):
     # book's bubble scenes shows the tight reference's digits (solve.EXPLICIT_RTOL, IMPLICIT_RTOL).
     # A scene's `rtol` replaces both. The tolerance bounds max |ΔR|/R0 (4.2e-6 measured, a violent collapse).
     numerics = Numerics(AUTO, tolerance=1e-5)
-    methods = {AUTO: {"rtol": None, "atol": None}, **{name: {"rtol": 1e-6, "atol": None} for name in (*SOLVERS, *COMPILED)}}
+    methods = {
+        AUTO: {"rtol": None, "atol": None},
+        **{name: {"rtol": 1e-6, "atol": None} for name in (*SOLVERS, *COMPILED)},
+    }
     error_metric = "max |ΔR|/R₀ over R(t) and its extrema"
     check_stops = 16  # each costs a solve and a tight reference solve (compiled: 1–50 ms)
     checks_digits = True
     # An ODE solve per stop: blocks spread a scene over workers and pace its progress lines; a block's stops are
     # solved on THREADS threads, so it holds enough of them (64, not 16) that one slow stop does not leave a thread idle.
     chunk_stops = 64
-    reports = {**{f"bubble-{case}": f"the work–precision diagram of bubble case {case}" for case in "ABC"},
-               "settings": "the bubble scenes' settings: every stop's shown digits against time"}
+    reports = {
+        **{f"bubble-{case}": f"the work–precision diagram of bubble case {case}" for case in "ABC"},
+        "settings": "the bubble scenes' settings: every stop's shown digits against time",
+    }
 
     def _evaluate(self, x, wanted, effects):
         check_effects(effects)
@@ -181,8 +329,13 @@ class Bubble(Model):
         reference = solve(pb, ref_method, ref_rtol, REFERENCE_CAPS, atol=ref_atol)
         error = run_difference(run, reference, pb, scales, effects)
         where = " where stiff" if pb.stiffness > STIFF else ""
-        wrong, near = shown_difference(read_run(run, pb, scales, effects), read_run(reference, pb, scales, effects),
-                                       PREFIX[_history(effects)], error, self.outputs)
+        wrong, near = shown_difference(
+            read_run(run, pb, scales, effects),
+            read_run(reference, pb, scales, effects),
+            PREFIX[_history(effects)],
+            error,
+            self.outputs,
+        )
         return Measurement(error, run.nfev, method, f"{ref_method} at rtol {ref_rtol:g}{where}", wrong, near)
 
 
@@ -210,6 +363,7 @@ def _mach_radius(x, effects):
 
 def _f0(x, effects):
     """Linear natural frequency (kHz) of the bubble in equilibrium at R0 under p0, with the enabled terms."""
+
     def one(*values):
         equilibrium = set(effects) - {"step", "ramp"}
         pb, scales = compose(dict(zip(ALL, values)), equilibrium)
@@ -237,7 +391,9 @@ CLOSED_FORMS = {
     "R_B": lambda x, e: _blake(x, e)[0],
     "p_blake": lambda x, e: _blake(x, e)[1],
     "p_end": lambda x, e: P0 * 1e-3 - x["depth"] * (P0 * 1e-3 - _blake(x, e)[1]),
-    "driven_p_far": lambda x, e: 1.0 - x["p_a"][..., None] * np.sin(2.0 * np.pi * DRIVE_PERIODS * np.linspace(0.0, 1.0, CURVE_POINTS)),
+    "driven_p_far": lambda x, e: (
+        1.0 - x["p_a"][..., None] * np.sin(2.0 * np.pi * DRIVE_PERIODS * np.linspace(0.0, 1.0, CURVE_POINTS))
+    ),
 }
 
 

@@ -4,6 +4,7 @@
 (and the initial state consistent with them); `read_run` turns a solved Run into every dynamic
 output in display units, with inf where a value does not exist (the page shows "—").
 """
+
 from __future__ import annotations
 
 import math
@@ -35,15 +36,20 @@ FLAGS = (
 )
 # Why a dynamic output has no value at a point (0: it has one): how the run ended (FLAGS from 2 on), or
 # what the bubble lacks for that quantity.
-MISSING = FLAGS + ("no gas in the bubble: nothing is compressed", "no van der Waals hard core (h = 0)",
-                   "not reached before the run ended")
+MISSING = FLAGS + (
+    "no gas in the bubble: nothing is compressed",
+    "no van der Waals hard core (h = 0)",
+    "not reached before the run ended",
+)
 # Where each output of a run (read_run's keys) lies in kernel_read's row: an index, or a slice for an array.
 _LABELS = ("flag", "growth", "solver")  # indices into FLAGS, BLAKE_LABELS, SOLVER_LABELS
 ROW_OF = {
     **{key: index for index, key in enumerate(kernel_read.SCALARS)},
     **{f"{kernel_read.SCALARS[key]}_why": kernel_read.WHY + i for i, key in enumerate(kernel_read.WHY_OF)},
-    "mark_x": slice(kernel_read.MARK_X, kernel_read.MARK_X + 2), "mark_y": slice(kernel_read.MARK_Y, kernel_read.MARK_Y + 2),
-    "stop_x": slice(kernel_read.STOP_X, kernel_read.STOP_X + 1), "stop_y": slice(kernel_read.STOP_Y, kernel_read.STOP_Y + 1),
+    "mark_x": slice(kernel_read.MARK_X, kernel_read.MARK_X + 2),
+    "mark_y": slice(kernel_read.MARK_Y, kernel_read.MARK_Y + 2),
+    "stop_x": slice(kernel_read.STOP_X, kernel_read.STOP_X + 1),
+    "stop_y": slice(kernel_read.STOP_Y, kernel_read.STOP_Y + 1),
     "curve_x": slice(kernel_read.CURVE_X, kernel_read.CURVE_X + CURVE_SIZE),
     "curve_y": slice(kernel_read.CURVE_X + CURVE_SIZE, kernel_read.CURVE_X + 2 * CURVE_SIZE),
 }
@@ -56,9 +62,12 @@ def _power(rtol: float) -> str:
 
 # The default settings' three choices, then any method at the rtol a scene's `numerics:` line sets.
 SCENE_METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA", EXPLICIT, IMPLICIT)
-SOLVER_LABELS = ("analytic (betaincinv)", f"DOP853 (compiled), rtol {_power(EXPLICIT_RTOL)}",
-                 f"Radau IIA (compiled; stiff: 4µT/ρR₀² > 10³), rtol {_power(IMPLICIT_RTOL)}", "other") + tuple(
-    f"{method}, at the scene's rtol" for method in SCENE_METHODS)
+SOLVER_LABELS = (
+    "analytic (betaincinv)",
+    f"DOP853 (compiled), rtol {_power(EXPLICIT_RTOL)}",
+    f"Radau IIA (compiled; stiff: 4µT/ρR₀² > 10³), rtol {_power(IMPLICIT_RTOL)}",
+    "other",
+) + tuple(f"{method}, at the scene's rtol" for method in SCENE_METHODS)
 BLAKE_LABELS = (
     "settles: it stays below the Blake radius, at a size in equilibrium",
     "passed the Blake radius, then fell back below it",
@@ -67,16 +76,21 @@ BLAKE_LABELS = (
     "unbounded: reached 10 Blake radii",
 )
 
+
 def check_effects(effects) -> None:
     """Raise ValueError for an effect set that is not a model: a missing companion or two rivals."""
     for effect, needed in NEEDS.items():
         if effect in effects and needed not in effects:
             raise ValueError(f"effect `{effect}` needs `{needed}`")
     if "radiation" in effects and "keller_miksis" in effects:
-        raise ValueError("effects `radiation` and `keller_miksis` exclude each other (Keller–Miksis includes radiation)")
+        raise ValueError(
+            "effects `radiation` and `keller_miksis` exclude each other (Keller–Miksis includes radiation)"
+        )
     protocols = [p for p in PROTOCOLS if p in effects]
     if len(protocols) > 1:
-        raise ValueError(f"effects {' and '.join(f'`{p}`' for p in protocols)} exclude each other: one pressure history per scene")
+        raise ValueError(
+            f"effects {' and '.join(f'`{p}`' for p in protocols)} exclude each other: one pressure history per scene"
+        )
 
 
 class Scales:
@@ -127,8 +141,11 @@ def compose(point: dict, effects) -> tuple[Problem, Scales]:
         # The depth x = (p0 − p_target)/(p0 − p_Blake): the share of the way from p0 down to the threshold,
         # so x > 1 lies beyond it for every nucleus (p_Blake > 0 for large ones, where p_target/p_Blake
         # would run the wrong way).
-        fields.update(ramp_to=1.0 - point["depth"] * (1.0 - p_blake), ramp_time=point["t_ramp"] * 1e-6 / t_ref,
-                      r_unbounded=terms.UNBOUNDED * r_b)
+        fields.update(
+            ramp_to=1.0 - point["depth"] * (1.0 - p_blake),
+            ramp_time=point["t_ramp"] * 1e-6 / t_ref,
+            r_unbounded=terms.UNBOUNDED * r_b,
+        )
     pb = Problem(**fields, tau_end=_window(point, on, Problem(**fields), t_ref))
     return pb, Scales(point, on, pb)
 
@@ -174,8 +191,17 @@ def read_run(run: Run, pb: Problem, scales: Scales, effects) -> dict:
 
 def read_row(run: Run, pb: Problem, scales: Scales, effects) -> np.ndarray:
     """Every dynamic output of one run as kernel_read lays out a row (`read_run` names its entries)."""
-    row = kernel_read.read(reading(pb, scales, effects), run.tau, run.r, run.v, run.end, STATUS_CODES[run.status],
-                           run.maxima, run.minima, run.speeds)
+    row = kernel_read.read(
+        reading(pb, scales, effects),
+        run.tau,
+        run.r,
+        run.v,
+        run.end,
+        STATUS_CODES[run.status],
+        run.maxima,
+        run.minima,
+        run.speeds,
+    )
     row[kernel_read.SOLVER] = _solver_label(run, pb)
     return row
 
@@ -191,8 +217,27 @@ def reading(pb: Problem, scales: Scales, effects) -> np.ndarray:
     part = pb.tau_end / DRIVE_PERIODS if "drive" in effects else pb.tau_end
     # the wall speed past which the incompressible model is flagged invalid (a compressible one has no such limit)
     invalid = terms.INVALID_MACH * pb.sound if pb.compressible == terms.NONE else math.inf
-    return np.array((pb.tau_end, part, pb.sound, invalid, pb.eta, pb.eta**3, pb.gas, pb.kappa, pb.ramp_to, y_kind, y_scale,
-                     scales.t_ref, scales.x_unit, r_b, p_blake, P0, T0))
+    return np.array(
+        (
+            pb.tau_end,
+            part,
+            pb.sound,
+            invalid,
+            pb.eta,
+            pb.eta**3,
+            pb.gas,
+            pb.kappa,
+            pb.ramp_to,
+            y_kind,
+            y_scale,
+            scales.t_ref,
+            scales.x_unit,
+            r_b,
+            p_blake,
+            P0,
+            T0,
+        )
+    )
 
 
 @lru_cache(maxsize=4096)

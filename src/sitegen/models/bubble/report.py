@@ -1,4 +1,5 @@
 """The bubble's part of the accuracy report: a work–precision diagram per bench case, findings, cost per digit."""
+
 from __future__ import annotations
 
 from html import escape
@@ -24,7 +25,9 @@ class BubbleReport:
 
     def per_digit(self, bench: dict) -> list[tuple[str, dict]]:
         """Per case: the time multiplier per extra digit of each method."""
-        return [(f"bubble {case}", summary.bubble_headlines(data)["per_digit"]) for case, data in bench["bubble"].items()]
+        return [
+            (f"bubble {case}", summary.bubble_headlines(data)["per_digit"]) for case, data in bench["bubble"].items()
+        ]
 
 
 def bubble_part(case: str):
@@ -37,8 +40,13 @@ def bubble_part(case: str):
         label = f"Work–precision diagram of bubble case {case}: error against time for five solvers over rtol 10⁻³ to 10⁻¹²."
 
         def draw(narrow):
-            return work_precision_figure([_bubble_panel(data)], "median wall time per solve (ms)", data["metric"].split(" over")[0],
-                                         "labels: rtol = 10⁻ⁿ; ▲: error above the plot", narrow)
+            return work_precision_figure(
+                [_bubble_panel(data)],
+                "median wall time per solve (ms)",
+                data["metric"].split(" over")[0],
+                "labels: rtol = 10⁻ⁿ; ▲: error above the plot",
+                narrow,
+            )
 
         svg = figure(context, f"bubble-{case}", data, label, draw)
         return figure_html(f"bubble-{case}", svg, label, _bubble_caption(data), _bubble_table(case, data))
@@ -48,24 +56,35 @@ def bubble_part(case: str):
 
 def _bubble_panel(data: dict) -> Panel:
     runs = [r for r in data["runs"] if summary.usable(r)]
-    series = [Series(m, tuple(run_point(r) for r in group)) for m, group in summary.methods(runs).items()
-              if m not in summary.EXACT]
+    series = [
+        Series(m, tuple(run_point(r) for r in group))
+        for m, group in summary.methods(runs).items()
+        if m not in summary.EXACT
+    ]
     chosen_run = summary.bubble_headlines(data)["chosen"]
     exact = summary.find(runs, "analytic")
     chosen = None
     if chosen_run:
         text = f"chosen: {summary.label(chosen_run)}" + (" (exact)" if chosen_run.get("exact") else "")
         chosen = Point(chosen_run["time_s"] * 1e3, chosen_run["error"], text)
-    return Panel(data.get("short", data["title"]), tuple(series), chosen=chosen, floor=1e-15, ceiling=10.0,
-                 exact=Point(exact["time_s"] * 1e3, 0.0, "") if exact else None)
+    return Panel(
+        data.get("short", data["title"]),
+        tuple(series),
+        chosen=chosen,
+        floor=1e-15,
+        ceiling=10.0,
+        exact=Point(exact["time_s"] * 1e3, 0.0, "") if exact else None,
+    )
 
 
 def _bubble_caption(data: dict) -> str:
     check = data["reference_check"]
     agreement = f" (they agree to {sci(check['agreement'])})" if check.get("agreement") is not None else ""
-    return (f"{escape(data['title'])}. Error: {escape(data['metric'])}; reference: {escape(data['reference'])}{agreement}. "
-            "The number beside a point is n in rtol = 10⁻ⁿ (atol = 10⁻³ rtol, nondimensional); the ringed point is "
-            "the setting the model chooses for this case.")
+    return (
+        f"{escape(data['title'])}. Error: {escape(data['metric'])}; reference: {escape(data['reference'])}{agreement}. "
+        "The number beside a point is n in rtol = 10⁻ⁿ (atol = 10⁻³ rtol, nondimensional); the ringed point is "
+        "the setting the model chooses for this case."
+    )
 
 
 def _bubble_table(case: str, data: dict) -> str:
@@ -77,10 +96,23 @@ def _bubble_table(case: str, data: dict) -> str:
             rows.append([r["method"], tol, "—", "—", "—", "", f"not run: {escape(r['skipped'])}"])
         else:
             status = "" if r["status"] == data["expected_status"] else f"ended: {escape(r['status'])}"
-            rows.append([r["method"], tol, f"{r['nfev']:,}", sci(r["error"]), duration(r["time_s"]),
-                         "yes" if id(r) in front else "", f"{r['repeats']} run(s) {status}".strip()])
-    return table(["method", "rtol", "evaluations", "error", "median time", "Pareto front", "notes"], rows,
-                  f"Every run of bubble case {case}", text=(6,))
+            rows.append(
+                [
+                    r["method"],
+                    tol,
+                    f"{r['nfev']:,}",
+                    sci(r["error"]),
+                    duration(r["time_s"]),
+                    "yes" if id(r) in front else "",
+                    f"{r['repeats']} run(s) {status}".strip(),
+                ]
+            )
+    return table(
+        ["method", "rtol", "evaluations", "error", "median time", "Pareto front", "notes"],
+        rows,
+        f"Every run of bubble case {case}",
+        text=(6,),
+    )
 
 
 def _bubble_sentence(case: str, data: dict) -> str:
@@ -89,12 +121,16 @@ def _bubble_sentence(case: str, data: dict) -> str:
     parts = [f"<strong>Bubble {case}.</strong>"]
     if head["chosen"]:
         c = head["chosen"]
-        parts.append(f"The chosen setting, {label_html(c)}, takes {duration(c['time_s'])} "
-                     + ("and is exact." if c.get("exact") else f"with error {sci(c['error'])} ({c['nfev']:,} evaluations)."))
+        parts.append(
+            f"The chosen setting, {label_html(c)}, takes {duration(c['time_s'])} "
+            + ("and is exact." if c.get("exact") else f"with error {sci(c['error'])} ({c['nfev']:,} evaluations).")
+        )
     step = summary.tighter(runs, "DOP853", 1e-6, 1e-9)
     if case != "C" and step and step["digits"] is not None:
-        parts.append(f"Tightening DOP853 from rtol {sci(1e-6)} to {sci(1e-9)} buys {step['digits']:.1f} digits "
-                     f"for {factor(step['time'])} the time.")
+        parts.append(
+            f"Tightening DOP853 from rtol {sci(1e-6)} to {sci(1e-9)} buys {step['digits']:.1f} digits "
+            f"for {factor(step['time'])} the time."
+        )
     if case == "A":
         dop = summary.find(runs, "DOP853", rtol=1e-6)
         ratio = summary.ratio(dop, head["chosen"])
@@ -104,10 +140,15 @@ def _bubble_sentence(case: str, data: dict) -> str:
         fast, slow = summary.find(runs, "LSODA", rtol=1e-6), summary.find(runs, "RK45", rtol=1e-6)
         ratio = summary.ratio(slow, fast)
         if ratio:
-            parts.append(f"RK45 at the same rtol needs {slow['nfev']:,} evaluations and {ratio:.0f} times LSODA's time: "
-                         "its step is held down by stability, not accuracy.")
-    cheapest = [f"within {sci(target)}, {label_html(run)} ({duration(run['time_s'])})"
-                for target, run in head["cheapest"].items() if run]
+            parts.append(
+                f"RK45 at the same rtol needs {slow['nfev']:,} evaluations and {ratio:.0f} times LSODA's time: "
+                "its step is held down by stability, not accuracy."
+            )
+    cheapest = [
+        f"within {sci(target)}, {label_html(run)} ({duration(run['time_s'])})"
+        for target, run in head["cheapest"].items()
+        if run
+    ]
     if cheapest:
         parts.append("Cheapest solver run " + "; ".join(cheapest) + ".")
     return " ".join(parts)
@@ -118,14 +159,29 @@ def settings_part(context) -> str:
     sweep = (context.bench or {}).get("digits")
     if not sweep:
         return MISSING
-    label = "Time per solve against the largest error in units of the last shown digit, every stop of each bubble scene."
+    label = (
+        "Time per solve against the largest error in units of the last shown digit, every stop of each bubble scene."
+    )
 
     def draw(narrow):
-        return work_precision_figure([sweep_panel(sweep)], "time per solve, all stops (ms)", "largest error (last shown digits)",
-                                     "labels: rtol = 10⁻ⁿ; below 0.5 every shown digit can be right", narrow)
+        return work_precision_figure(
+            [sweep_panel(sweep)],
+            "time per solve, all stops (ms)",
+            "largest error (last shown digits)",
+            "labels: rtol = 10⁻ⁿ; below 0.5 every shown digit can be right",
+            narrow,
+        )
 
-    rows = table(["scene", "rtol", "ms per solve", "wrong values", "near a boundary", "largest error (digits)"], sweep_rows(sweep),
-                 "Every stop of every bubble scene against the tight reference", text=(0,))
-    caption = (f"{label} Reference: {escape(next(iter(sweep.values()))['reference'])}. The number beside a point is n in rtol = 10⁻ⁿ; "
-               "the ringed point is the setting the scenes use.")
-    return figure_html("settings", figure(context, "settings", sweep, label, draw), label, caption, rows) + near_listing(sweep)
+    rows = table(
+        ["scene", "rtol", "ms per solve", "wrong values", "near a boundary", "largest error (digits)"],
+        sweep_rows(sweep),
+        "Every stop of every bubble scene against the tight reference",
+        text=(0,),
+    )
+    caption = (
+        f"{label} Reference: {escape(next(iter(sweep.values()))['reference'])}. The number beside a point is n in rtol = 10⁻ⁿ; "
+        "the ringed point is the setting the scenes use."
+    )
+    return figure_html(
+        "settings", figure(context, "settings", sweep, label, draw), label, caption, rows
+    ) + near_listing(sweep)

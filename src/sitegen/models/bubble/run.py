@@ -1,6 +1,7 @@
 """What one solved bubble is: how a run ends (statuses and their codes), its cap, its sample grid,
 its events and the `Run` it comes back as. Both solving paths, compiled and scipy's, speak it.
 """
+
 from __future__ import annotations
 
 import math
@@ -9,11 +10,21 @@ from functools import lru_cache
 
 import numpy as np
 
-from .terms import CORE_MARGIN, EPSILON, Problem
 from .kernel_march import (
-    CAP_CODE, CORE_CODE, ENDED, FAILED_CODE, G_ACCELERATION, G_RADIUS_LEVEL, G_SPEED, G_SPEED_LEVEL, KM_CODE, MACH_CODE,
-    POINT_CODE, UNBOUNDED_CODE,
+    CAP_CODE,
+    CORE_CODE,
+    ENDED,
+    FAILED_CODE,
+    G_ACCELERATION,
+    G_RADIUS_LEVEL,
+    G_SPEED,
+    G_SPEED_LEVEL,
+    KM_CODE,
+    MACH_CODE,
+    POINT_CODE,
+    UNBOUNDED_CODE,
 )
+from .terms import CORE_MARGIN, EPSILON, Problem
 
 CURVE_POINTS = 401  # samples of R(t) over the run; the middle one is t = T for a two-period drive
 
@@ -29,8 +40,16 @@ FAILED = "failed"  # the solver gave up (step size underflow)
 
 
 # Each status's code, as the event table and the compiled march and reading name it.
-STATUS_CODES = {OK: ENDED, FAILED: FAILED_CODE, CAP_NFEV: CAP_CODE, MACH: MACH_CODE, KM_STOP: KM_CODE, POINT: POINT_CODE,
-                CORE: CORE_CODE, UNBOUNDED_GROWTH: UNBOUNDED_CODE}
+STATUS_CODES = {
+    OK: ENDED,
+    FAILED: FAILED_CODE,
+    CAP_NFEV: CAP_CODE,
+    MACH: MACH_CODE,
+    KM_STOP: KM_CODE,
+    POINT: POINT_CODE,
+    CORE: CORE_CODE,
+    UNBOUNDED_GROWTH: UNBOUNDED_CODE,
+}
 STATUS_OF = {code: status for status, code in STATUS_CODES.items()}
 RECORDS = {"max": 1, "min": 2, "speed": 3}  # an event table's record codes (split_hits takes them in this order)
 ROLE_OF = {code: role for role, code in RECORDS.items()}
@@ -95,8 +114,10 @@ def event_table(pb: Problem) -> np.ndarray:
         rows.append((G_RADIUS_LEVEL, pb.eta * (1.0 + CORE_MARGIN), -1, CORE, ""))
     if math.isfinite(pb.r_unbounded):
         rows.append((G_RADIUS_LEVEL, pb.r_unbounded, +1, UNBOUNDED_GROWTH, ""))
-    codes = [(kind, level, direction, STATUS_CODES[stop] if stop else 0, RECORDS.get(role, 0))
-             for kind, level, direction, stop, role in rows]
+    codes = [
+        (kind, level, direction, STATUS_CODES[stop] if stop else 0, RECORDS.get(role, 0))
+        for kind, level, direction, stop, role in rows
+    ]
     return np.array(codes, float)
 
 
@@ -107,14 +128,37 @@ def unreached(grid: np.ndarray, y0) -> np.ndarray:
     return samples
 
 
-def run_from(status: str, method: str, rtol: float, grid: np.ndarray, samples: np.ndarray, last, maxima=(), minima=(),
-             speeds=(), nfev: int = 0, seconds: float = 0.0) -> Run:
+def run_from(
+    status: str,
+    method: str,
+    rtol: float,
+    grid: np.ndarray,
+    samples: np.ndarray,
+    last,
+    maxima=(),
+    minima=(),
+    speeds=(),
+    nfev: int = 0,
+    seconds: float = 0.0,
+) -> Run:
     """The Run of `samples` on `grid`, ended at `last` (τ, r, ṙ) with `status`; the events it recorded are rows
     (τ, r, ṙ), of which maxima and minima keep (τ, r) and speeds (τ, ṙ)."""
     maxima, minima = (frozen([(t, r) for t, r, _ in rows]).reshape(-1, 2) for rows in (maxima, minima))
     speeds = frozen([(t, v) for t, _, v in speeds]).reshape(-1, 2)
-    return Run(status, method, rtol, frozen(grid), frozen(samples[:, 0]), frozen(samples[:, 1]), tuple(last), maxima,
-               minima, speeds, nfev, seconds)
+    return Run(
+        status,
+        method,
+        rtol,
+        frozen(grid),
+        frozen(samples[:, 0]),
+        frozen(samples[:, 1]),
+        tuple(last),
+        maxima,
+        minima,
+        speeds,
+        nfev,
+        seconds,
+    )
 
 
 def frozen(array, copy: bool = True) -> np.ndarray:

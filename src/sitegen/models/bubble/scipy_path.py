@@ -4,6 +4,7 @@ compiled path located on each accepted step's interpolant and the samples taken 
 It is the reference the compiled solvers are checked against in the tests and the bench, and the
 path of the accuracy experiments. A cap, an overflow or a failed step becomes the Run's status.
 """
+
 from __future__ import annotations
 
 import time
@@ -12,9 +13,23 @@ import numpy as np
 from scipy.integrate import BDF, DOP853, LSODA, RK45, Radau
 from scipy.optimize import brentq
 
-from .run import CAP_NFEV, FAILED, KM_STOP, OK, ROLE_OF, STATUS_OF, Caps, Event, Run, event_table, run_from, sample_grid, unreached
-from .terms import KELLER_MIKSIS, Problem, make_rhs
 from .kernel_march import G_ACCELERATION, G_RADIUS_LEVEL
+from .run import (
+    CAP_NFEV,
+    FAILED,
+    KM_STOP,
+    OK,
+    ROLE_OF,
+    STATUS_OF,
+    Caps,
+    Event,
+    Run,
+    event_table,
+    run_from,
+    sample_grid,
+    unreached,
+)
+from .terms import KELLER_MIKSIS, Problem, make_rhs
 
 SOLVERS = {"RK45": RK45, "DOP853": DOP853, "Radau": Radau, "BDF": BDF, "LSODA": LSODA}
 EPS = np.finfo(float).eps
@@ -41,14 +56,17 @@ class _Budget:
 
 def bubble_events(pb: Problem, fun) -> list[Event]:
     """The event table as scipy-path Events, with `fun` the (counted) right-hand side."""
+
     def g(kind: int, level: float):
         if kind == G_ACCELERATION:
             return lambda t, y: fun(t, y)[1]
         column = 0 if kind == G_RADIUS_LEVEL else 1
         return lambda t, y: y[column] - level
 
-    return [Event(g(int(kind), level), int(direction), STATUS_OF[int(stop)] if stop else "", ROLE_OF.get(int(record), ""))
-            for kind, level, direction, stop, record in event_table(pb)]
+    return [
+        Event(g(int(kind), level), int(direction), STATUS_OF[int(stop)] if stop else "", ROLE_OF.get(int(record), ""))
+        for kind, level, direction, stop, record in event_table(pb)
+    ]
 
 
 def integrate_scipy(pb: Problem, y0, method: str, rtol: float, atol: float, caps: Caps, events=None) -> Run:
@@ -62,7 +80,7 @@ def integrate_scipy(pb: Problem, y0, method: str, rtol: float, atol: float, caps
     return _stepped_run(status, method, rtol, stepper, nfev, time.perf_counter() - start)
 
 
-def _run_guarded(pb: Problem, y0, method: str, rtol: float, atol: float, budget: _Budget, stepper: "Stepper"):
+def _run_guarded(pb: Problem, y0, method: str, rtol: float, atol: float, budget: _Budget, stepper: Stepper):
     """Create the solver and step it; a cap, an overflow or an invalid start becomes a status."""
     if pb.compressible == KELLER_MIKSIS and abs(y0[1]) >= pb.speed_limit:
         return KM_STOP, None  # already outside Keller–Miksis validity: nothing to integrate
@@ -154,5 +172,16 @@ def _root(event: Event, dense, t_old: float, t_new: float) -> float:
 
 def _stepped_run(status: str, method: str, rtol: float, stepper: Stepper, nfev: int, seconds: float) -> Run:
     """The Run of what `stepper` sampled and recorded, ended with `status`."""
-    return run_from(status, method, rtol, stepper.grid, stepper.samples, stepper.last, stepper.found("max"),
-                    stepper.found("min"), stepper.found("speed"), nfev, seconds)
+    return run_from(
+        status,
+        method,
+        rtol,
+        stepper.grid,
+        stepper.samples,
+        stepper.last,
+        stepper.found("max"),
+        stepper.found("min"),
+        stepper.found("speed"),
+        nfev,
+        seconds,
+    )

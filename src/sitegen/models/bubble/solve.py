@@ -12,6 +12,7 @@ solvers (scipy_path.py), kept as the reference the build checks against and for 
 experiments. This module chooses the method and its tolerances and runs the compiled path and the
 analytic collapse.
 """
+
 from __future__ import annotations
 
 import time
@@ -19,6 +20,27 @@ from functools import lru_cache
 
 import numpy as np
 
+from ...physics import compiled
+from ...physics.numerics import Numerics
+from . import kernel_read
+from .kernel_march import DOP853_METHOD, ENDED, RADAU_METHOD, march, split_hits
+from .kernel_terms import pack
+from .run import (
+    KM_STOP,
+    MACH,
+    POINT,
+    RECORDS,
+    STATUS_CODES,
+    STATUS_OF,
+    Caps,
+    Run,
+    event_table,
+    frozen,
+    run_from,
+    sample_grid,
+    unreached,
+)
+from .scipy_path import integrate_scipy
 from .terms import (
     EPSILON,
     KELLER_MIKSIS,
@@ -28,14 +50,6 @@ from .terms import (
     rayleigh_radius,
     rayleigh_tau,
 )
-from ...physics import compiled
-from .kernel_march import DOP853_METHOD, ENDED, RADAU_METHOD, march, split_hits
-from . import kernel_read
-from .kernel_terms import pack
-from .run import (KM_STOP, MACH, POINT, RECORDS, STATUS_CODES, STATUS_OF, Caps, Run, event_table, frozen, run_from,
-                  sample_grid, unreached)
-from .scipy_path import integrate_scipy
-from ...physics.numerics import Numerics
 
 COMPILED = {"compiled-DOP853": DOP853_METHOD, "compiled-Radau": RADAU_METHOD}  # the same steppers, compiled
 ANALYTIC = "analytic"
@@ -103,8 +117,9 @@ def reference_for(pb: Problem, method: str) -> tuple[str, float, float | None]:
 
 
 @lru_cache(maxsize=4096)
-def solve(pb: Problem, method: str | None = None, rtol: float | None = None, caps: Caps = Caps(),
-          atol: float | None = None) -> Run:
+def solve(
+    pb: Problem, method: str | None = None, rtol: float | None = None, caps: Caps = Caps(), atol: float | None = None
+) -> Run:
     """Solve one bubble from rest at r = 1, with the chosen (or the given) method; cached."""
     if method is None:
         method, rtol = choose_method(pb)
@@ -113,7 +128,9 @@ def solve(pb: Problem, method: str | None = None, rtol: float | None = None, cap
     return integrate(pb, (1.0, 0.0), method, rtol, caps, atol=atol)
 
 
-def integrate_compiled(pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), atol: float | None = None) -> Run:
+def integrate_compiled(
+    pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), atol: float | None = None
+) -> Run:
     """The compiled path of `integrate`: the same events, samples and statuses, no Python per step."""
     ensure_compiled()
     return _marched(pb, y0, method, rtol, caps, atol)
@@ -125,10 +142,18 @@ def _marched(pb: Problem, y0, method: str, rtol: float, caps: Caps, atol: float 
     grid = sample_grid(pb.tau_end)
     atol = default_atol(rtol) if atol is None else atol
     if pb.compressible == KELLER_MIKSIS and abs(y0[1]) >= pb.speed_limit:
-        return run_from(KM_STOP, method, rtol, grid, unreached(grid, y0), (0.0, float(y0[0]), float(y0[1])),
-                        seconds=time.perf_counter() - start)
-    marched = march(COMPILED[method], pack(pb), np.array(y0, float), rtol, atol, pb.tau_end, grid, event_table(pb),
-                    caps.max_nfev)
+        return run_from(
+            KM_STOP,
+            method,
+            rtol,
+            grid,
+            unreached(grid, y0),
+            (0.0, float(y0[0]), float(y0[1])),
+            seconds=time.perf_counter() - start,
+        )
+    marched = march(
+        COMPILED[method], pack(pb), np.array(y0, float), rtol, atol, pb.tau_end, grid, event_table(pb), caps.max_nfev
+    )
     return _run_of(marched, method, rtol, grid, start)
 
 
@@ -136,8 +161,20 @@ def _run_of(marched, method: str, rtol: float, grid: np.ndarray, start: float) -
     """The Run of what `march` returned."""
     code, end, samples, hits, nfev = marched
     maxima, minima, speeds = (frozen(rows, copy=False) for rows in split_hits(hits, *RECORDS.values()))
-    return Run(STATUS_OF[code], method, rtol, grid, frozen(samples[:, 0]), frozen(samples[:, 1]),
-               (float(end[0]), float(end[1]), float(end[2])), maxima, minima, speeds, int(nfev), time.perf_counter() - start)
+    return Run(
+        STATUS_OF[code],
+        method,
+        rtol,
+        grid,
+        frozen(samples[:, 0]),
+        frozen(samples[:, 1]),
+        (float(end[0]), float(end[1]), float(end[2])),
+        maxima,
+        minima,
+        speeds,
+        int(nfev),
+        time.perf_counter() - start,
+    )
 
 
 # The kernels in two parts of about 15 and 5 s of compiling, which processes can compile side by side:
@@ -161,13 +198,16 @@ def ensure_compiled(part: str | None = None) -> tuple[float, bool]:
             run = _run_of(made_up, EXPLICIT, 1e-6, grid, 0.0)
             q = np.ones(kernel_read.READING_SIZE)  # a reading of any point whose window is the run's
             q[kernel_read.Q_TAU_END] = q[kernel_read.Q_PART] = pb.tau_end
-            kernel_read.read(q, run.tau, run.r, run.v, run.end, STATUS_CODES[run.status], run.maxima, run.minima,
-                             run.speeds)
+            kernel_read.read(
+                q, run.tau, run.r, run.v, run.end, STATUS_CODES[run.status], run.maxima, run.minima, run.speeds
+            )
 
     return compiled.prepare(warm_up, part, KERNEL_PARTS)
 
 
-def integrate(pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), events=None, atol: float | None = None) -> Run:
+def integrate(
+    pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), events=None, atol: float | None = None
+) -> Run:
     """Step `method` from y0 over [0, τ_end] with events and caps; always returns a Run.
 
     atol defaults to 1e-3 rtol: r and ṙ are of order one in these units. A compiled method takes only
@@ -193,5 +233,13 @@ def rayleigh_run(pb: Problem) -> Run:
     samples[reached] = np.stack([r, speed(r)], axis=1)
     status = MACH if r_stop > EPSILON else POINT
     # the start at rest is the maximum; r and ṙ are monotonic after it
-    return run_from(status, ANALYTIC, 0.0, grid, samples, (tau_stop, r_stop, float(speed(r_stop))),
-                    maxima=[(0.0, 1.0, 0.0)], seconds=time.perf_counter() - start)
+    return run_from(
+        status,
+        ANALYTIC,
+        0.0,
+        grid,
+        samples,
+        (tau_stop, r_stop, float(speed(r_stop))),
+        maxima=[(0.0, 1.0, 0.0)],
+        seconds=time.perf_counter() - start,
+    )

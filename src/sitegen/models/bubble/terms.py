@@ -5,6 +5,7 @@ pressure in p0. In these units ρ = 1, R_i = 1 and every state component is of o
 solver's absolute tolerance means the same thing for a 0.1 µm nucleus and a 10 mm cavity (in SI,
 atol = 1e-6 m is 0.2 R0 for R0 = 4.5 µm; physics.md K4).
 """
+
 from __future__ import annotations
 
 import math
@@ -206,6 +207,9 @@ def energy(pb: Problem, r, v):
     total = 2 * np.pi * r**3 * v**2 + 4 * np.pi / 3 * (pb.p_inf - pb.vapour) * r**3 + 4 * np.pi * pb.sigma * r**2
     if pb.gas:
         gas = gas_pressure(pb, r)
-        total = total + (4 * np.pi / 3 * gas * (r**3 - e3) / (pb.kappa - 1.0) if pb.kappa != 1.0 else
-                         -4 * np.pi / 3 * pb.gas * (1 - e3) * np.log((r**3 - e3) / (1 - e3)))
+        total = total + (
+            4 * np.pi / 3 * gas * (r**3 - e3) / (pb.kappa - 1.0)
+            if pb.kappa != 1.0
+            else -4 * np.pi / 3 * pb.gas * (1 - e3) * np.log((r**3 - e3) / (1 - e3))
+        )
     return total

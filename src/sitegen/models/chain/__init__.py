@@ -1,8 +1,9 @@
 """The built-in model 'chain': Chain, and its figure."""
+
 from __future__ import annotations
 
-from .model import Chain
 from .figure import ChainFigure
+from .model import Chain
 from .report import ChainReport
 
 MODELS = {"chain": Chain}

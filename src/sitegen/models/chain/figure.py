@@ -1,15 +1,16 @@
 """I5: the chain's masses over the continuum string, and the chain's dispersion relation against ω = ck."""
+
 from __future__ import annotations
 
 import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
 
+from ...render import style as s
+from ...render.figures.base import table_range
+from ...render.layers import Layer
 from .model import continuum_grid
 from .modes import DRAWN_WALL, LENGTH, SPEED
-from ...render import style as s
-from ...render.layers import Layer
-from ...render.figures.base import table_range
 
 LOG_LO, LOG_HI = 0.3, 3.0  # the dispersion panel spans 2 … 1000 in k and ω: the modes of N = 1 … 256 all fit
 TALL = 1e3  # the walls drawn as layers reach beyond the panel, which clips them
@@ -34,11 +35,22 @@ class ChainFigure:
         # Inline style: matplotlib's SVG sheet sets * {stroke-linecap: butt}, which would hide zero-length dots.
         dots = {"stroke": s.BLUE, "stroke-width": "5", "fill": "none", "style": "stroke-linecap: round"}
         return [
-            Layer("pulse-band", "polygon", 1, ((LOG_LO, LOG_LO), (LOG_LO, LOG_HI), ("out:log_k_pulse", LOG_HI), ("out:log_k_pulse", LOG_LO)),
-                  style={"fill": s.FILL_BLUE, "fill-opacity": "0.35", "stroke": "none"}),
+            Layer(
+                "pulse-band",
+                "polygon",
+                1,
+                ((LOG_LO, LOG_LO), (LOG_LO, LOG_HI), ("out:log_k_pulse", LOG_HI), ("out:log_k_pulse", LOG_LO)),
+                style={"fill": s.FILL_BLUE, "fill-opacity": "0.35", "stroke": "none"},
+            ),
             Layer("chain", "dots", 0, xs="out:x_dots", ys="out:u_dots", style=dots),
-            Layer("string", "polyline", 0, xs=tuple(float(x) for x in continuum_grid()), ys="out:u_continuum",
-                  style={"stroke": s.ORANGE, "stroke-width": "1.8", "stroke-dasharray": "6 4", "fill": "none"}),
+            Layer(
+                "string",
+                "polyline",
+                0,
+                xs=tuple(float(x) for x in continuum_grid()),
+                ys="out:u_continuum",
+                style={"stroke": s.ORANGE, "stroke-width": "1.8", "stroke-dasharray": "6 4", "fill": "none"},
+            ),
             Layer("modes", "dots", 1, xs="out:log_k", ys="out:log_omega", style={**dots, "stroke-width": "4"}),
         ] + (_wall_layers() if "boundary" in scene.effects else [])
 
@@ -55,8 +67,20 @@ def _wall_layers() -> list[Layer]:
     """The walls as moving shapes: DRAWN_WALL thick with fixed ends, of zero width (unseen) with free ends."""
     wall = {"fill": s.LOST, "stroke": "none"}
     return [
-        Layer("left-wall", "polygon", 0, (("out:wall_left", -TALL), (0.0, -TALL), (0.0, TALL), ("out:wall_left", TALL)), style=wall),
-        Layer("right-wall", "polygon", 0, ((LENGTH, -TALL), ("out:wall_right", -TALL), ("out:wall_right", TALL), (LENGTH, TALL)), style=wall),
+        Layer(
+            "left-wall",
+            "polygon",
+            0,
+            (("out:wall_left", -TALL), (0.0, -TALL), (0.0, TALL), ("out:wall_left", TALL)),
+            style=wall,
+        ),
+        Layer(
+            "right-wall",
+            "polygon",
+            0,
+            ((LENGTH, -TALL), ("out:wall_right", -TALL), ("out:wall_right", TALL), (LENGTH, TALL)),
+            style=wall,
+        ),
     ]
 
 
@@ -73,7 +97,11 @@ def _draw_string_axes(ax, tables, static_walls: bool = True, legend_columns: int
     ax.set_xlim(-wall, LENGTH + wall)
     ax.set_ylim(-top, top)
     for x in (-wall, LENGTH) if static_walls else ():
-        ax.add_patch(Rectangle((x, -top), wall, 2 * top, facecolor=s.LOST, edgecolor=s.MUTED, hatch="////", linewidth=0.8, zorder=3))
+        ax.add_patch(
+            Rectangle(
+                (x, -top), wall, 2 * top, facecolor=s.LOST, edgecolor=s.MUTED, hatch="////", linewidth=0.8, zorder=3
+            )
+        )
     ax.axhline(0.0, color=s.MUTED, lw=0.6)
     ax.set_xlabel("position x (m)")
     ax.set_ylabel("displacement u / A")
@@ -82,7 +110,11 @@ def _draw_string_axes(ax, tables, static_walls: bool = True, legend_columns: int
             Line2D([], [], color=s.BLUE, marker="o", ls="none", ms=5, label="chain of N masses"),
             Line2D([], [], color=s.ORANGE, lw=1.8, ls=(0, (6, 4)), label="continuous string"),
         ],
-        loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=legend_columns, frameon=False, fontsize=9,
+        loc="lower center",
+        bbox_to_anchor=(0.5, 1.0),
+        ncols=legend_columns,
+        frameon=False,
+        fontsize=9,
     )
 
 
@@ -104,6 +136,13 @@ def _draw_dispersion_axes(ax) -> None:
             Patch(facecolor=s.FILL_BLUE, alpha=0.6, label="pulse"),
         ],
         # above the panel: the pulse's band can shade any part of it
-        loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=2, frameon=False, fontsize=9, handletextpad=0.3,
-        columnspacing=0.8, handlelength=1.2, borderaxespad=0.2,
+        loc="lower center",
+        bbox_to_anchor=(0.5, 1.0),
+        ncols=2,
+        frameon=False,
+        fontsize=9,
+        handletextpad=0.3,
+        columnspacing=0.8,
+        handlelength=1.2,
+        borderaxespad=0.2,
     )

@@ -4,6 +4,7 @@ The page never uses them: the exact solution is cheaper by 25–4000× and has n
 velocity Verlet at the "magic" step c·Δt = a would silently replace the chain's dispersion by the
 continuum's exact transport (physics.md I5, hard cases).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -56,7 +57,9 @@ def velocity_verlet(u0, v0, dt: float, steps: int, terms: Terms = BARE, every: i
     u, v = np.array(u0, float), np.array(v0, float)
     limit = stability_limit(u.shape[-1], terms)
     if not (0 < dt < limit):
-        raise ValueError(f"`dt` = {dt:.6g} s must lie in (0, 2/ω_N) = (0, {limit:.6g} s): the stability limit of explicit steps")
+        raise ValueError(
+            f"`dt` = {dt:.6g} s must lie in (0, 2/ω_N) = (0, {limit:.6g} s): the stability limit of explicit steps"
+        )
     accel = acceleration(u, terms)
     rows_t, rows_u, rows_v = [0.0], [u.copy()], [v.copy()]
     for step in range(1, steps + 1):
@@ -71,8 +74,9 @@ def velocity_verlet(u0, v0, dt: float, steps: int, terms: Terms = BARE, every: i
     return Integration(np.array(rows_t), np.array(rows_u), np.array(rows_v), steps + 1, steps)
 
 
-def integrate_ivp(u0, v0, t_end: float, method: str = "DOP853", rtol: float = 1e-9, atol: float | None = None,
-                  terms: Terms = BARE) -> Integration:
+def integrate_ivp(
+    u0, v0, t_end: float, method: str = "DOP853", rtol: float = 1e-9, atol: float | None = None, terms: Terms = BARE
+) -> Integration:
     """The chain as a first-order system through scipy's solve_ivp (RK45, DOP853, ...), state at t_end.
 
     atol defaults to rtol × max|u0|, so the error control is relative to the pulse, not to 1 m.
@@ -85,11 +89,24 @@ def integrate_ivp(u0, v0, t_end: float, method: str = "DOP853", rtol: float = 1e
         u, v = state[:n], state[n:]
         return np.concatenate([v, acceleration(u, terms) - terms.gamma * v])
 
-    solution = solve_ivp(rhs, (0.0, t_end), np.concatenate([u0, v0]), method=method, rtol=rtol,
-                         atol=rtol * scale if atol is None else atol)
+    solution = solve_ivp(
+        rhs,
+        (0.0, t_end),
+        np.concatenate([u0, v0]),
+        method=method,
+        rtol=rtol,
+        atol=rtol * scale if atol is None else atol,
+    )
     final = solution.y[:, -1]
-    return Integration(np.array([solution.t[-1]]), final[None, :n], final[None, n:], solution.nfev,
-                       len(solution.t) - 1, solution.status, solution.message)
+    return Integration(
+        np.array([solution.t[-1]]),
+        final[None, :n],
+        final[None, n:],
+        solution.nfev,
+        len(solution.t) - 1,
+        solution.status,
+        solution.message,
+    )
 
 
 def dense_motion(u0, v0, t: float, terms: Terms = BARE) -> tuple[np.ndarray, np.ndarray]:

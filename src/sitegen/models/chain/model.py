@@ -3,6 +3,7 @@
 The exact motion and d'Alembert's string are computed in motion.py; the model tabulates the chain's
 readouts, its masses over the dashed string and its dispersion relation. Units: L = 1 m, c = 1 m/s, μ = 1 kg/m.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -11,11 +12,25 @@ from ...physics.base import Model, Output, Param
 from ...physics.numerics import Measurement, Numerics
 from .integrators import dense_motion
 from .modes import (
-    AMPLITUDE, CONTINUUM_POINTS, DENSITY, DRAWN_WALL, ENDS, LAUNCHES, LENGTH, MAX_N, PULSE_WAVENUMBERS, RESOLVED, SPEED,
-    UNDER_RESOLVED, Terms, mode_frequencies, positions, spacing, wavenumbers,
+    AMPLITUDE,
+    CONTINUUM_POINTS,
+    DENSITY,
+    DRAWN_WALL,
+    ENDS,
+    LAUNCHES,
+    LENGTH,
+    MAX_N,
+    PULSE_WAVENUMBERS,
+    RESOLVED,
+    SPEED,
+    UNDER_RESOLVED,
+    Terms,
+    mode_frequencies,
+    positions,
+    spacing,
+    wavenumbers,
 )
 from .motion import chain_motion, continuum, continuum_energy, deviation_of, energy, initial_state
-
 
 # --- the model the page tabulates -------------------------------------------------------------------------------
 
@@ -47,13 +62,40 @@ class Chain(Model):
     name = "chain"
     title = "The continuum limit: chain of N masses"
     params = (
-        Param("N", "N", "", 64.0, lo=1.0, hi=float(MAX_N), description="number of masses (a whole number; fractions round)"),
-        Param("sigma", "σ", "m", 0.05, lo=0.0, hi=0.05, lo_open=True, description="pulse width (≤ L/20 keeps it off the walls)"),
+        Param(
+            "N",
+            "N",
+            "",
+            64.0,
+            lo=1.0,
+            hi=float(MAX_N),
+            description="number of masses (a whole number; fractions round)",
+        ),
+        Param(
+            "sigma",
+            "σ",
+            "m",
+            0.05,
+            lo=0.0,
+            hi=0.05,
+            lo_open=True,
+            description="pulse width (≤ L/20 keeps it off the walls)",
+        ),
         Param("t", "t", "s", 0.5, lo=0.0, description="time since release"),
-        Param.choice("launch", "launch", LAUNCHES, "right-moving", description="pulse moving right, or released at rest (splits in two)"),
-        Param.choice("ends", "ends", ENDS, "fixed", description="how the chain's ends are held").with_effect("boundary"),
+        Param.choice(
+            "launch",
+            "launch",
+            LAUNCHES,
+            "right-moving",
+            description="pulse moving right, or released at rest (splits in two)",
+        ),
+        Param.choice("ends", "ends", ENDS, "fixed", description="how the chain's ends are held").with_effect(
+            "boundary"
+        ),
         Param("gamma", "γ", "1/s", 0.0, lo=0.0, description="on-site damping rate").with_effect("onsite_damping"),
-        Param("omega0", "ω<sub>0</sub>", "rad/s", 0.0, lo=0.0, description="on-site spring frequency").with_effect("onsite_spring"),
+        Param("omega0", "ω<sub>0</sub>", "rad/s", 0.0, lo=0.0, description="on-site spring frequency").with_effect(
+            "onsite_spring"
+        ),
     )
     # Effect parameters count only when the scene enables their effect (the build never varies them otherwise).
     _motion = ("N", "sigma", "t", "launch", "ends", "gamma", "omega0")
@@ -72,14 +114,30 @@ class Chain(Model):
         Output("E_continuum", "E<sub>string</sub>", "μc²A²", ("sigma", "launch"), decimals=3),
         Output("E_chain_mJ", "E<sub>chain</sub> at A = 1 cm", "mJ", _energy, decimals=3),
         Output("E_now", "E<sub>chain</sub>(t), damped", "μc²A²", _motion, decimals=3, effect="onsite_damping"),
-        Output("status", "status", "", ("N", "sigma", "ends"), labels=("resolved (σ/a ≥ 1)", "pulse under-resolved (σ/a < 1)")),
+        Output(
+            "status",
+            "status",
+            "",
+            ("N", "sigma", "ends"),
+            labels=("resolved (σ/a ≥ 1)", "pulse under-resolved (σ/a < 1)"),
+        ),
         # Layer geometry: the dots in units of A (= cm at A = 1 cm), 1/100 A at about a pixel.
         Output("x_dots", "x<sub>j</sub>", "m", ("N", "ends"), decimals=3, size=MAX_N, ragged=True),
         Output("u_dots", "u<sub>j</sub>/A", "", _motion, decimals=2, size=MAX_N, ragged=True),
-        Output("u_continuum", "u<sub>c</sub>/A", "", ("sigma", "t", "launch", "ends"), decimals=2, size=CONTINUUM_POINTS),
+        Output(
+            "u_continuum", "u<sub>c</sub>/A", "", ("sigma", "t", "launch", "ends"), decimals=2, size=CONTINUUM_POINTS
+        ),
         # The dispersion inset is log–log, so its vertices are log10 k and log10 ω (0.01 decade ≈ 0.5 px).
         Output("log_k", "log<sub>10</sub> k<sub>n</sub>", "", ("N", "ends"), decimals=2, size=MAX_N, ragged=True),
-        Output("log_omega", "log<sub>10</sub> ω<sub>n</sub>", "", ("N", "ends", "omega0"), decimals=2, size=MAX_N, ragged=True),
+        Output(
+            "log_omega",
+            "log<sub>10</sub> ω<sub>n</sub>",
+            "",
+            ("N", "ends", "omega0"),
+            decimals=2,
+            size=MAX_N,
+            ragged=True,
+        ),
         Output("log_k_pulse", "log<sub>10</sub>(3/σ)", "", ("sigma",), decimals=2),
         # The walls as drawn when the ends can change: DRAWN_WALL thick when fixed, nothing otherwise.
         Output("wall_left", "figure: outer face of the left wall", "m", ("ends",), decimals=3, effect="boundary"),
@@ -101,7 +159,11 @@ class Chain(Model):
         u, _ = chain_motion(int(n), x["sigma"], x["t"], x["launch"], terms, amplitude=1.0, velocity=False)
         u0, v0 = initial_state(positions(int(n), terms.ends), x["sigma"], x["launch"], amplitude=1.0)
         reference, _ = dense_motion(u0, v0, float(x["t"]), terms)
-        name = "the dense chain's eigenmodes (numpy eigh)" if not terms.gamma else "the dense chain's matrix exponential (scipy expm)"
+        name = (
+            "the dense chain's eigenmodes (numpy eigh)"
+            if not terms.gamma
+            else "the dense chain's matrix exponential (scipy expm)"
+        )
         return Measurement(float(np.max(np.abs(u - reference))), 0, "exact DST", name)
 
     def _evaluate(self, x, wanted, effects):
@@ -119,7 +181,9 @@ class Chain(Model):
             return motions[n, terms]
 
         def modes(pick):
-            return lambda: _per_chain(groups, lambda n, terms, w: _padded(np.log10(_sorted_modes(n, terms)[pick])), MAX_N)
+            return lambda: _per_chain(
+                groups, lambda n, terms, w: _padded(np.log10(_sorted_modes(n, terms)[pick])), MAX_N
+            )
 
         formulas = {
             "a": lambda: a,
@@ -128,10 +192,16 @@ class Chain(Model):
             "c": lambda: np.full(N.shape, SPEED),  # a√(κ/m) = c by construction (tested separately)
             "omega_max": lambda: np.hypot(2 * SPEED / a, groups[1][..., 2]),
             "sigma_over_a": lambda: sigma / a,
-            "dev": lambda: _per_chain(groups, lambda n, terms, w: deviation_of(motion(n, terms, w)[0], n, sigma[w], t[w], launch[w], terms)),
-            "E_chain": lambda: _per_chain(groups, lambda n, terms, w: _initial_energy(n, sigma[w], launch[w], terms, 1.0)),
+            "dev": lambda: _per_chain(
+                groups, lambda n, terms, w: deviation_of(motion(n, terms, w)[0], n, sigma[w], t[w], launch[w], terms)
+            ),
+            "E_chain": lambda: _per_chain(
+                groups, lambda n, terms, w: _initial_energy(n, sigma[w], launch[w], terms, 1.0)
+            ),
             "E_continuum": lambda: continuum_energy(sigma, launch),
-            "E_chain_mJ": lambda: 1e3 * _per_chain(groups, lambda n, terms, w: _initial_energy(n, sigma[w], launch[w], terms, AMPLITUDE)),
+            "E_chain_mJ": lambda: (
+                1e3 * _per_chain(groups, lambda n, terms, w: _initial_energy(n, sigma[w], launch[w], terms, AMPLITUDE))
+            ),
             "E_now": lambda: _per_chain(groups, lambda n, terms, w: energy(*motion(n, terms, w), terms)),
             "status": lambda: np.where(sigma / a < 1, UNDER_RESOLVED, RESOLVED),
             "x_dots": lambda: _per_chain(groups, lambda n, terms, w: _padded(positions(n, terms.ends)), MAX_N),
@@ -150,11 +220,14 @@ def _groups(x, effects: frozenset[str]):
     """Each point's N and its (ends, γ, ω0), with a term that is not enabled held at its neutral value."""
     N = x["N"]
     zero = np.zeros(N.shape)
-    terms_of = np.stack([
-        x["ends"] if "boundary" in effects else zero,
-        x["gamma"] if "onsite_damping" in effects else zero,
-        x["omega0"] if "onsite_spring" in effects else zero,
-    ], axis=-1)
+    terms_of = np.stack(
+        [
+            x["ends"] if "boundary" in effects else zero,
+            x["gamma"] if "onsite_damping" in effects else zero,
+            x["omega0"] if "onsite_spring" in effects else zero,
+        ],
+        axis=-1,
+    )
     return np.rint(N).astype(int), terms_of, N.shape
 
 
@@ -169,7 +242,14 @@ def _continuum_curves(t, sigma, launch, ends):
     out = np.empty(t.shape + (CONTINUUM_POINTS,))
     for code in np.unique(ends):
         where = ends == code
-        out[where] = continuum(continuum_grid(), t[where][..., None], sigma[where][..., None], launch[where][..., None], ENDS[int(code)], 1.0)
+        out[where] = continuum(
+            continuum_grid(),
+            t[where][..., None],
+            sigma[where][..., None],
+            launch[where][..., None],
+            ENDS[int(code)],
+            1.0,
+        )
     return out
 
 

@@ -1,5 +1,6 @@
 """The chain of masses' geometry and normal modes (shared by the exact motion in motion.py, the model and
 the time-stepping integrators it is compared with in integrators.py). Units: L = 1 m, c = 1 m/s, μ = 1 kg/m."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass

@@ -5,13 +5,24 @@ ends, DST-I), a cosine transform (free ends, DCT-II) or an FFT (a ring), so any 
 in O(N log N) with no time-step error. The continuum is d'Alembert's solution of the wave equation
 with the matching reflections.
 """
+
 from __future__ import annotations
 
 import numpy as np
 import scipy.fft
 
-from .modes import AMPLITUDE, BARE, CENTRE, LENGTH, RIGHT_MOVING, SPEED, Terms, mass_and_stiffness, mode_frequencies, positions
-
+from .modes import (
+    AMPLITUDE,
+    BARE,
+    CENTRE,
+    LENGTH,
+    RIGHT_MOVING,
+    SPEED,
+    Terms,
+    mass_and_stiffness,
+    mode_frequencies,
+    positions,
+)
 
 # --- initial state, the transforms and the exact evolution -----------------------------------------------------
 
@@ -64,7 +75,7 @@ def _damped_oscillation(omega: np.ndarray, gamma: float, t: np.ndarray):
     over = squared < 0
     if not np.any(over):
         return under_c, under_s
-    slowest = np.exp(-omega**2 / (gamma / 2 + rate) * t)  # e^{(r − γ/2)t}, with r − γ/2 = −ω²/(γ/2 + r)
+    slowest = np.exp(-(omega**2) / (gamma / 2 + rate) * t)  # e^{(r − γ/2)t}, with r − γ/2 = −ω²/(γ/2 + r)
     twice = 2 * np.where(over, phase, 0.0)
     shrink = np.divide(-np.expm1(-twice), twice, out=np.ones_like(twice), where=twice > 0)  # (1 − e^{−2rt})/(2rt)
     over_c, over_s = slowest * (1 + np.exp(-twice)) / 2, slowest * t * shrink
@@ -162,8 +173,10 @@ def continuum(x, t, sigma, launch, ends: str = "fixed", amplitude: float = AMPLI
     else:  # the extension of u0 beyond [0, L] that the ends impose, for each travelling half
         mirrored = images(-ahead)
         right = moving + sign * mirrored
-        split = 0.5 * ((moving[splits] + sign * images(-behind[splits], splits))
-                       + (images(ahead[splits], splits) + sign * mirrored[splits]))
+        split = 0.5 * (
+            (moving[splits] + sign * images(-behind[splits], splits))
+            + (images(ahead[splits], splits) + sign * mirrored[splits])
+        )
     right[splits] = split
     return right
 
@@ -176,7 +189,9 @@ def continuum_energy(sigma, launch):
 
 def deviation(n: int, sigma, t, launch, terms: Terms = BARE):
     """max_j |u_j − u_c(x_j)| / A: how far the chain is from the continuum string (the physics error)."""
-    return deviation_of(chain_motion(n, sigma, t, launch, terms, amplitude=1.0, velocity=False)[0], n, sigma, t, launch, terms)
+    return deviation_of(
+        chain_motion(n, sigma, t, launch, terms, amplitude=1.0, velocity=False)[0], n, sigma, t, launch, terms
+    )
 
 
 def deviation_of(u: np.ndarray, n: int, sigma, t, launch, terms: Terms):

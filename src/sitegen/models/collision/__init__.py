@@ -1,8 +1,9 @@
 """The built-in model 'collision': Collision, and its figure."""
+
 from __future__ import annotations
 
-from .model import Collision
 from .figure import CollisionFigure
+from .model import Collision
 
 MODELS = {"collision": Collision}
 FIGURES = {"collision": CollisionFigure()}

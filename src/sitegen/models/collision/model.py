@@ -6,6 +6,7 @@ dashpot c_d, ending when the overlap closes) whose restitution e = exp(−ζπ/�
 the same centre-of-mass formulas in place of the `e` slider; `explosive` allows e > 1 (the bodies
 separate faster than they met: energy is released at the contact).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -25,6 +26,7 @@ def _law(form):
     """An exact form of the instantaneous law; with the contact, e is a function of four sliders:
     the output is then tabulated per stop."""
     return lambda effects: None if CONTACT in effects else form
+
 
 # --- exact forms for the page (physics.md I2 "structure") -----------------------------------
 # With s = 1/(m1 + m2) as a coordinate every output is a polynomial of low degree in
@@ -78,31 +80,88 @@ class Collision(Model):
         Param("v1i", "v<sub>1i</sub>", "m/s", 3.0, description="initial velocity of body 1"),
         Param("v2i", "v<sub>2i</sub>", "m/s", -1.0, description="initial velocity of body 2"),
         Param("e", "e", "", 1.0, lo=0.0, hi=1.0, description="coefficient of restitution")
-        .widened_by("explosive", np.inf).replaced_by(CONTACT),
-        Param("k_c", "k<sub>c</sub>", "kN/m", 10.0, lo=0.0, lo_open=True, description="contact stiffness").with_effect(CONTACT),
+        .widened_by("explosive", np.inf)
+        .replaced_by(CONTACT),
+        Param("k_c", "k<sub>c</sub>", "kN/m", 10.0, lo=0.0, lo_open=True, description="contact stiffness").with_effect(
+            CONTACT
+        ),
         Param("c_d", "c<sub>d</sub>", "N·s/m", 0.0, lo=0.0, description="contact damping").with_effect(CONTACT),
     )
     _all = ("m1", "m2", "v1i", "v2i", "e")
     _initial = ("m1", "m2", "v1i", "v2i")
     _contact = ("m1", "m2", "k_c", "c_d")
     outputs = (
-        Output("v1f", "v<sub>1f</sub>", "m/s", _all, deps_with=_WITH_CONTACT,
-               structure=_law(Choose(_STATUS, (Poly(_v1f_colliding, _MULTILINEAR), _passing("v1i"))))),
-        Output("v2f", "v<sub>2f</sub>", "m/s", _all, deps_with=_WITH_CONTACT,
-               structure=_law(Choose(_STATUS, (Poly(_v2f_colliding, _MULTILINEAR), _passing("v2i"))))),
-        Output("v_cm", "V (centre of mass)", "m/s", _initial,
-               structure=Poly(lambda c: c["inv_total_mass"] * (c["m1"] * c["v1i"] + c["m2"] * c["v2i"]), _MULTILINEAR[:4] + _MULTILINEAR[5:])),
-        Output("p_before", "p before", "kg·m/s", _initial, decimals=2,
-               structure=Poly(lambda c: c["m1"] * c["v1i"] + c["m2"] * c["v2i"], _MULTILINEAR[:4])),
-        Output("p_after", "p after", "kg·m/s", _all, decimals=2, deps_with=_WITH_CONTACT,
-               structure=_law(Choose(_STATUS, (Poly(_momentum_after, ((_M1, 2), (_M2, 2)) + _MULTILINEAR[2:]),
-                                               Poly(lambda c: c["m1"] * c["v1i"] + c["m2"] * c["v2i"], _MULTILINEAR[:4]))))),
+        Output(
+            "v1f",
+            "v<sub>1f</sub>",
+            "m/s",
+            _all,
+            deps_with=_WITH_CONTACT,
+            structure=_law(Choose(_STATUS, (Poly(_v1f_colliding, _MULTILINEAR), _passing("v1i")))),
+        ),
+        Output(
+            "v2f",
+            "v<sub>2f</sub>",
+            "m/s",
+            _all,
+            deps_with=_WITH_CONTACT,
+            structure=_law(Choose(_STATUS, (Poly(_v2f_colliding, _MULTILINEAR), _passing("v2i")))),
+        ),
+        Output(
+            "v_cm",
+            "V (centre of mass)",
+            "m/s",
+            _initial,
+            structure=Poly(
+                lambda c: c["inv_total_mass"] * (c["m1"] * c["v1i"] + c["m2"] * c["v2i"]),
+                _MULTILINEAR[:4] + _MULTILINEAR[5:],
+            ),
+        ),
+        Output(
+            "p_before",
+            "p before",
+            "kg·m/s",
+            _initial,
+            decimals=2,
+            structure=Poly(lambda c: c["m1"] * c["v1i"] + c["m2"] * c["v2i"], _MULTILINEAR[:4]),
+        ),
+        Output(
+            "p_after",
+            "p after",
+            "kg·m/s",
+            _all,
+            decimals=2,
+            deps_with=_WITH_CONTACT,
+            structure=_law(
+                Choose(
+                    _STATUS,
+                    (
+                        Poly(_momentum_after, ((_M1, 2), (_M2, 2)) + _MULTILINEAR[2:]),
+                        Poly(lambda c: c["m1"] * c["v1i"] + c["m2"] * c["v2i"], _MULTILINEAR[:4]),
+                    ),
+                )
+            ),
+        ),
         Output("K_before", "K before", "J", _initial, decimals=2, structure=_K_BEFORE),
         Output("K_after", "K after", "J", _all, decimals=2, deps_with=_WITH_CONTACT, structure=_law(_K_AFTER)),
-        Output("K_lost", "K lost", "J", _all, decimals=2, deps_with=_WITH_CONTACT,
-               structure=_law(Choose(_STATUS, (Poly(_kinetic_lost, _QUADRATIC_IN_V_AND_E), Poly(lambda c: 0.0, ()))))),
-        Output("K_kept_pct", "K kept", "%", _all, decimals=1, deps_with=_WITH_CONTACT,
-               structure=_law(Ratio(_K_AFTER, _K_BEFORE, scale=100.0, when_zero=100.0))),
+        Output(
+            "K_lost",
+            "K lost",
+            "J",
+            _all,
+            decimals=2,
+            deps_with=_WITH_CONTACT,
+            structure=_law(Choose(_STATUS, (Poly(_kinetic_lost, _QUADRATIC_IN_V_AND_E), Poly(lambda c: 0.0, ())))),
+        ),
+        Output(
+            "K_kept_pct",
+            "K kept",
+            "%",
+            _all,
+            decimals=1,
+            deps_with=_WITH_CONTACT,
+            structure=_law(Ratio(_K_AFTER, _K_BEFORE, scale=100.0, when_zero=100.0)),
+        ),
         Output(
             "status",
             "status",
@@ -112,22 +171,47 @@ class Collision(Model):
             structure=_STATUS,
         ),
         # contact_spring_dashpot: the contact's duration, restitution and force.
-        Output("t_contact", "contact time t<sub>c</sub>", "ms", _contact, decimals=2,
-               special="∞ (overdamped: the bodies never separate)", effect=CONTACT),
+        Output(
+            "t_contact",
+            "contact time t<sub>c</sub>",
+            "ms",
+            _contact,
+            decimals=2,
+            special="∞ (overdamped: the bodies never separate)",
+            effect=CONTACT,
+        ),
         Output("zeta", "damping ratio ζ", "", _contact, decimals=3, effect=CONTACT),
         Output("e_contact", "e of the contact", "", _contact, decimals=3, effect=CONTACT),
         Output("J", "impulse J on body 2", "N·s", _all, decimals=3, deps_with=_WITH_CONTACT, effect=CONTACT),
         Output("F_max", "peak contact force", "N", _all, decimals=1, deps_with=_WITH_CONTACT, effect=CONTACT),
-        Output("contact_t", "figure: t of the drawn contact force", "ms", _contact, decimals=3, size=CURVE_SIZE, effect=CONTACT),
-        Output("contact_F", "figure: the drawn contact force", "N", _all, decimals=1, size=CURVE_SIZE,
-               deps_with=_WITH_CONTACT, effect=CONTACT),
+        Output(
+            "contact_t",
+            "figure: t of the drawn contact force",
+            "ms",
+            _contact,
+            decimals=3,
+            size=CURVE_SIZE,
+            effect=CONTACT,
+        ),
+        Output(
+            "contact_F",
+            "figure: the drawn contact force",
+            "N",
+            _all,
+            decimals=1,
+            size=CURVE_SIZE,
+            deps_with=_WITH_CONTACT,
+            effect=CONTACT,
+        ),
     )
     effects = ("restitution_law", CONTACT, "explosive")
 
     def _evaluate(self, x, wanted, effects):
         if CONTACT in effects and ({"restitution_law", "explosive"} & effects):
-            raise ValueError(f"effect `{CONTACT}` replaces the instantaneous restitution law: it excludes "
-                             "`restitution_law` and `explosive`")
+            raise ValueError(
+                f"effect `{CONTACT}` replaces the instantaneous restitution law: it excludes "
+                "`restitution_law` and `explosive`"
+            )
         m1, m2, v1i, v2i = (x[k] for k in self._initial)
         total = m1 + m2
         w1, w2 = m1 / total, m2 / total  # w2 directly, never 1 - w1 (cancellation at extreme ratios)

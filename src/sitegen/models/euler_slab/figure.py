@@ -1,12 +1,13 @@
 """K3: the pressure wave sweeping past a slab of air, and the slab's acceleration against Euler's."""
+
 from __future__ import annotations
 
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .model import MIN_DRAWN_WIDTH, WAVE_X
 from ...render import style as s
 from ...render.layers import Layer
+from .model import MIN_DRAWN_WIDTH, WAVE_X
 
 SLAB_TOP = 1.08  # the shaded slab spans the wave's height (p′/P in ±1); notes sit above and below it
 Y_LIMIT = 1.38
@@ -28,16 +29,51 @@ class EulerSlabFigure:
 
     def layers(self, scene):
         def bar(x, top):
-            return ((x - BAR_HALF_WIDTH, 0.0), (x - BAR_HALF_WIDTH, top), (x + BAR_HALF_WIDTH, top), (x + BAR_HALF_WIDTH, 0.0))
+            return (
+                (x - BAR_HALF_WIDTH, 0.0),
+                (x - BAR_HALF_WIDTH, top),
+                (x + BAR_HALF_WIDTH, top),
+                (x + BAR_HALF_WIDTH, 0.0),
+            )
 
-        slab = (("out:drawn_lo", -SLAB_TOP), ("out:drawn_lo", SLAB_TOP), ("out:drawn_hi", SLAB_TOP), ("out:drawn_hi", -SLAB_TOP))
+        slab = (
+            ("out:drawn_lo", -SLAB_TOP),
+            ("out:drawn_lo", SLAB_TOP),
+            ("out:drawn_hi", SLAB_TOP),
+            ("out:drawn_hi", -SLAB_TOP),
+        )
         faces = (("out:face_lo", "out:p_left"), ("out:face_hi", "out:p_right"))
         return [
-            Layer("slab", "polygon", 0, slab, style={"fill": s.ORANGE, "fill-opacity": "0.22", "stroke": s.ORANGE, "stroke-width": "1.2"}),
-            Layer("wave", "polyline", 0, xs=WAVE_X, ys="out:wave", style={"fill": "none", "stroke": s.BLUE, "stroke-width": "2.2"}),
+            Layer(
+                "slab",
+                "polygon",
+                0,
+                slab,
+                style={"fill": s.ORANGE, "fill-opacity": "0.22", "stroke": s.ORANGE, "stroke-width": "1.2"},
+            ),
+            Layer(
+                "wave",
+                "polyline",
+                0,
+                xs=WAVE_X,
+                ys="out:wave",
+                style={"fill": "none", "stroke": s.BLUE, "stroke-width": "2.2"},
+            ),
             Layer("faces", "dots", 0, faces, style=FACE_DOTS),
-            Layer("a-slab", "polygon", 1, bar(0.0, "out:bar_slab"), style={"fill": s.ORANGE, "fill-opacity": "0.55", "stroke": s.ORANGE, "stroke-width": "1.2"}),
-            Layer("a-point", "polygon", 1, bar(1.0, "out:bar_point"), style={"fill": s.FILL_BLUE, "stroke": s.BLUE, "stroke-width": "1.2"}),
+            Layer(
+                "a-slab",
+                "polygon",
+                1,
+                bar(0.0, "out:bar_slab"),
+                style={"fill": s.ORANGE, "fill-opacity": "0.55", "stroke": s.ORANGE, "stroke-width": "1.2"},
+            ),
+            Layer(
+                "a-point",
+                "polygon",
+                1,
+                bar(1.0, "out:bar_point"),
+                style={"fill": s.FILL_BLUE, "stroke": s.BLUE, "stroke-width": "1.2"},
+            ),
             # The axes are in units of P, λ and Pk/ρₐ: the note gives P and λ, which L_p and f set.
             Layer.note("scale", "P = ", "out:P", " · λ = ", "out:wavelength"),
         ]
@@ -66,17 +102,28 @@ def _draw_wave_axes(ax, legend_columns: int = 3):
     row = 0.5 * (SLAB_TOP + Y_LIMIT)
     ax.annotate("", xy=(-0.98, row), xytext=(-0.64, row), arrowprops={"arrowstyle": "->", "color": s.MUTED, "lw": 1.2})
     ax.text(-0.6, row, "wave travels", color=s.MUTED, fontsize=NOTE_SIZE, va="center")
-    ax.text(0.99, -row, f"slab drawn ≥ λ/{round(1 / MIN_DRAWN_WIDTH)} wide", color=s.MUTED, fontsize=NOTE_SIZE - 1,
-            ha="right", va="center")
+    ax.text(
+        0.99,
+        -row,
+        f"slab drawn ≥ λ/{round(1 / MIN_DRAWN_WIDTH)} wide",
+        color=s.MUTED,
+        fontsize=NOTE_SIZE - 1,
+        ha="right",
+        va="center",
+    )
     ax.legend(
         handles=[
             Line2D([], [], color=s.BLUE, lw=2.2, label="p′(x)"),
             Patch(facecolor=s.ORANGE, alpha=0.3, edgecolor=s.ORANGE, label="slab Δx"),
             Line2D([], [], color=s.ORANGE, lw=0, marker="o", ms=7, label="face pressures"),
         ],
-        loc="lower center", bbox_to_anchor=(0.6 if legend_columns == 3 else 0.5, 1.0), ncols=legend_columns,
-        frameon=False, fontsize=NOTE_SIZE,
-        handlelength=1.6, columnspacing=1.2,
+        loc="lower center",
+        bbox_to_anchor=(0.6 if legend_columns == 3 else 0.5, 1.0),
+        ncols=legend_columns,
+        frameon=False,
+        fontsize=NOTE_SIZE,
+        handlelength=1.6,
+        columnspacing=1.2,
     )
 
 

@@ -14,6 +14,7 @@ The wave runs toward −x, p′ = P cos(kx + ωt) with φ = kx_m + ωt, so that 
 scene's animation) steps time forward and the wave moves past the slab to the left. No output depends
 on the direction (they are amplitudes and the pressure balance); toward +x, φ = kx_m − ωt instead.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -56,11 +57,13 @@ _MEAN = Coord("sinc_sin_phi", ("dx_l", "phi"), lambda dx_l, phi: sin_pi(dx_l) / 
 
 def _product(*coords: Coord, scale: float = 1.0) -> Poly:
     """scale × the product of the coordinates (multilinear)."""
+
     def kernel(c):
         value = scale
         for coord in coords:
             value = value * c[coord.name]
         return value
+
     return Poly(kernel, tuple((coord, 1) for coord in coords))
 
 
@@ -80,23 +83,62 @@ class EulerSlab(Model):
         # Four significant digits where the values span decades (L_p 0–140 dB, f 20 Hz–20 kHz).
         Output("P", "pressure amplitude P", "Pa", ("spl",), decimals=5, digits=4),
         Output("wavelength", "wavelength λ", "m", ("f",), decimals=5, digits=4),
-        Output("net_force", "net force per area f", "Pa", ("spl", "dx_l", "phi"), decimals=5, structure=_product(_AMPLITUDE, _FACES)),
+        Output(
+            "net_force",
+            "net force per area f",
+            "Pa",
+            ("spl", "dx_l", "phi"),
+            decimals=5,
+            structure=_product(_AMPLITUDE, _FACES),
+        ),
         Output("slab_mass", "slab mass per area ρ<sub>a</sub>Δx", "g/m²", ("f", "dx_l"), decimals=3, digits=4),
-        Output("a_slab", "slab acceleration ā = f/(ρ<sub>a</sub>Δx)", "m/s²", _all, decimals=3,
-               structure=_product(_AMPLITUDE, _K_PER_RHO, _MEAN)),
-        Output("a_point", "Euler's point value a<sub>m</sub>", "m/s²", ("spl", "f", "phi"), decimals=3,
-               structure=_product(_AMPLITUDE, _K_PER_RHO, _SIN_PHI)),
+        Output(
+            "a_slab",
+            "slab acceleration ā = f/(ρ<sub>a</sub>Δx)",
+            "m/s²",
+            _all,
+            decimals=3,
+            structure=_product(_AMPLITUDE, _K_PER_RHO, _MEAN),
+        ),
+        Output(
+            "a_point",
+            "Euler's point value a<sub>m</sub>",
+            "m/s²",
+            ("spl", "f", "phi"),
+            decimals=3,
+            structure=_product(_AMPLITUDE, _K_PER_RHO, _SIN_PHI),
+        ),
         Output("sinc", "ratio ā/a<sub>m</sub> = sinc(kΔx/2)", "", ("dx_l",), decimals=6),
         Output("U", "particle velocity U", "mm/s", ("spl",), decimals=4, digits=4),
-        Output("xi", "displacement ξ", "nm", ("spl", "f"), decimals=2, digits=4,
-               structure=_product(_AMPLITUDE, _INV_F, scale=1e9 / (RHO_AIR * C_AIR * 2.0 * np.pi))),
+        Output(
+            "xi",
+            "displacement ξ",
+            "nm",
+            ("spl", "f"),
+            decimals=2,
+            digits=4,
+            structure=_product(_AMPLITUDE, _INV_F, scale=1e9 / (RHO_AIR * C_AIR * 2.0 * np.pi)),
+        ),
         Output("mach", "acoustic Mach U/c<sub>a</sub>", "× 10⁻⁶", ("spl",), decimals=3, digits=4),
-        Output("shock_distance", "shock-formation distance", "m", ("spl", "f"), decimals=1, digits=4,
-               structure=_product(_INV_AMPLITUDE, _INV_F, scale=RHO_AIR * C_AIR**3 / (BETA_AIR * 2.0 * np.pi))),
-        Output("regime", "validity", "", ("spl",), labels=(
-            "linear acoustics valid",
-            "linear acoustics invalid (U/c > 0.01 or P > 0.1 p₀)",
-        )),
+        Output(
+            "shock_distance",
+            "shock-formation distance",
+            "m",
+            ("spl", "f"),
+            decimals=1,
+            digits=4,
+            structure=_product(_INV_AMPLITUDE, _INV_F, scale=RHO_AIR * C_AIR**3 / (BETA_AIR * 2.0 * np.pi)),
+        ),
+        Output(
+            "regime",
+            "validity",
+            "",
+            ("spl",),
+            labels=(
+                "linear acoustics valid",
+                "linear acoustics invalid (U/c > 0.01 or P > 0.1 p₀)",
+            ),
+        ),
         # Figure geometry: lengths in λ about the slab centre, pressures in units of P,
         # accelerations in units of the point-Euler amplitude Pk/ρₐ.
         Output("wave", "p′/P along the wave", "", ("phi",), decimals=3, size=len(WAVE_X)),
@@ -109,10 +151,22 @@ class EulerSlab(Model):
         Output("bar_slab", "ā/(Pk/ρ<sub>a</sub>)", "", ("dx_l", "phi"), decimals=3),
         Output("bar_point", "a<sub>m</sub>/(Pk/ρ<sub>a</sub>)", "", ("phi",), decimals=3),
         # Effects: readouts of the terms the linear slab balance leaves out.
-        Output("convective_ratio", "convective / local acceleration", "× 10⁻⁶", ("spl",), decimals=3,
-               effect="convective_term"),
-        Output("hydrostatic", "hydrostatic difference ρ<sub>a</sub>gΔx (balances the slab's weight)", "Pa",
-               ("f", "dx_l"), decimals=5, effect="gravity"),
+        Output(
+            "convective_ratio",
+            "convective / local acceleration",
+            "× 10⁻⁶",
+            ("spl",),
+            decimals=3,
+            effect="convective_term",
+        ),
+        Output(
+            "hydrostatic",
+            "hydrostatic difference ρ<sub>a</sub>gΔx (balances the slab's weight)",
+            "Pa",
+            ("f", "dx_l"),
+            decimals=5,
+            effect="gravity",
+        ),
         Output("alpha", "classical absorption α", "dB/km", ("f",), decimals=4, effect="absorption"),
     )
     effects = ("convective_term", "gravity", "absorption")

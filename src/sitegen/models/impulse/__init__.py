@@ -1,8 +1,9 @@
 """The built-in model 'impulse': Impulse, and its figure."""
+
 from __future__ import annotations
 
-from .model import Impulse
 from .figure import ImpulseFigure
+from .model import Impulse
 
 MODELS = {"impulse": Impulse}
 FIGURES = {"impulse": ImpulseFigure()}

@@ -1,16 +1,22 @@
 """I1: the force pulse F(t) with the impulse shaded underneath; with `initial_velocity`, v(t) below it."""
+
 from __future__ import annotations
 
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .model import CONTACT
 from ...render import style as s
-from ...render.layers import Layer
 from ...render.figures.base import param_range, table_range
+from ...render.layers import Layer
+from .model import CONTACT
 
 FAR = 1e3  # s: the velocity after the pulse is drawn flat to here (clipped at the panel's edge)
-SHAPE_WORDS = {"triangle": "a triangular", "hann": "a Hann (sine-squared)", "half_sine": "a half-sine", "rectangle": "a rectangular"}
+SHAPE_WORDS = {
+    "triangle": "a triangular",
+    "hann": "a Hann (sine-squared)",
+    "half_sine": "a half-sine",
+    "rectangle": "a rectangular",
+}
 
 
 class ImpulseFigure:
@@ -37,24 +43,37 @@ class ImpulseFigure:
         area = {"fill": s.FILL_BLUE, "fill-opacity": "0.75", "stroke": "none"}
         curve = {"fill": "none", "stroke": s.BLUE, "stroke-width": "2.2"}
         if _sampled(scene):
-            pulse = [Layer("area", "polygon", 0, xs="out:pulse_t", ys="out:pulse_F", style=area),
-                     Layer("pulse", "polyline", 0, xs="out:pulse_t", ys="out:pulse_F", style=curve)]
+            pulse = [
+                Layer("area", "polygon", 0, xs="out:pulse_t", ys="out:pulse_F", style=area),
+                Layer("pulse", "polyline", 0, xs="out:pulse_t", ys="out:pulse_F", style=curve),
+            ]
         else:
             apex = ("out:t_apex", "in:F_pk")
             vertices = ((0.0, 0.0), apex, ("in:tau", 0.0))
-            pulse = [Layer("area", "polygon", 0, vertices, style=area), Layer("pulse", "polyline", 0, vertices, style=curve)]
+            pulse = [
+                Layer("area", "polygon", 0, vertices, style=area),
+                Layer("pulse", "polyline", 0, vertices, style=curve),
+            ]
         if "initial_velocity" not in scene.effects:
             return pulse
         velocity = {"fill": "none", "stroke": s.ORANGE, "stroke-width": "2.2"}
         return pulse + [
             Layer("velocity", "polyline", 1, xs="out:pulse_t", ys="out:v_curve", style=velocity),
-            Layer("velocity-after", "polyline", 1, (("out:t_end", "out:v_after"), (FAR, "out:v_after")), style=velocity),
+            Layer(
+                "velocity-after", "polyline", 1, (("out:t_end", "out:v_after"), (FAR, "out:v_after")), style=velocity
+            ),
         ]
 
     def draw(self, scene, tables, narrow=False):
         with_velocity = "initial_velocity" in scene.effects
         if with_velocity:
-            fig, named = s.new_mosaic(4.6 if narrow else 4.3, [["F"], ["v"]], narrow=narrow, sharex=True, gridspec_kw={"height_ratios": [3, 2]})
+            fig, named = s.new_mosaic(
+                4.6 if narrow else 4.3,
+                [["F"], ["v"]],
+                narrow=narrow,
+                sharex=True,
+                gridspec_kw={"height_ratios": [3, 2]},
+            )
             ax, ax_v = named["F"], named["v"]
         else:
             fig, (ax,) = s.new_figure(2.7 if narrow else 2.5, narrow=narrow)
@@ -65,7 +84,10 @@ class ImpulseFigure:
         if f_lo < 0:
             ax.axhline(0, color=s.MUTED, lw=0.6)
         ax.legend(
-            handles=[Line2D([], [], color=s.BLUE, lw=2.2, label="F(t)"), Patch(color=s.FILL_BLUE, label="area = impulse J")],
+            handles=[
+                Line2D([], [], color=s.BLUE, lw=2.2, label="F(t)"),
+                Patch(color=s.FILL_BLUE, label="area = impulse J"),
+            ],
             loc="lower right",  # above the axes: the pulse can reach any corner of them
             bbox_to_anchor=(1.0, 1.0),
             ncols=2,
@@ -102,5 +124,11 @@ def _draw_velocity_axes(ax, tables) -> None:
     ax.set_ylim(min(low, 0.0) - pad, max(high, 0.0) + pad)
     ax.axhline(0, color=s.MUTED, lw=0.6)
     ax.set_ylabel("velocity v (m/s)")
-    ax.legend(handles=[Line2D([], [], color=s.ORANGE, lw=2.2, label="v(t)")], loc="lower right", bbox_to_anchor=(1.0, 1.0),
-              frameon=False, fontsize=9, borderaxespad=0.1)
+    ax.legend(
+        handles=[Line2D([], [], color=s.ORANGE, lw=2.2, label="v(t)")],
+        loc="lower right",
+        bbox_to_anchor=(1.0, 1.0),
+        frameon=False,
+        fontsize=9,
+        borderaxespad=0.1,
+    )

@@ -6,6 +6,7 @@ its closed-form J); `initial_velocity` adds v0 and the velocity v(t) of the mass
 a body of mass m_hit runs into m at the approach speed Δ, and J = μ(1 + e)Δ. The pulses themselves
 are in pulses.py; this module declares the outputs and their exact forms.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -30,7 +31,9 @@ def _with_effects(base: tuple[str, ...], shape: bool = True, contact_deps: tuple
 # drawn pulse scales with F_pk (forces) and τ (times): a handful of nodes reproduce every stop.
 _FRACTIONS = np.sort(np.concatenate([np.arange(SAMPLES + 1) / SAMPLES, [0.5]]))  # as ShapedPulse samples
 _F, _TAU, _V0 = param("F_pk"), param("tau"), param("v0")
-_AREA = Coord("shape_area", ("shape",), lambda shape: np.array([SHAPE_AREA[s] for s in SHAPES])[np.rint(shape).astype(int)])
+_AREA = Coord(
+    "shape_area", ("shape",), lambda shape: np.array([SHAPE_AREA[s] for s in SHAPES])[np.rint(shape).astype(int)]
+)
 _INV_M = Coord("inv_m", ("m",), lambda m: 1.0 / m)
 _PULSE = ((_F, 1), (_TAU, 1), (_AREA, 1))
 
@@ -54,13 +57,16 @@ def _unless_contact(form):
 
 
 def _drawn_forces(name):
-    return Poly(lambda c: _polygon_forces(_column(c["F_pk"]) * SHAPE_FORCE[name](_FRACTIONS)), ((_F, 1),), size=CURVE_SIZE)
+    return Poly(
+        lambda c: _polygon_forces(_column(c["F_pk"]) * SHAPE_FORCE[name](_FRACTIONS)), ((_F, 1),), size=CURVE_SIZE
+    )
 
 
 def _drawn_velocities(name):
     def kernel(c):
         gains = _column(c["F_pk"] * c["tau"] * c["inv_m"]) * SHAPE_RISE[name](_FRACTIONS)
         return _column(c["v0"]) + _polygon_times(gains)
+
     return Poly(kernel, ((_V0, 1), (_F, 1), (_TAU, 1), (_INV_M, 1)), size=CURVE_SIZE)
 
 
@@ -74,45 +80,136 @@ class Impulse(Model):
         Param("tau", "τ", "s", 0.20, lo=0.0, lo_open=True, description="pulse duration").replaced_by(CONTACT),
         Param("m", "m", "kg", 2.0, lo=0.0, lo_open=True, description="mass"),
         Param.choice("shape", "shape", SHAPES, "triangle", description="shape of the pulse").with_effect("shape"),
-        Param("v0", "v<sub>0</sub>", "m/s", 0.0, description="velocity before the pulse").with_effect("initial_velocity"),
-        Param("m_hit", "m<sub>1</sub>", "kg", 1.0, lo=0.0, lo_open=True, description="mass of the body that strikes m").with_effect(CONTACT),
+        Param("v0", "v<sub>0</sub>", "m/s", 0.0, description="velocity before the pulse").with_effect(
+            "initial_velocity"
+        ),
+        Param(
+            "m_hit", "m<sub>1</sub>", "kg", 1.0, lo=0.0, lo_open=True, description="mass of the body that strikes m"
+        ).with_effect(CONTACT),
         Param("v_rel", "Δ", "m/s", 4.0, lo=0.0, description="speed at which the bodies approach").with_effect(CONTACT),
-        Param("k_c", "k<sub>c</sub>", "kN/m", 10.0, lo=0.0, lo_open=True, description="contact stiffness").with_effect(CONTACT),
+        Param("k_c", "k<sub>c</sub>", "kN/m", 10.0, lo=0.0, lo_open=True, description="contact stiffness").with_effect(
+            CONTACT
+        ),
         Param("c_d", "c<sub>d</sub>", "N·s/m", 0.0, lo=0.0, description="contact damping").with_effect(CONTACT),
     )
     _pulse = ("F_pk", "tau")
     _motion = ("F_pk", "tau", "m", "v0")
     outputs = (
-        Output("J", "impulse J", "N·s", _pulse, deps_with=_with_effects(_pulse), structure=_unless_contact(Poly(_impulse, _PULSE))),
-        Output("dp", "Δp = J", "kg·m/s", _pulse, deps_with=_with_effects(_pulse), structure=_unless_contact(Poly(_impulse, _PULSE))),
-        Output("dv", "Δv = J/m", "m/s", ("F_pk", "tau", "m"), deps_with=_with_effects(_pulse),
-               structure=_unless_contact(Poly(lambda c: _impulse(c) * c["inv_m"], _PULSE + ((_INV_M, 1),)))),
+        Output(
+            "J",
+            "impulse J",
+            "N·s",
+            _pulse,
+            deps_with=_with_effects(_pulse),
+            structure=_unless_contact(Poly(_impulse, _PULSE)),
+        ),
+        Output(
+            "dp",
+            "Δp = J",
+            "kg·m/s",
+            _pulse,
+            deps_with=_with_effects(_pulse),
+            structure=_unless_contact(Poly(_impulse, _PULSE)),
+        ),
+        Output(
+            "dv",
+            "Δv = J/m",
+            "m/s",
+            ("F_pk", "tau", "m"),
+            deps_with=_with_effects(_pulse),
+            structure=_unless_contact(Poly(lambda c: _impulse(c) * c["inv_m"], _PULSE + ((_INV_M, 1),))),
+        ),
         # The apex time of the pulse, a vertex of the F(t) figure (exact: tau is on a 0.01 grid); with
         # the contact, the time of its largest force.
-        Output("t_apex", "apex time τ/2", "s", ("tau",), decimals=4, deps_with=_with_effects((), False, _CONTACT_TIME_DEPS),
-               structure=_unless_contact(Poly(lambda c: 0.5 * c["tau"], ((_TAU, 1),)))),
-        Output("F_max", "peak force", "N", ("F_pk",), decimals=2, deps_with=_with_effects((), False),
-               structure=_unless_contact(Poly(lambda c: c["F_pk"], ((_F, 1),)))),
-        Output("t_contact", "contact time", "s", _CONTACT_TIME_DEPS, decimals=4, special="∞ (overdamped: the bodies never separate)", effect=CONTACT),
+        Output(
+            "t_apex",
+            "apex time τ/2",
+            "s",
+            ("tau",),
+            decimals=4,
+            deps_with=_with_effects((), False, _CONTACT_TIME_DEPS),
+            structure=_unless_contact(Poly(lambda c: 0.5 * c["tau"], ((_TAU, 1),))),
+        ),
+        Output(
+            "F_max",
+            "peak force",
+            "N",
+            ("F_pk",),
+            decimals=2,
+            deps_with=_with_effects((), False),
+            structure=_unless_contact(Poly(lambda c: c["F_pk"], ((_F, 1),))),
+        ),
+        Output(
+            "t_contact",
+            "contact time",
+            "s",
+            _CONTACT_TIME_DEPS,
+            decimals=4,
+            special="∞ (overdamped: the bodies never separate)",
+            effect=CONTACT,
+        ),
         Output("e_contact", "e of the contact", "", _CONTACT_TIME_DEPS, decimals=3, effect=CONTACT),
-        Output("v_after", "v after the pulse", "m/s", _motion, deps_with=_with_effects(_motion), effect="initial_velocity",
-               structure=_unless_contact(Poly(lambda c: c["v0"] + _impulse(c) * c["inv_m"], ((_V0, 1),) + _PULSE + ((_INV_M, 1),)))),
+        Output(
+            "v_after",
+            "v after the pulse",
+            "m/s",
+            _motion,
+            deps_with=_with_effects(_motion),
+            effect="initial_velocity",
+            structure=_unless_contact(
+                Poly(lambda c: c["v0"] + _impulse(c) * c["inv_m"], ((_V0, 1),) + _PULSE + ((_INV_M, 1),))
+            ),
+        ),
         # Figure geometry: the drawn pulse as a polygon (t, F), its end, and v(t) at the same times.
-        Output("pulse_t", "figure: t of the drawn pulse", "s", ("tau",), decimals=4, size=CURVE_SIZE,
-               deps_with=_with_effects((), False, _CONTACT_TIME_DEPS),
-               structure=_unless_contact(Poly(lambda c: _polygon_times(_column(c["tau"]) * _FRACTIONS), ((_TAU, 1),), size=CURVE_SIZE))),
-        Output("pulse_F", "figure: F of the drawn pulse", "N", ("F_pk",), decimals=2, size=CURVE_SIZE, deps_with=_with_effects(()),
-               structure=_unless_contact(_per_shape(_drawn_forces))),
-        Output("t_end", "figure: end of the drawn pulse", "s", ("tau",), decimals=4, deps_with=_with_effects((), False, _CONTACT_TIME_DEPS),
-               structure=_unless_contact(Poly(lambda c: c["tau"], ((_TAU, 1),)))),
-        Output("v_curve", "figure: v at the times of the drawn pulse", "m/s", _motion, size=CURVE_SIZE,
-               deps_with=_with_effects(_motion), effect="initial_velocity", structure=_unless_contact(_per_shape(_drawn_velocities))),
+        Output(
+            "pulse_t",
+            "figure: t of the drawn pulse",
+            "s",
+            ("tau",),
+            decimals=4,
+            size=CURVE_SIZE,
+            deps_with=_with_effects((), False, _CONTACT_TIME_DEPS),
+            structure=_unless_contact(
+                Poly(lambda c: _polygon_times(_column(c["tau"]) * _FRACTIONS), ((_TAU, 1),), size=CURVE_SIZE)
+            ),
+        ),
+        Output(
+            "pulse_F",
+            "figure: F of the drawn pulse",
+            "N",
+            ("F_pk",),
+            decimals=2,
+            size=CURVE_SIZE,
+            deps_with=_with_effects(()),
+            structure=_unless_contact(_per_shape(_drawn_forces)),
+        ),
+        Output(
+            "t_end",
+            "figure: end of the drawn pulse",
+            "s",
+            ("tau",),
+            decimals=4,
+            deps_with=_with_effects((), False, _CONTACT_TIME_DEPS),
+            structure=_unless_contact(Poly(lambda c: c["tau"], ((_TAU, 1),))),
+        ),
+        Output(
+            "v_curve",
+            "figure: v at the times of the drawn pulse",
+            "m/s",
+            _motion,
+            size=CURVE_SIZE,
+            deps_with=_with_effects(_motion),
+            effect="initial_velocity",
+            structure=_unless_contact(_per_shape(_drawn_velocities)),
+        ),
     )
     effects = ("shape", "initial_velocity", CONTACT)
 
     def _evaluate(self, x, wanted, effects):
         if "shape" in effects and CONTACT in effects:
-            raise ValueError("effects `shape` and `contact_from_collision` exclude each other: the contact sets the pulse's shape")
+            raise ValueError(
+                "effects `shape` and `contact_from_collision` exclude each other: the contact sets the pulse's shape"
+            )
         pulse = ContactPulse(x) if CONTACT in effects else ShapedPulse(x, "shape" in effects)
         v0 = x["v0"] if "initial_velocity" in effects else np.zeros_like(x["m"])
         formulas = {

@@ -1,5 +1,6 @@
 """The force pulses of the impulse model: the four shapes with their rises and areas, a shaped pulse and
 the pulse of a spring–dashpot contact at every point, and the triangle's force and velocity for one pulse."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -48,7 +49,12 @@ def _rectangle_rise(s):
 # Each shape on 0 <= s = t/τ <= 1 with unit peak: its force F/F_pk, its running integral ∫₀^s F/F_pk ds'
 # (so v(t) = v0 + F_pk τ · rise(t/τ)/m) and its area J/(F_pk τ).
 SHAPE_FORCE = {"triangle": _triangle, "hann": _hann, "half_sine": _half_sine, "rectangle": _rectangle}
-SHAPE_RISE = {"triangle": _triangle_rise, "hann": _hann_rise, "half_sine": _half_sine_rise, "rectangle": _rectangle_rise}
+SHAPE_RISE = {
+    "triangle": _triangle_rise,
+    "hann": _hann_rise,
+    "half_sine": _half_sine_rise,
+    "rectangle": _rectangle_rise,
+}
 SHAPE_AREA = {"triangle": 0.5, "hann": 0.5, "half_sine": 2.0 / np.pi, "rectangle": 1.0}
 
 

@@ -1,8 +1,9 @@
 """The built-in model 'kinetic': Kinetic, and its figure."""
+
 from __future__ import annotations
 
-from .model import Kinetic
 from .figure import KineticFigure
+from .model import Kinetic
 
 MODELS = {"kinetic": Kinetic}
 FIGURES = {"kinetic": KineticFigure()}

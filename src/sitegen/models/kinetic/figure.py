@@ -1,4 +1,5 @@
 """K2: the impulse train on the wall, the running mean of the pressure, and the v_x histogram."""
+
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
@@ -6,10 +7,10 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .model import HIST_SPAN
-from .walls import TRAIN_BINS
 from ...render import style as s
 from ...render.layers import Layer
+from .model import HIST_SPAN
+from .walls import TRAIN_BINS
 
 TRAIN_TOP = 3.0  # force axis: 0 .. 3 × the mean force; taller kicks (few molecules) are clipped
 PULSE_TOP = 6.0  # with contact_duration: room for the pulses of a few molecules
@@ -31,23 +32,56 @@ class KineticFigure:
     def layers(self, scene):
         edges = np.arange(TRAIN_BINS + 1) / TRAIN_BINS
         train, running = _time_outputs(scene.effects)
-        sample = [] if "wall_law" in scene.effects else [  # diffuse walls re-thermalise: no fixed sample limit
-            Layer("sample-pressure", "polyline", 1, ((0.0, "out:ratio_sample"), (1.0, "out:ratio_sample")),
-                  style={"fill": "none", "stroke": s.ORANGE, "stroke-width": "1.6", "stroke-dasharray": "5 4"}),
-        ]
+        sample = (
+            []
+            if "wall_law" in scene.effects
+            else [  # diffuse walls re-thermalise: no fixed sample limit
+                Layer(
+                    "sample-pressure",
+                    "polyline",
+                    1,
+                    ((0.0, "out:ratio_sample"), (1.0, "out:ratio_sample")),
+                    style={"fill": "none", "stroke": s.ORANGE, "stroke-width": "1.6", "stroke-dasharray": "5 4"},
+                ),
+            ]
+        )
         return [
-            Layer("impulse-train", "polygon", 0, xs=_fixed(np.repeat(edges, 2)), ys=f"out:{train}",
-                  style={"fill": s.FILL_BLUE, "stroke": s.BLUE, "stroke-width": "1"}),
+            Layer(
+                "impulse-train",
+                "polygon",
+                0,
+                xs=_fixed(np.repeat(edges, 2)),
+                ys=f"out:{train}",
+                style={"fill": s.FILL_BLUE, "stroke": s.BLUE, "stroke-width": "1"},
+            ),
             *sample,
             # Forces, pressures and speeds are drawn in units of p_ideal and v_th, which T and the gas set.
             Layer.note("scale", "scales: ideal-gas pressure ", "out:p_ideal", " · thermal speed ", "out:v_th"),
-            Layer("running-mean", "polyline", 1, xs=_fixed(edges[1:]), ys=f"out:{running}",
-                  style={"fill": "none", "stroke": s.BLUE, "stroke-width": "2"}),
-            Layer("velocity-histogram", "polygon", 2, xs="out:hist_x", ys="out:hist_y",
-                  style={"fill": s.FILL_BLUE, "fill-opacity": "0.8", "stroke": s.BLUE, "stroke-width": "1.2"}),
+            Layer(
+                "running-mean",
+                "polyline",
+                1,
+                xs=_fixed(edges[1:]),
+                ys=f"out:{running}",
+                style={"fill": "none", "stroke": s.BLUE, "stroke-width": "2"},
+            ),
+            Layer(
+                "velocity-histogram",
+                "polygon",
+                2,
+                xs="out:hist_x",
+                ys="out:hist_y",
+                style={"fill": s.FILL_BLUE, "fill-opacity": "0.8", "stroke": s.BLUE, "stroke-width": "1.2"},
+            ),
             # Static, but a layer so that it is drawn over the histogram.
-            Layer("maxwellian", "polyline", 2, xs=_fixed(MAXWELL_Z), ys=_fixed(np.round(_normal(MAXWELL_Z), 4)),
-                  style={"fill": "none", "stroke": s.ORANGE, "stroke-width": "2"}),
+            Layer(
+                "maxwellian",
+                "polyline",
+                2,
+                xs=_fixed(MAXWELL_Z),
+                ys=_fixed(np.round(_normal(MAXWELL_Z), 4)),
+                style={"fill": "none", "stroke": s.ORANGE, "stroke-width": "2"},
+            ),
         ]
 
     def draw(self, scene, tables, narrow=False):
@@ -73,7 +107,11 @@ def _axes(narrow: bool):
     narrow, the histogram goes under them."""
     with plt.rc_context(s.RC):
         fig = plt.figure(figsize=(s.width(narrow), 7.4 if narrow else 4.0))
-        grid = fig.add_gridspec(3, 1, height_ratios=[1, 1, 1.5]) if narrow else fig.add_gridspec(2, 2, width_ratios=[1.45, 1.0])
+        grid = (
+            fig.add_gridspec(3, 1, height_ratios=[1, 1, 1.5])
+            if narrow
+            else fig.add_gridspec(2, 2, width_ratios=[1.45, 1.0])
+        )
         ax_train = fig.add_subplot(grid[0, 0])
         ax_run = fig.add_subplot(grid[1, 0], sharex=ax_train)
         ax_hist = fig.add_subplot(grid[2, 0] if narrow else grid[:, 1])
@@ -101,11 +139,21 @@ def _draw_running(ax, sample_limit: bool):
     ax.legend(
         handles=[
             Line2D([], [], color=s.BLUE, lw=2, label="running mean"),
-            *([Line2D([], [], color=s.ORANGE, lw=1.6, ls=(0, (5, 4)), label=r"sample, $t\to\infty$")] if sample_limit else []),
+            *(
+                [Line2D([], [], color=s.ORANGE, lw=1.6, ls=(0, (5, 4)), label=r"sample, $t\to\infty$")]
+                if sample_limit
+                else []
+            ),
             Line2D([], [], color=s.INK, lw=1.0, ls=(0, (4, 3)), label="ideal gas"),
         ],
-        loc="upper center", bbox_to_anchor=(0.45, -0.2), ncols=2, frameon=False, fontsize=9, handlelength=1.6,
-        columnspacing=1.0, handletextpad=0.5,
+        loc="upper center",
+        bbox_to_anchor=(0.45, -0.2),
+        ncols=2,
+        frameon=False,
+        fontsize=9,
+        handlelength=1.6,
+        columnspacing=1.0,
+        handletextpad=0.5,
     )
 
 
@@ -122,8 +170,14 @@ def _draw_histogram(ax, legend_columns: int):
             Patch(facecolor=s.FILL_BLUE, edgecolor=s.BLUE, label="molecules"),
             Line2D([], [], color=s.ORANGE, lw=1.8, label="Maxwellian"),
         ],
-        loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=legend_columns, frameon=False, fontsize=9, handlelength=1.4,
-        borderaxespad=0.1, columnspacing=1.0,
+        loc="lower left",
+        bbox_to_anchor=(0.0, 1.0),
+        ncols=legend_columns,
+        frameon=False,
+        fontsize=9,
+        handlelength=1.4,
+        borderaxespad=0.1,
+        columnspacing=1.0,
     )
 
 

@@ -7,6 +7,7 @@ counted in closed form (walls.py). Everything is computed in the units L and v_t
 pressure ratios, hit counts and figure curves then depend only on (N, t_w, sampling), identically
 for every temperature and species (common random numbers), and p_sim = ratio * p_ideal.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -38,15 +39,37 @@ class Kinetic(Model):
         Param("N", "N", "", 1000.0, lo=1.0, hi=1e6, description="number of molecules (rounded to a whole number)"),
         Param("T", "T", "K", 300.0, lo=0.0, lo_open=True, description="temperature"),
         Param.choice("species", "gas", SPECIES, "N2", description="molecular species"),
-        Param("t_w", "t<sub>w</sub>", "L/vₜₕ", 100.0, lo=0.0, lo_open=True, description="averaging window in units of L/v_th"),
-        Param.choice("sampling", "sampling", ("quantile", "random"), "quantile",
-                     description="how velocities and positions are drawn"),
-        Param.choice("dim", "dimensions", ("1D", "2D", "3D"), "3D",
-                     description="directions the molecules move in").with_effect("dimension"),
-        Param("tau_c", "τ<sub>c</sub>", "L/vₜₕ", 0.0, lo=0.0,
-              description="duration of one impact (a triangular pulse)").with_effect("contact_duration"),
-        Param("alpha", "α", "", 0.0, lo=0.0, hi=1.0,
-              description="accommodation: the fraction of impacts re-emitted diffusely at T").with_effect("wall_law"),
+        Param(
+            "t_w",
+            "t<sub>w</sub>",
+            "L/vₜₕ",
+            100.0,
+            lo=0.0,
+            lo_open=True,
+            description="averaging window in units of L/v_th",
+        ),
+        Param.choice(
+            "sampling",
+            "sampling",
+            ("quantile", "random"),
+            "quantile",
+            description="how velocities and positions are drawn",
+        ),
+        Param.choice(
+            "dim", "dimensions", ("1D", "2D", "3D"), "3D", description="directions the molecules move in"
+        ).with_effect("dimension"),
+        Param(
+            "tau_c", "τ<sub>c</sub>", "L/vₜₕ", 0.0, lo=0.0, description="duration of one impact (a triangular pulse)"
+        ).with_effect("contact_duration"),
+        Param(
+            "alpha",
+            "α",
+            "",
+            0.0,
+            lo=0.0,
+            hi=1.0,
+            description="accommodation: the fraction of impacts re-emitted diffusely at T",
+        ).with_effect("wall_law"),
     )
     outputs = (
         Output("v_th", "v<sub>th</sub> = √(k<sub>B</sub>T/m)", "m/s", ("T", "species"), decimals=2),
@@ -60,26 +83,76 @@ class Kinetic(Model):
         # (over p_ideal L^2), the running mean at the bins' right edges, and the v_x/v_th histogram.
         Output("train", "force on the wall / p<sub>ideal</sub>L²", "", _WINDOW, decimals=2, size=_TRAIN_SIZE),
         Output("running", "running mean p(t)/p<sub>ideal</sub>", "", _WINDOW, decimals=3, size=TRAIN_BINS),
-        Output("hist_x", "v<sub>x</sub>/v<sub>th</sub> (histogram vertices)", "", ("N",), decimals=2,
-               size=HIST_SIZE, ragged=True),
-        Output("hist_y", "probability density of v<sub>x</sub>/v<sub>th</sub>", "", ("N", "sampling"), decimals=3,
-               size=HIST_SIZE, ragged=True),
+        Output(
+            "hist_x",
+            "v<sub>x</sub>/v<sub>th</sub> (histogram vertices)",
+            "",
+            ("N",),
+            decimals=2,
+            size=HIST_SIZE,
+            ragged=True,
+        ),
+        Output(
+            "hist_y",
+            "probability density of v<sub>x</sub>/v<sub>th</sub>",
+            "",
+            ("N", "sampling"),
+            decimals=3,
+            size=HIST_SIZE,
+            ragged=True,
+        ),
         # dimension: equipartition gives every direction k_B T/2, so only the totals depend on d.
-        Output("v_rms_d", "v<sub>rms</sub> = √d v<sub>th</sub>", "m/s", ("T", "species", "dim"), decimals=2,
-               effect="dimension"),
+        Output(
+            "v_rms_d",
+            "v<sub>rms</sub> = √d v<sub>th</sub>",
+            "m/s",
+            ("T", "species", "dim"),
+            decimals=2,
+            effect="dimension",
+        ),
         Output("E_k", "⟨E<sub>k</sub>⟩ = (d/2)k<sub>B</sub>T", "zJ", ("T", "dim"), decimals=3, effect="dimension"),
         # contact_duration: each impact a triangular pulse of width tau_c centred on the point-particle hit.
-        Output("train_soft", "force on the wall / p<sub>ideal</sub>L²", "", (*_WINDOW, "tau_c"), decimals=2,
-               size=_TRAIN_SIZE, effect="contact_duration"),
-        Output("running_soft", "running mean p(t)/p<sub>ideal</sub>", "", (*_WINDOW, "tau_c"), decimals=3,
-               size=TRAIN_BINS, effect="contact_duration"),
+        Output(
+            "train_soft",
+            "force on the wall / p<sub>ideal</sub>L²",
+            "",
+            (*_WINDOW, "tau_c"),
+            decimals=2,
+            size=_TRAIN_SIZE,
+            effect="contact_duration",
+        ),
+        Output(
+            "running_soft",
+            "running mean p(t)/p<sub>ideal</sub>",
+            "",
+            (*_WINDOW, "tau_c"),
+            decimals=3,
+            size=TRAIN_BINS,
+            effect="contact_duration",
+        ),
         # wall_law: Maxwell's wall, a fraction alpha of impacts re-emitted with the flux-weighted Maxwellian at T.
-        Output("ratio_wall", "p<sub>sim</sub>/p<sub>ideal</sub>", "", (*_WINDOW, "alpha"), decimals=6, effect="wall_law"),
+        Output(
+            "ratio_wall", "p<sub>sim</sub>/p<sub>ideal</sub>", "", (*_WINDOW, "alpha"), decimals=6, effect="wall_law"
+        ),
         Output("hits_wall", "wall hits", "", (*_WINDOW, "alpha"), decimals=0, effect="wall_law"),
-        Output("train_wall", "force on the wall / p<sub>ideal</sub>L²", "", (*_WINDOW, "alpha"), decimals=2,
-               size=_TRAIN_SIZE, effect="wall_law"),
-        Output("running_wall", "running mean p(t)/p<sub>ideal</sub>", "", (*_WINDOW, "alpha"), decimals=3,
-               size=TRAIN_BINS, effect="wall_law"),
+        Output(
+            "train_wall",
+            "force on the wall / p<sub>ideal</sub>L²",
+            "",
+            (*_WINDOW, "alpha"),
+            decimals=2,
+            size=_TRAIN_SIZE,
+            effect="wall_law",
+        ),
+        Output(
+            "running_wall",
+            "running mean p(t)/p<sub>ideal</sub>",
+            "",
+            (*_WINDOW, "alpha"),
+            decimals=3,
+            size=TRAIN_BINS,
+            effect="wall_law",
+        ),
     )
     effects = ("dimension", "contact_duration", "wall_law")
     # physics.md §11.3: exact unfolded counting dominates time stepping (no trade-off to expose); the
@@ -122,7 +195,9 @@ class Kinetic(Model):
             "v_th": lambda: np.sqrt(thermal / mass),
             "v_rms": lambda: np.sqrt(3.0 * thermal / mass),
             "p_ideal": lambda: count * thermal / BOX_SIDE**3,
-            "ratio_sample": lambda: _per_case(lambda n, mode: sample_ratio(*molecules(n, mode)), (), count, x["sampling"]),
+            "ratio_sample": lambda: _per_case(
+                lambda n, mode: sample_ratio(*molecules(n, mode)), (), count, x["sampling"]
+            ),
             "ratio": lambda: per_window(_ratio),
             "p_sim": lambda: per_window(_ratio) * (count * thermal / BOX_SIDE**3),
             "hits": lambda: per_window(_hits),

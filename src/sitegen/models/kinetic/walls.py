@@ -1,6 +1,7 @@
 """The kinetic model's wall record: a sample of molecules, their hits on the wall x = L counted exactly
 (unfolded onto a circle of length 2L, no time stepping), the force and running mean they make, and the
 records of two effects: contact_duration (each impact a triangular pulse) and wall_law (Maxwell's wall)."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
@@ -106,7 +107,9 @@ def _index_after(half_s, half_z, tau) -> np.ndarray:
     There the start's image index is −1, so the count is the end's index + 1 moving out (z ≥ 0: the end at
     or above the start) and −1 − that index moving in (z < 0: the end below 1). Halving is exact and commutes
     with rounding, so (z/2)τ + s/2 − 1/2 is the image index's (zτ + s − 1)/2 to the bit, in two passes fewer."""
-    half_end = np.multiply(half_z, tau, out=np.empty(np.broadcast_shapes(np.shape(half_s), np.shape(half_z), np.shape(tau))))
+    half_end = np.multiply(
+        half_z, tau, out=np.empty(np.broadcast_shapes(np.shape(half_s), np.shape(half_z), np.shape(tau)))
+    )
     half_end += half_s
     half_end -= 0.5
     index = np.floor(half_end, out=half_end)

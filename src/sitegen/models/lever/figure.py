@@ -1,15 +1,16 @@
 """I4: the bar on its fulcrum, leaning towards the side that wins, with the balance point marked."""
+
 from __future__ import annotations
 
 import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
+from ...render import style as s
+from ...render.figures.base import table_range
+from ...render.layers import Layer
 from .mechanics import LENGTH
 from .model import DRAWN_SLOPE
-from ...render import style as s
-from ...render.layers import Layer
-from ...render.figures.base import table_range
 
 GROUND = -0.30  # the fulcrum stands on the ground; the pivot is at height 0
 ARM_LINE = -0.42  # height of the dimension lines of the arms L_L and L_R
@@ -34,16 +35,64 @@ class LeverFigure:
         out = _output_names(scene)
         dashed = {"fill": "none", "stroke": s.MUTED, "stroke-width": "1.3", "stroke-dasharray": "5 4"}
         return [
-            Layer("balance-line", "polyline", 0, ((out["x_star"], GROUND), (out["x_star"], BALANCE_LINE_TOP)), style=dashed),
-            Layer("fulcrum", "polygon", 0, (("out:fulcrum_x0", GROUND), ("in:x_p", 0.0), ("out:fulcrum_x1", GROUND)), style={"fill": s.LOST, "stroke": s.INK, "stroke-width": "1.4"}),
+            Layer(
+                "balance-line",
+                "polyline",
+                0,
+                ((out["x_star"], GROUND), (out["x_star"], BALANCE_LINE_TOP)),
+                style=dashed,
+            ),
+            Layer(
+                "fulcrum",
+                "polygon",
+                0,
+                (("out:fulcrum_x0", GROUND), ("in:x_p", 0.0), ("out:fulcrum_x1", GROUND)),
+                style={"fill": s.LOST, "stroke": s.INK, "stroke-width": "1.4"},
+            ),
             # over the fulcrum, so it stays visible when the pivot is near the balance point
-            Layer("balance-marker", "polygon", 0, ((out["marker_x0"], GROUND), (out["x_star"], GROUND + MARKER_HEIGHT), (out["marker_x1"], GROUND)), style={"fill": s.MUTED, "stroke": "none"}),
-            Layer("left-block", "polygon", 0, _block("left", out), style={"fill": s.FILL_BLUE, "stroke": s.BLUE, "stroke-width": "1.6"}),
-            Layer("right-block", "polygon", 0, _block("right", out), style={"fill": FILL_ORANGE, "stroke": s.ORANGE, "stroke-width": "1.6"}),
-            Layer("bar", "polyline", 0, ((0.0, out["y_left"]), (LENGTH, out["y_right"])), style={"fill": "none", "stroke": s.INK, "stroke-width": "5"}),
+            Layer(
+                "balance-marker",
+                "polygon",
+                0,
+                ((out["marker_x0"], GROUND), (out["x_star"], GROUND + MARKER_HEIGHT), (out["marker_x1"], GROUND)),
+                style={"fill": s.MUTED, "stroke": "none"},
+            ),
+            Layer(
+                "left-block",
+                "polygon",
+                0,
+                _block("left", out),
+                style={"fill": s.FILL_BLUE, "stroke": s.BLUE, "stroke-width": "1.6"},
+            ),
+            Layer(
+                "right-block",
+                "polygon",
+                0,
+                _block("right", out),
+                style={"fill": FILL_ORANGE, "stroke": s.ORANGE, "stroke-width": "1.6"},
+            ),
+            Layer(
+                "bar",
+                "polyline",
+                0,
+                ((0.0, out["y_left"]), (LENGTH, out["y_right"])),
+                style={"fill": "none", "stroke": s.INK, "stroke-width": "5"},
+            ),
             Layer("pivot", "dots", 0, (("in:x_p", 0.0),), style={"stroke": "#ffffff", "stroke-width": "2.5"}),
-            Layer("arm-left", "polyline", 0, _dimension(0.0, "in:x_p"), style={"fill": "none", "stroke": s.BLUE, "stroke-width": "1.5"}),
-            Layer("arm-right", "polyline", 0, _dimension("in:x_p", LENGTH), style={"fill": "none", "stroke": s.ORANGE, "stroke-width": "1.5"}),
+            Layer(
+                "arm-left",
+                "polyline",
+                0,
+                _dimension(0.0, "in:x_p"),
+                style={"fill": "none", "stroke": s.BLUE, "stroke-width": "1.5"},
+            ),
+            Layer(
+                "arm-right",
+                "polyline",
+                0,
+                _dimension("in:x_p", LENGTH),
+                style={"fill": "none", "stroke": s.ORANGE, "stroke-width": "1.5"},
+            ),
         ]
 
     def draw(self, scene, tables, narrow=False):
@@ -76,7 +125,17 @@ def _label_masses_and_arms(ax, top: float) -> None:
 def _legend(ax, columns: int = 2) -> None:
     """The two marks that are not self-explanatory, in a row above the picture."""
     handles = [
-        Line2D([], [], color=s.MUTED, lw=1.3, ls=(0, (5, 4)), marker="^", markersize=7, markeredgewidth=0, label="balance point x*"),
+        Line2D(
+            [],
+            [],
+            color=s.MUTED,
+            lw=1.3,
+            ls=(0, (5, 4)),
+            marker="^",
+            markersize=7,
+            markeredgewidth=0,
+            label="balance point x*",
+        ),
         Patch(facecolor=s.LOST, edgecolor=s.INK, label="fulcrum (pivot at x$_p$)"),
     ]
     ax.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=columns, frameon=False, fontsize=9)
@@ -92,7 +151,9 @@ def _ground(ax, left: float, right: float) -> None:
 def _output_names(scene) -> dict[str, str]:
     """References to the outputs that follow the tilt: with the bar's mass when the scene enables it."""
     suffix = "_bar" if "bar_mass" in scene.effects else ""
-    corners = [f"{block}_block_{end}{edge}" for block in ("left", "right") for end in ("bottom", "top") for edge in "01"]
+    corners = [
+        f"{block}_block_{end}{edge}" for block in ("left", "right") for end in ("bottom", "top") for edge in "01"
+    ]
     names = ("x_star", "marker_x0", "marker_x1", "y_left", "y_right", *corners)
     return {name: f"out:{name}{suffix}" for name in names}
 

@@ -1,6 +1,7 @@
 """The lever's mechanics: torques, balance and tipping of the bar on its pivot, and its rotation from rest
 to the stop (an incomplete elliptic integral). Sign convention: a torque is positive when it turns the bar
 counter-clockwise, i.e. when it pushes the left end down."""
+
 from __future__ import annotations
 
 import math
@@ -86,7 +87,9 @@ def time_to_stop(x, with_bar: bool = False):
     """Time from rest to the stop: I θ'' = τ cos θ has the first integral ½ I θ'² = τ sin θ, so
     t = √(I / 2|τ|) ∫₀^θs dφ/√(sin φ); ∞ when there is no net torque (the bar never moves)."""
     torque = np.abs(moving_torque(x, with_bar))
-    scale = np.divide(moment_of_inertia(x, with_bar), 2.0 * torque, out=np.full(np.shape(torque), np.inf), where=torque > 0)
+    scale = np.divide(
+        moment_of_inertia(x, with_bar), 2.0 * torque, out=np.full(np.shape(torque), np.inf), where=torque > 0
+    )
     # θ_s takes a handful of values over a whole grid: evaluate the elliptic integral once for each.
     angles, where = np.unique(np.radians(x["theta_s"]), return_inverse=True)
     return np.sqrt(scale) * tipping_integral(angles)[where].reshape(scale.shape)

@@ -4,6 +4,7 @@ Sign convention (physics.md I4): a torque is positive when it turns the bar coun
 i.e. when it pushes the left end down. The mechanics (torques, balance, the rotation to the stop) are
 in mechanics.py; this module declares the outputs, their exact forms and the figure's geometry.
 """
+
 from __future__ import annotations
 
 import math
@@ -14,10 +15,23 @@ from scipy.integrate import solve_ivp
 from ...physics.base import Model, Output, Param
 from ...physics.numerics import Measurement, Numerics
 from ...physics.structure import Choose, Coord, Poly, Threshold, param
-from .mechanics import (BALANCE_SLACK, BALANCED, G, LENGTH, STATES, TIPS_LEFT, TIPS_RIGHT, angular_velocity_at_stop,
-                        balance_point, mechanical_advantage, moment_of_inertia, moving_torque, time_to_stop, tip_state,
-                        torque_per_g)
-
+from .mechanics import (
+    BALANCE_SLACK,
+    BALANCED,
+    LENGTH,
+    STATES,
+    TIPS_LEFT,
+    TIPS_RIGHT,
+    G,
+    angular_velocity_at_stop,
+    balance_point,
+    mechanical_advantage,
+    moment_of_inertia,
+    moving_torque,
+    time_to_stop,
+    tip_state,
+    torque_per_g,
+)
 
 # Geometry of the figure, in metres in the bar's own frame (the pivot is at height 0). The page
 # script only looks values up, so every moving vertex that needs arithmetic is an output.
@@ -40,10 +54,12 @@ _BAR_TURNS_TOO = (("bar_mass", ("m_b",)),)  # with bar_mass the rotation feels t
 # (x_p − x*)/tolerance. The drawn tilt is one of three polynomials chosen by that state.
 _X_P, _M_L, _M_R = param("x_p"), param("m_L"), param("m_R")
 INV_TOTAL = Coord("inv_total_mass", ("m_L", "m_R"), lambda m_L, m_R: 1.0 / (m_L + m_R))
-INV_TOLERANCE = Coord("inv_tolerance", ("balance_tolerance",),
-                      lambda balance_tolerance: 1.0 / (balance_tolerance * (1.0 + BALANCE_SLACK)))
-SIDE = {side: Coord(f"side_{side}", (f"m_{side}",), lambda **m: _block_side(next(iter(m.values()))))
-        for side in ("L", "R")}
+INV_TOLERANCE = Coord(
+    "inv_tolerance", ("balance_tolerance",), lambda balance_tolerance: 1.0 / (balance_tolerance * (1.0 + BALANCE_SLACK))
+)
+SIDE = {
+    side: Coord(f"side_{side}", (f"m_{side}",), lambda **m: _block_side(next(iter(m.values())))) for side in ("L", "R")
+}
 
 
 def _offset_in_tolerances(c):
@@ -51,8 +67,11 @@ def _offset_in_tolerances(c):
     return (c["x_p"] - LENGTH * c["m_R"] * c["inv_total_mass"]) * c["inv_tolerance"]
 
 
-_STATE = Threshold(Poly(_offset_in_tolerances, ((_X_P, 1), (_M_R, 1), (INV_TOTAL, 1), (INV_TOLERANCE, 1))),
-                   (-1.0, 1.0), (TIPS_RIGHT, BALANCED, TIPS_LEFT))
+_STATE = Threshold(
+    Poly(_offset_in_tolerances, ((_X_P, 1), (_M_R, 1), (INV_TOTAL, 1), (INV_TOLERANCE, 1))),
+    (-1.0, 1.0),
+    (TIPS_RIGHT, BALANCED, TIPS_LEFT),
+)
 _BALANCE_POINT = ((_M_R, 1), (INV_TOTAL, 1))
 
 
@@ -68,6 +87,7 @@ def _tilted_height(at: float, block: str = "", edge: float = 0.0, top: bool = Fa
         def height(c):
             side = c[f"side_{block}"] if block else 0.0
             return slope * (at + edge * side - c["x_p"]) + (side if top else 0.0)
+
         return Poly(height, coords)
 
     by_state = {BALANCED: kernel(0.0), TIPS_LEFT: kernel(DRAWN_SLOPE), TIPS_RIGHT: kernel(-DRAWN_SLOPE)}
@@ -77,17 +97,36 @@ def _tilted_height(at: float, block: str = "", edge: float = 0.0, top: bool = Fa
 def _tilt_outputs(suffix: str, deps: tuple[str, ...], effect: str = "") -> tuple[Output, ...]:
     """The heights of the drawn bar's ends and of the blocks' corners, which follow the tilt."""
     described = ", with the bar's mass" if effect else ""
-    names = [("y_left", "height of the bar's left end", _tilted_height(0.0)),
-             ("y_right", "height of the bar's right end", _tilted_height(LENGTH))]
+    names = [
+        ("y_left", "height of the bar's left end", _tilted_height(0.0)),
+        ("y_right", "height of the bar's right end", _tilted_height(LENGTH)),
+    ]
     for block, side, centre in (("left", "L", 0.0), ("right", "R", LENGTH)):
         for edge, where, sign in (("0", "left", -0.5), ("1", "right", 0.5)):
-            names.append((f"{block}_block_bottom{edge}", f"height of the {block} block's bottom {where} corner",
-                          _tilted_height(centre, side, sign)))
-            names.append((f"{block}_block_top{edge}", f"height of the {block} block's top {where} corner",
-                          _tilted_height(centre, side, sign, top=True)))
+            names.append(
+                (
+                    f"{block}_block_bottom{edge}",
+                    f"height of the {block} block's bottom {where} corner",
+                    _tilted_height(centre, side, sign),
+                )
+            )
+            names.append(
+                (
+                    f"{block}_block_top{edge}",
+                    f"height of the {block} block's top {where} corner",
+                    _tilted_height(centre, side, sign, top=True),
+                )
+            )
     return tuple(
-        Output(f"{name}{suffix}", f"{label} (as drawn{described})", "m", deps, decimals=3, effect=effect,
-               structure=None if effect else form)
+        Output(
+            f"{name}{suffix}",
+            f"{label} (as drawn{described})",
+            "m",
+            deps,
+            decimals=3,
+            effect=effect,
+            structure=None if effect else form,
+        )
         for name, label, form in names
     )
 
@@ -102,54 +141,155 @@ class Lever(Model):
         Param("m_L", "m<sub>L</sub>", "kg", 2.0, lo=0.0, lo_open=True, description="mass at the left end"),
         Param("m_R", "m<sub>R</sub>", "kg", 2.0, lo=0.0, lo_open=True, description="mass at the right end"),
         Param(
-            "balance_tolerance", "Δx<sub>p</sub>/2", "m", 0.005, lo=0.0, hi=0.25 * LENGTH,
+            "balance_tolerance",
+            "Δx<sub>p</sub>/2",
+            "m",
+            0.005,
+            lo=0.0,
+            hi=0.25 * LENGTH,
             description="how far the pivot may sit from the balance point and still count as balanced: half the pivot slider's step",
         ),
-        Param("m_b", "m<sub>b</sub>", "kg", 1.0, lo=0.0, description="mass of the bar (uniform)").with_effect("bar_mass"),
+        Param("m_b", "m<sub>b</sub>", "kg", 1.0, lo=0.0, description="mass of the bar (uniform)").with_effect(
+            "bar_mass"
+        ),
         Param(
-            "theta_s", "θ<sub>s</sub>", "°", 15.0, lo=0.0, hi=90.0, lo_open=True,
+            "theta_s",
+            "θ<sub>s</sub>",
+            "°",
+            15.0,
+            lo=0.0,
+            hi=90.0,
+            lo_open=True,
             description="angle at which the tipping bar hits its stop",
         ).with_effect("rotation_dynamics"),
     )
     outputs = (
-        Output("tau_L", "τ<sub>L</sub>", "N·m", ("m_L", "x_p"), decimals=2,
-               structure=Poly(lambda c: c["m_L"] * G * c["x_p"], ((_M_L, 1), (_X_P, 1)))),
-        Output("tau_R", "τ<sub>R</sub>", "N·m", ("m_R", "x_p"), decimals=2,
-               structure=Poly(lambda c: c["m_R"] * G * (LENGTH - c["x_p"]), ((_M_R, 1), (_X_P, 1)))),
-        Output("tau_net", "net τ", "N·m", _POSITION, decimals=2,
-               structure=Poly(lambda c: G * (c["m_L"] * c["x_p"] - c["m_R"] * (LENGTH - c["x_p"])), ((_M_L, 1), (_M_R, 1), (_X_P, 1)))),
-        Output("MA", "MA = L<sub>L</sub>/L<sub>R</sub>", "×", ("x_p",), decimals=2, digits=3, special="∞ (pivot at the end)"),
+        Output(
+            "tau_L",
+            "τ<sub>L</sub>",
+            "N·m",
+            ("m_L", "x_p"),
+            decimals=2,
+            structure=Poly(lambda c: c["m_L"] * G * c["x_p"], ((_M_L, 1), (_X_P, 1))),
+        ),
+        Output(
+            "tau_R",
+            "τ<sub>R</sub>",
+            "N·m",
+            ("m_R", "x_p"),
+            decimals=2,
+            structure=Poly(lambda c: c["m_R"] * G * (LENGTH - c["x_p"]), ((_M_R, 1), (_X_P, 1))),
+        ),
+        Output(
+            "tau_net",
+            "net τ",
+            "N·m",
+            _POSITION,
+            decimals=2,
+            structure=Poly(
+                lambda c: G * (c["m_L"] * c["x_p"] - c["m_R"] * (LENGTH - c["x_p"])), ((_M_L, 1), (_M_R, 1), (_X_P, 1))
+            ),
+        ),
+        Output(
+            "MA",
+            "MA = L<sub>L</sub>/L<sub>R</sub>",
+            "×",
+            ("x_p",),
+            decimals=2,
+            digits=3,
+            special="∞ (pivot at the end)",
+        ),
         Output("state", "the bar", "", _TILT, labels=STATES, structure=_STATE),
         Output("x_star", "balance point x*", "m", ("m_L", "m_R"), decimals=3, structure=_shifted_balance_point(0.0)),
         # Figure geometry: the fulcrum, the blocks' sides and the balance-point marker.
-        Output("fulcrum_x0", "left foot of the fulcrum (as drawn)", "m", ("x_p",), decimals=3,
-               structure=Poly(lambda c: c["x_p"] - FULCRUM_HALF_WIDTH, ((_X_P, 1),))),
-        Output("fulcrum_x1", "right foot of the fulcrum (as drawn)", "m", ("x_p",), decimals=3,
-               structure=Poly(lambda c: c["x_p"] + FULCRUM_HALF_WIDTH, ((_X_P, 1),))),
+        Output(
+            "fulcrum_x0",
+            "left foot of the fulcrum (as drawn)",
+            "m",
+            ("x_p",),
+            decimals=3,
+            structure=Poly(lambda c: c["x_p"] - FULCRUM_HALF_WIDTH, ((_X_P, 1),)),
+        ),
+        Output(
+            "fulcrum_x1",
+            "right foot of the fulcrum (as drawn)",
+            "m",
+            ("x_p",),
+            decimals=3,
+            structure=Poly(lambda c: c["x_p"] + FULCRUM_HALF_WIDTH, ((_X_P, 1),)),
+        ),
         Output("left_block_x0", "left side of the left block (as drawn)", "m", ("m_L",), decimals=3),
         Output("left_block_x1", "right side of the left block (as drawn)", "m", ("m_L",), decimals=3),
         Output("right_block_x0", "left side of the right block (as drawn)", "m", ("m_R",), decimals=3),
         Output("right_block_x1", "right side of the right block (as drawn)", "m", ("m_R",), decimals=3),
-        Output("marker_x0", "left foot of the balance-point marker (as drawn)", "m", ("m_L", "m_R"), decimals=3,
-               structure=_shifted_balance_point(-MARKER_HALF_WIDTH)),
-        Output("marker_x1", "right foot of the balance-point marker (as drawn)", "m", ("m_L", "m_R"), decimals=3,
-               structure=_shifted_balance_point(MARKER_HALF_WIDTH)),
+        Output(
+            "marker_x0",
+            "left foot of the balance-point marker (as drawn)",
+            "m",
+            ("m_L", "m_R"),
+            decimals=3,
+            structure=_shifted_balance_point(-MARKER_HALF_WIDTH),
+        ),
+        Output(
+            "marker_x1",
+            "right foot of the balance-point marker (as drawn)",
+            "m",
+            ("m_L", "m_R"),
+            decimals=3,
+            structure=_shifted_balance_point(MARKER_HALF_WIDTH),
+        ),
         *_tilt_outputs("", _TILT),
         # bar_mass: the same picture with the bar's own weight acting at its middle.
         Output("tau_b", "τ<sub>b</sub> (bar)", "N·m", ("x_p", "m_b"), decimals=2, effect="bar_mass"),
         Output("tau_net_bar", "net τ (with bar)", "N·m", _WITH_BAR, decimals=2, effect="bar_mass"),
         Output("state_bar", "the bar (with its mass)", "", _TILT_WITH_BAR, labels=STATES, effect="bar_mass"),
         Output("x_star_bar", "balance point x* (with bar)", "m", ("m_L", "m_R", "m_b"), decimals=3, effect="bar_mass"),
-        Output("marker_x0_bar", "left foot of the balance-point marker (as drawn, with the bar)", "m", ("m_L", "m_R", "m_b"), decimals=3, effect="bar_mass"),
-        Output("marker_x1_bar", "right foot of the balance-point marker (as drawn, with the bar)", "m", ("m_L", "m_R", "m_b"), decimals=3, effect="bar_mass"),
+        Output(
+            "marker_x0_bar",
+            "left foot of the balance-point marker (as drawn, with the bar)",
+            "m",
+            ("m_L", "m_R", "m_b"),
+            decimals=3,
+            effect="bar_mass",
+        ),
+        Output(
+            "marker_x1_bar",
+            "right foot of the balance-point marker (as drawn, with the bar)",
+            "m",
+            ("m_L", "m_R", "m_b"),
+            decimals=3,
+            effect="bar_mass",
+        ),
         *_tilt_outputs("_bar", _TILT_WITH_BAR, "bar_mass"),
         # rotation_dynamics: released from rest, horizontal, the bar turns until it hits the stop.
-        Output("inertia", "I (about the pivot)", "kg·m²", _POSITION, decimals=3, effect="rotation_dynamics",
-               deps_with=_BAR_TURNS_TOO),
-        Output("t_stop", "time to hit the stop", "s", _ROTATION, decimals=3, special="∞ (no net torque)", effect="rotation_dynamics",
-               deps_with=_BAR_TURNS_TOO),
-        Output("omega_stop", "ω at the stop", "rad/s", _ROTATION, decimals=3, effect="rotation_dynamics",
-               deps_with=_BAR_TURNS_TOO),
+        Output(
+            "inertia",
+            "I (about the pivot)",
+            "kg·m²",
+            _POSITION,
+            decimals=3,
+            effect="rotation_dynamics",
+            deps_with=_BAR_TURNS_TOO,
+        ),
+        Output(
+            "t_stop",
+            "time to hit the stop",
+            "s",
+            _ROTATION,
+            decimals=3,
+            special="∞ (no net torque)",
+            effect="rotation_dynamics",
+            deps_with=_BAR_TURNS_TOO,
+        ),
+        Output(
+            "omega_stop",
+            "ω at the stop",
+            "rad/s",
+            _ROTATION,
+            decimals=3,
+            effect="rotation_dynamics",
+            deps_with=_BAR_TURNS_TOO,
+        ),
     )
     effects = ("bar_mass", "rotation_dynamics")
     # The tipping bar's time to the stop is an incomplete elliptic integral F(ψ | ½) (scipy's ellipkinc),
@@ -166,14 +306,27 @@ class Lever(Model):
         """t_stop by the elliptic integral against DOP853 at rtol 1e-12 with a terminal event at θ_s."""
         x = {k: np.asarray(v, float) for k, v in {**self.defaults(), **values}.items()}
         elliptic = float(time_to_stop(x))
-        torque, inertia, stop = abs(float(moving_torque(x))), float(moment_of_inertia(x)), math.radians(float(x["theta_s"]))
+        torque, inertia, stop = (
+            abs(float(moving_torque(x))),
+            float(moment_of_inertia(x)),
+            math.radians(float(x["theta_s"])),
+        )
         if torque == 0.0:  # the bar never moves: both say ∞
-            return Measurement(0.0 if math.isinf(elliptic) else math.inf, 0, "elliptic integral", "DOP853 at rtol 1e-12")
+            return Measurement(
+                0.0 if math.isinf(elliptic) else math.inf, 0, "elliptic integral", "DOP853 at rtol 1e-12"
+            )
         hit = lambda t, y: y[0] - stop  # noqa: E731
         hit.terminal, hit.direction = True, 1
         horizon = 4.0 * elliptic + 1.0
-        run = solve_ivp(lambda t, y: (y[1], torque * math.cos(y[0]) / inertia), (0.0, horizon), (0.0, 0.0),
-                        method="DOP853", rtol=1e-12, atol=1e-14 * stop, events=hit)
+        run = solve_ivp(
+            lambda t, y: (y[1], torque * math.cos(y[0]) / inertia),
+            (0.0, horizon),
+            (0.0, 0.0),
+            method="DOP853",
+            rtol=1e-12,
+            atol=1e-14 * stop,
+            events=hit,
+        )
         reference = float(run.t_events[0][0]) if len(run.t_events[0]) else math.inf
         return Measurement(abs(elliptic - reference) / reference, 0, "elliptic integral", "DOP853 at rtol 1e-12")
 

@@ -1,4 +1,5 @@
 """K1: the ossicles drawn as the lever of I4 between two pistons, and the two ledgers in dB, kept apart."""
+
 from __future__ import annotations
 
 import math
@@ -6,8 +7,8 @@ import math
 import matplotlib.pyplot as plt
 
 from ...render import style as s
-from ...render.layers import Layer
 from ...render.figures.base import param_range, table_range
+from ...render.layers import Layer
 
 FILL_ORANGE = "#f2c2a6"  # the lever figure's light orange (render/style.py's orange, lightened like FILL_BLUE)
 GROUND = -3.2  # mm: the fulcrum's feet; the bar (and the pivot) is at height 0
@@ -37,18 +38,64 @@ class OssiclesFigure:
         bar = {"stroke-width": "1.4"}
         arm_line = _arm_line(scene)
         return [
-            Layer("fulcrum", "polygon", 0, (("out:fulcrum_x0", GROUND), ("out:pivot", 0.0), ("out:fulcrum_x1", GROUND)), style={"fill": s.LOST, "stroke": s.INK, "stroke-width": "1.4"}),
-            Layer("bar", "polyline", 0, ((0.0, 0.0), (1.0, 0.0)), style={"fill": "none", "stroke": s.INK, "stroke-width": "5"}),
+            Layer(
+                "fulcrum",
+                "polygon",
+                0,
+                (("out:fulcrum_x0", GROUND), ("out:pivot", 0.0), ("out:fulcrum_x1", GROUND)),
+                style={"fill": s.LOST, "stroke": s.INK, "stroke-width": "1.4"},
+            ),
+            Layer(
+                "bar",
+                "polyline",
+                0,
+                ((0.0, 0.0), (1.0, 0.0)),
+                style={"fill": "none", "stroke": s.INK, "stroke-width": "5"},
+            ),
             Layer("eardrum", "polyline", 0, xs=(-PLATE, -PLATE), ys=eardrum, style={**plate, "stroke": s.BLUE}),
-            Layer("footplate", "polyline", 0, xs=(1.0 + PLATE, 1.0 + PLATE), ys="out:span_FP", style={**plate, "stroke": s.ORANGE}),
-            Layer("pivot", "dots", 0, (("out:pivot", 0.0),), style={"stroke": "#ffffff", "stroke-width": "2.5", "style": "stroke-linecap: round"}),
-            Layer("arm-malleus", "polyline", 0, _dimension(0.0, "out:pivot", arm_line), style={"fill": "none", "stroke": s.BLUE, "stroke-width": "1.5"}),
-            Layer("arm-incus", "polyline", 0, _dimension("out:pivot", 1.0, arm_line), style={"fill": "none", "stroke": s.ORANGE, "stroke-width": "1.5"}),
+            Layer(
+                "footplate",
+                "polyline",
+                0,
+                xs=(1.0 + PLATE, 1.0 + PLATE),
+                ys="out:span_FP",
+                style={**plate, "stroke": s.ORANGE},
+            ),
+            Layer(
+                "pivot",
+                "dots",
+                0,
+                (("out:pivot", 0.0),),
+                style={"stroke": "#ffffff", "stroke-width": "2.5", "style": "stroke-linecap: round"},
+            ),
+            Layer(
+                "arm-malleus",
+                "polyline",
+                0,
+                _dimension(0.0, "out:pivot", arm_line),
+                style={"fill": "none", "stroke": s.BLUE, "stroke-width": "1.5"},
+            ),
+            Layer(
+                "arm-incus",
+                "polyline",
+                0,
+                _dimension("out:pivot", 1.0, arm_line),
+                style={"fill": "none", "stroke": s.ORANGE, "stroke-width": "1.5"},
+            ),
             Layer("gain", "polygon", 1, _bar(0.0, "out:G_dB"), style={**bar, "fill": s.FILL_BLUE, "stroke": s.BLUE}),
             Layer("T-without", "polygon", 2, _bar(0.0, "out:T0_dB"), style={**bar, "fill": s.LOST, "stroke": s.MUTED}),
             Layer("T-with", "polygon", 2, _bar(1.0, "out:T1_dB"), style={**bar, "fill": s.FILL_BLUE, "stroke": s.BLUE}),
             # The gains drawn hold at every level: the note shows what the input level changes.
-            Layer.note("level", "at ", "in:SPL", " the gains drawn give ", "out:p_TM", " at the eardrum, ", "out:L_OW", " at the oval window"),
+            Layer.note(
+                "level",
+                "at ",
+                "in:SPL",
+                " the gains drawn give ",
+                "out:p_TM",
+                " at the eardrum, ",
+                "out:L_OW",
+                " at the oval window",
+            ),
         ]
 
     def draw(self, scene, tables, narrow=False):
@@ -105,7 +152,16 @@ def _draw_gain(ax, tables) -> None:
     ax.grid(axis="x", visible=False)
     ax.set_ylabel("pressure gain\n20 log$_{10}$ G (dB)", linespacing=LINES)
     ax.axhline(MEASURED_PEAK_DB, xmin=0.05, color=s.ORANGE, lw=1.4, ls=(0, (5, 3)))
-    ax.text(0.45, MEASURED_PEAK_DB + 0.8, "measured peak\n23.5 dB at 1.2 kHz", ha="left", va="bottom", color=s.ORANGE, fontsize=8.5, linespacing=LINES)
+    ax.text(
+        0.45,
+        MEASURED_PEAK_DB + 0.8,
+        "measured peak\n23.5 dB at 1.2 kHz",
+        ha="left",
+        va="bottom",
+        color=s.ORANGE,
+        fontsize=8.5,
+        linespacing=LINES,
+    )
 
 
 def _draw_power(ax, tables) -> None:

@@ -7,6 +7,7 @@ G_dB is a ratio of pressures (20 log) and 10 log T a ratio of powers: the two ar
 and never added. Effects: `lever` (ℓ; off means ℓ = 1), `area_ratio` (off means the eardrum acts with
 the footplate's area, A_r = 1) and `load_model` (off means the water half-space).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -33,11 +34,18 @@ ALL_EFFECTS = frozenset({"lever", "area_ratio", "load_model"})
 _ELL, _A_TM = param("ell"), param("A_TM")
 _INV_A_FP = Coord("inv_A_FP", ("A_FP",), lambda A_FP: 1.0 / A_FP)
 _P_TM = Coord("p_TM", ("SPL",), lambda SPL: _pressure(SPL))
-_DB = {name: Coord(f"dB_{name}", (name,), lambda **v: 20.0 * np.log10(next(iter(v.values())))) for name in ("ell", "A_TM", "A_FP")}
-_LOAD_PER_Z_AIR = Coord("load_per_Z_air", ("load", "A_FP"), lambda load, A_FP: load_impedance(load, A_FP) * A_FP / Z_AIR)
+_DB = {
+    name: Coord(f"dB_{name}", (name,), lambda **v: 20.0 * np.log10(next(iter(v.values()))))
+    for name in ("ell", "A_TM", "A_FP")
+}
+_LOAD_PER_Z_AIR = Coord(
+    "load_per_Z_air", ("load", "A_FP"), lambda load, A_FP: load_impedance(load, A_FP) * A_FP / Z_AIR
+)
 _INV_ELL_SQUARED = Coord("inv_ell_squared", ("ell",), lambda ell: 1.0 / ell**2)
 _INV_A_TM = Coord("inv_A_TM", ("A_TM",), lambda A_TM: 1.0 / A_TM)
-_SQRT_LOAD = Coord("sqrt_load_per_Z_air", ("load", "A_FP"), lambda load, A_FP: np.sqrt(load_impedance(load, A_FP) * A_FP / Z_AIR))
+_SQRT_LOAD = Coord(
+    "sqrt_load_per_Z_air", ("load", "A_FP"), lambda load, A_FP: np.sqrt(load_impedance(load, A_FP) * A_FP / Z_AIR)
+)
 _INV_SQRT_A_TM = Coord("inv_sqrt_A_TM", ("A_TM",), lambda A_TM: 1.0 / np.sqrt(A_TM))
 _REFERRED = ((_LOAD_PER_Z_AIR, 1), (_INV_ELL_SQUARED, 1), (_INV_A_TM, 1))
 _REFERRED_SQUARED = ((_LOAD_PER_Z_AIR, 2), (_INV_ELL_SQUARED, 2), (_INV_A_TM, 2))
@@ -62,39 +70,109 @@ class Ossicles(Model):
     name = "ossicles"
     title = "The middle-ear ossicle lever"
     params = (
-        Param("A_TM", "A<sub>TM</sub>", "mm²", 55.0, lo=0.0, lo_open=True, description="effective eardrum area").with_effect("area_ratio"),
+        Param(
+            "A_TM", "A<sub>TM</sub>", "mm²", 55.0, lo=0.0, lo_open=True, description="effective eardrum area"
+        ).with_effect("area_ratio"),
         Param("A_FP", "A<sub>FP</sub>", "mm²", 3.2, lo=0.0, lo_open=True, description="stapes footplate area"),
-        Param("ell", "ℓ", "", 1.3, lo=0.0, lo_open=True, description="lever ratio: malleus arm over incus arm").with_effect("lever"),
+        Param(
+            "ell", "ℓ", "", 1.3, lo=0.0, lo_open=True, description="lever ratio: malleus arm over incus arm"
+        ).with_effect("lever"),
         Param("SPL", "input SPL", "dB", 60.0, description="sound pressure level at the eardrum (rms re 20 µPa)"),
-        Param.choice("load", "load on the footplate", LOADS, "water", description="water half-space, or the measured cochlea").with_effect("load_model"),
+        Param.choice(
+            "load", "load on the footplate", LOADS, "water", description="water half-space, or the measured cochlea"
+        ).with_effect("load_model"),
     )
     _gain = ("ell", "A_TM", "A_FP")
     _load = ("load", "ell", "A_TM", "A_FP")
     outputs = (
-        Output("A_r", "area ratio A<sub>r</sub>", "", ("A_TM", "A_FP"), decimals=2,
-               structure=_with_every_effect(Poly(lambda c: c["A_TM"] * c["inv_A_FP"], ((_A_TM, 1), (_INV_A_FP, 1))))),
-        Output("G", "pressure gain G = ℓA<sub>r</sub>", "×", _gain, decimals=2,
-               structure=_with_every_effect(Poly(lambda c: c["ell"] * c["A_TM"] * c["inv_A_FP"], ((_ELL, 1), (_A_TM, 1), (_INV_A_FP, 1))))),
-        Output("G_dB", "pressure gain 20 log₁₀ G", "dB", _gain, decimals=2,
-               structure=_with_every_effect(Poly(lambda c: c["dB_ell"] + c["dB_A_TM"] - c["dB_A_FP"], tuple((d, 1) for d in _DB.values())))),
+        Output(
+            "A_r",
+            "area ratio A<sub>r</sub>",
+            "",
+            ("A_TM", "A_FP"),
+            decimals=2,
+            structure=_with_every_effect(Poly(lambda c: c["A_TM"] * c["inv_A_FP"], ((_A_TM, 1), (_INV_A_FP, 1)))),
+        ),
+        Output(
+            "G",
+            "pressure gain G = ℓA<sub>r</sub>",
+            "×",
+            _gain,
+            decimals=2,
+            structure=_with_every_effect(
+                Poly(lambda c: c["ell"] * c["A_TM"] * c["inv_A_FP"], ((_ELL, 1), (_A_TM, 1), (_INV_A_FP, 1)))
+            ),
+        ),
+        Output(
+            "G_dB",
+            "pressure gain 20 log₁₀ G",
+            "dB",
+            _gain,
+            decimals=2,
+            structure=_with_every_effect(
+                Poly(lambda c: c["dB_ell"] + c["dB_A_TM"] - c["dB_A_FP"], tuple((d, 1) for d in _DB.values()))
+            ),
+        ),
         Output("p_TM", "p at the eardrum", "Pa rms", ("SPL",), decimals=4, digits=4),
-        Output("p_OW", "p at the oval window", "Pa rms", ("SPL", *_gain), decimals=3, digits=4,
-               structure=_with_every_effect(Poly(lambda c: c["ell"] * c["A_TM"] * c["inv_A_FP"] * c["p_TM"],
-                                                 ((_ELL, 1), (_A_TM, 1), (_INV_A_FP, 1), (_P_TM, 1))))),
-        Output("L_OW", "level at the oval window L<sub>p</sub> + 20 log₁₀ G", "dB", ("SPL", *_gain), decimals=2,
-               structure=_with_every_effect(Poly(lambda c: c["SPL"] + c["dB_ell"] + c["dB_A_TM"] - c["dB_A_FP"],
-                                                 ((param("SPL"), 1), *((d, 1) for d in _DB.values()))))),
+        Output(
+            "p_OW",
+            "p at the oval window",
+            "Pa rms",
+            ("SPL", *_gain),
+            decimals=3,
+            digits=4,
+            structure=_with_every_effect(
+                Poly(
+                    lambda c: c["ell"] * c["A_TM"] * c["inv_A_FP"] * c["p_TM"],
+                    ((_ELL, 1), (_A_TM, 1), (_INV_A_FP, 1), (_P_TM, 1)),
+                )
+            ),
+        ),
+        Output(
+            "L_OW",
+            "level at the oval window L<sub>p</sub> + 20 log₁₀ G",
+            "dB",
+            ("SPL", *_gain),
+            decimals=2,
+            structure=_with_every_effect(
+                Poly(
+                    lambda c: c["SPL"] + c["dB_ell"] + c["dB_A_TM"] - c["dB_A_FP"],
+                    ((param("SPL"), 1), *((d, 1) for d in _DB.values())),
+                )
+            ),
+        ),
         Output("Z_c", "load Z<sub>c</sub> at the footplate", "Pa·s/m", ("load", "A_FP"), decimals=0),
-        Output("Z_ref", "load seen at the eardrum Z<sub>c</sub>/(ℓ²A<sub>r</sub>)", "Pa·s/m", _load, decimals=0,
-               structure=_with_every_effect(Poly(lambda c: Z_AIR * _referred(c), _REFERRED))),
+        Output(
+            "Z_ref",
+            "load seen at the eardrum Z<sub>c</sub>/(ℓ²A<sub>r</sub>)",
+            "Pa·s/m",
+            _load,
+            decimals=0,
+            structure=_with_every_effect(Poly(lambda c: Z_AIR * _referred(c), _REFERRED)),
+        ),
         Output("T0", "power in, no transformer T<sub>0</sub>", "%", ("load", "A_FP"), decimals=4),
         Output("T0_dB", "10 log₁₀ T<sub>0</sub>", "dB", ("load", "A_FP"), decimals=2),
-        Output("T1", "power in, with transformer T<sub>1</sub>", "%", _load, decimals=2,
-               structure=_with_every_effect(Ratio(_T1.numerator, _T1.denominator, scale=100.0))),
-        Output("T1_dB", "10 log₁₀ T<sub>1</sub>", "dB", _load, decimals=2, structure=_with_every_effect(Log10(_T1, 10.0))),
-        Output("ell_match", "ℓ for a perfect match", "", ("load", "A_TM", "A_FP"), decimals=2,
-               structure=_with_every_effect(Poly(lambda c: c["sqrt_load_per_Z_air"] * c["inv_sqrt_A_TM"],
-                                                 ((_SQRT_LOAD, 1), (_INV_SQRT_A_TM, 1))))),
+        Output(
+            "T1",
+            "power in, with transformer T<sub>1</sub>",
+            "%",
+            _load,
+            decimals=2,
+            structure=_with_every_effect(Ratio(_T1.numerator, _T1.denominator, scale=100.0)),
+        ),
+        Output(
+            "T1_dB", "10 log₁₀ T<sub>1</sub>", "dB", _load, decimals=2, structure=_with_every_effect(Log10(_T1, 10.0))
+        ),
+        Output(
+            "ell_match",
+            "ℓ for a perfect match",
+            "",
+            ("load", "A_TM", "A_FP"),
+            decimals=2,
+            structure=_with_every_effect(
+                Poly(lambda c: c["sqrt_load_per_Z_air"] * c["inv_sqrt_A_TM"], ((_SQRT_LOAD, 1), (_INV_SQRT_A_TM, 1)))
+            ),
+        ),
         # Figure geometry: where the pivot sits on a bar of unit length, and the pistons' effective diameters.
         Output("pivot", "malleus arm / (malleus + incus arm)", "", ("ell",), decimals=3),
         Output("fulcrum_x0", "left foot of the fulcrum (as drawn)", "", ("ell",), decimals=3),

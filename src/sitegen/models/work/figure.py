@@ -1,14 +1,15 @@
 """I3: the two paths from A to B in the plane, the spring's force field and the drag along the path."""
+
 from __future__ import annotations
 
 import numpy as np
 from matplotlib.lines import Line2D
 
+from ...render import style as s
+from ...render.figures.base import param_range
+from ...render.layers import Layer
 from .paths import CHORD, DRAG, HALF_CHORD, SPRING, arc_half_angle
 from .shapes import ARROW_MAX, GRID_X, GRID_Y
-from ...render import style as s
-from ...render.layers import Layer
-from ...render.figures.base import param_range
 
 CHOSEN = {"fill": "none", "stroke": s.INK, "stroke-width": "2.6"}
 FAINT = {"fill": "none", "stroke": s.MUTED, "stroke-width": "1.3", "stroke-dasharray": "5 4"}
@@ -28,7 +29,14 @@ class WorkFigure:
 
     def layers(self, scene):
         layers = [
-            Layer("field", "polygon", 0, xs="out:field_x", ys="out:field_y", style={**_filled(s.BLUE), "fill-opacity": "0.6"}),
+            Layer(
+                "field",
+                "polygon",
+                0,
+                xs="out:field_x",
+                ys="out:field_y",
+                style={**_filled(s.BLUE), "fill-opacity": "0.6"},
+            ),
             Layer("arc", "polyline", 0, xs="out:arc_x", ys="out:arc_y", style=FAINT),
             Layer("chosen-arc", "polyline", 0, xs="out:arc_x", ys="out:chosen_arc_y", style=CHOSEN),
             Layer("chosen-chord", "polyline", 0, xs="out:chord_x", ys=(0.0, 0.0), style=CHOSEN),
@@ -62,9 +70,27 @@ class WorkFigure:
         ax.set_ylabel("y (m)")
         ax.plot([-HALF_CHORD, HALF_CHORD], [0.0, 0.0], color=s.MUTED, lw=1.3, ls=(0, (5, 4)))
         for x, name in ((-HALF_CHORD, "A"), (HALF_CHORD, "B")):
-            ax.annotate(name, (x, 0.0), xytext=(0, -9), textcoords="offset points", ha="center", va="top", fontsize=12, fontweight="bold", color=s.INK)
-        ax.legend(handles=_legend(scene), loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=2 if narrow else 3, frameon=False,
-                  handlelength=2.0, columnspacing=1.2, fontsize=9 if narrow else 10)
+            ax.annotate(
+                name,
+                (x, 0.0),
+                xytext=(0, -9),
+                textcoords="offset points",
+                ha="center",
+                va="top",
+                fontsize=12,
+                fontweight="bold",
+                color=s.INK,
+            )
+        ax.legend(
+            handles=_legend(scene),
+            loc="lower center",
+            bbox_to_anchor=(0.5, 1.0),
+            ncols=2 if narrow else 3,
+            frameon=False,
+            handlelength=2.0,
+            columnspacing=1.2,
+            fontsize=9 if narrow else 10,
+        )
         fig.tight_layout(pad=0.4)
         ax.apply_aspect()  # now, not at save time: the layers are placed with the axes' transform as it is here
         return fig

@@ -6,6 +6,7 @@ optionally halved adaptively) is the independent second method the tests hold th
 model also tabulates the vertices of its figure's moving shapes (shapes.py), because a page only looks
 values up.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -14,9 +15,28 @@ from ...physics.base import Model, Output, Param
 from ...physics.numerics import Measurement, Numerics
 from ...physics.structure import ChoiceOf, Choose, Coord, Poly, param
 from .paths import (
-    ARC, ARC_POINTS, DRAG, G, GAUSS_NODES, H_MAX, HALF_CHORD, SPRING, arc_points, line_integral_work, path_length,
+    ARC,
+    ARC_POINTS,
+    DRAG,
+    GAUSS_NODES,
+    H_MAX,
+    HALF_CHORD,
+    SPRING,
+    G,
+    arc_points,
+    line_integral_work,
+    path_length,
 )
-from .shapes import GRID_X, GRID_Y, MOST_DRAG_ARROWS, WEDGE_VERTICES, arrowhead_at_b, drag_arrows, field_arrows, rest_circle
+from .shapes import (
+    GRID_X,
+    GRID_Y,
+    MOST_DRAG_ARROWS,
+    WEDGE_VERTICES,
+    arrowhead_at_b,
+    drag_arrows,
+    field_arrows,
+    rest_circle,
+)
 
 LINEAR, QUADRATIC = 0, 1
 CONSERVATIVE, PATH_DEPENDENT = 0, 1
@@ -54,15 +74,23 @@ class Work(Model):
     title = "Work, energy and conservation"
     params = (
         Param.choice("force", "force", ("spring", "drag"), "spring", description="the force doing the work"),
-        Param.choice("path", "path A → B", ("direct", "arc"), "direct", description="the chord or the arc over the top"),
+        Param.choice(
+            "path", "path A → B", ("direct", "arc"), "direct", description="the chord or the arc over the top"
+        ),
         Param("k", "k", "N/m", 1.0, lo=0.0, lo_open=True, description="spring constant"),
         Param("x_c", "x<sub>c</sub>", "m", 0.0, description="anchor of the spring, on the line through A and B"),
         Param("h", "h", "m", 1.0, lo=0.0, hi=H_MAX, description="height of the arc above the chord (sagitta)"),
         Param("s", "s", "m/s", 1.0, lo=0.0, description="traversal speed"),
         Param("b", "b", "N·s/m", 1.0, lo=0.0, description="linear drag coefficient"),
-        Param("ell0", "ℓ<sub>0</sub>", "m", 0.0, lo=0.0, description="rest length of the spring").with_effect("spring_rest_length"),
-        Param.choice("drag_law", "drag law", ("linear", "quadratic"), "linear", description="F = −bv or F = −c_q|v|v").with_effect("drag_law"),
-        Param("c_q", "c<sub>q</sub>", "kg/m", 1.0, lo=0.0, description="quadratic drag coefficient").with_effect("drag_law"),
+        Param("ell0", "ℓ<sub>0</sub>", "m", 0.0, lo=0.0, description="rest length of the spring").with_effect(
+            "spring_rest_length"
+        ),
+        Param.choice(
+            "drag_law", "drag law", ("linear", "quadratic"), "linear", description="F = −bv or F = −c_q|v|v"
+        ).with_effect("drag_law"),
+        Param("c_q", "c<sub>q</sub>", "kg/m", 1.0, lo=0.0, description="quadratic drag coefficient").with_effect(
+            "drag_law"
+        ),
         Param("m_g", "m", "kg", 0.1, lo=0.0, description="mass pulled down by gravity").with_effect("gravity"),
     )
     _spring = ("k", "x_c", "ell0")
@@ -71,12 +99,33 @@ class Work(Model):
     _field_size = WEDGE_VERTICES * GRID_X.size * GRID_Y.size
     _drag_size = WEDGE_VERTICES * MOST_DRAG_ARROWS
     outputs = (
-        Output("W", "W along path", "J", ("force", "path", "h", *_spring, *_drag), structure=_by_force(_SPRING_WORK, _DRAG_WORK)),
+        Output(
+            "W",
+            "W along path",
+            "J",
+            ("force", "path", "h", *_spring, *_drag),
+            structure=_by_force(_SPRING_WORK, _DRAG_WORK),
+        ),
         # U of the conservative forces acting (spring, gravity). Drag has no potential at all, so with
         # drag alone there is no U to speak of: NaN, shown as "—".
-        Output("dU", "U(A) − U(B)", "J", ("force", *_spring), special="—", why="this force has no potential energy: its work depends on the path"),
-        Output("W_drag", "W by drag", "J", ("force", "path", "h", *_drag), structure=_by_force(Poly(lambda c: 0.0, ()), _DRAG_WORK)),
-        Output("verdict", "path-independent?", "", ("force",), labels=("yes — conservative", "no — depends on the path")),
+        Output(
+            "dU",
+            "U(A) − U(B)",
+            "J",
+            ("force", *_spring),
+            special="—",
+            why="this force has no potential energy: its work depends on the path",
+        ),
+        Output(
+            "W_drag",
+            "W by drag",
+            "J",
+            ("force", "path", "h", *_drag),
+            structure=_by_force(Poly(lambda c: 0.0, ()), _DRAG_WORK),
+        ),
+        Output(
+            "verdict", "path-independent?", "", ("force",), labels=("yes — conservative", "no — depends on the path")
+        ),
         Output("L", "path length", "m", ("path", "h")),
         Output("W_g", "W by gravity", "J", (), effect="gravity"),
         # Vertices of the figure's moving shapes: mm for the smooth path (2 decimals make a shallow arc
@@ -93,8 +142,26 @@ class Work(Model):
         Output("drag_x", "drag arrows, x", "m", ("force", "path", "h"), decimals=2, size=_drag_size, ragged=True),
         Output("drag_y", "drag arrows, y", "m", ("force", "path", "h"), decimals=2, size=_drag_size, ragged=True),
         Output("anchor_x", "anchor, x", "m", ("force", "x_c"), decimals=2, size=1, ragged=True),
-        Output("rest_x", "rest-length circle, x", "m", ("force", "x_c", "ell0"), decimals=2, size=ARC_POINTS, ragged=True, effect="spring_rest_length"),
-        Output("rest_y", "rest-length circle, y", "m", ("force", "ell0"), decimals=2, size=ARC_POINTS, ragged=True, effect="spring_rest_length"),
+        Output(
+            "rest_x",
+            "rest-length circle, x",
+            "m",
+            ("force", "x_c", "ell0"),
+            decimals=2,
+            size=ARC_POINTS,
+            ragged=True,
+            effect="spring_rest_length",
+        ),
+        Output(
+            "rest_y",
+            "rest-length circle, y",
+            "m",
+            ("force", "ell0"),
+            decimals=2,
+            size=ARC_POINTS,
+            ragged=True,
+            effect="spring_rest_length",
+        ),
     )
     effects = ("spring_rest_length", "drag_law", "gravity")
     # The readouts are closed forms (exact, and bitwise the same on both paths): no numerical method
@@ -114,7 +181,9 @@ class Work(Model):
         x = {k: np.asarray(v, float) for k, v in {**self.defaults(), **values}.items()}
         closed = float(self.evaluate(x, ["W"], effects)["W"])
         reference = _adaptive_work(x, frozenset(effects))
-        return Measurement(abs(reference - closed), 0, "closed form", f"Gauss–Legendre n = {GAUSS_NODES}, halved to 1e-15 J")
+        return Measurement(
+            abs(reference - closed), 0, "closed form", f"Gauss–Legendre n = {GAUSS_NODES}, halved to 1e-15 J"
+        )
 
     def _evaluate(self, x, wanted, effects):
         spring = x["force"] == SPRING
@@ -193,6 +262,8 @@ def _adaptive_work(x, effects) -> float:
     ell0 = float(x["ell0"]) if "spring_rest_length" in effects else None
     mass = float(x["m_g"]) if "gravity" in effects else None
     if force == SPRING:
-        return line_integral_work(SPRING, path, h, k=float(x["k"]), x_c=float(x["x_c"]), ell0=ell0, mass=mass, tol=1e-15)
+        return line_integral_work(
+            SPRING, path, h, k=float(x["k"]), x_c=float(x["x_c"]), ell0=ell0, mass=mass, tol=1e-15
+        )
     gravity = 0.0 if mass is None else line_integral_work(SPRING, path, h, k=0.0, mass=mass, tol=1e-15)
     return line_integral_work(DRAG, path, h, drag=drag, tol=1e-15) + gravity

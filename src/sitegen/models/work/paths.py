@@ -1,5 +1,6 @@
 """I3's plane: the points A and B, the chord and the arc between them, the spring's force, and the
 work along a path by Gauss-Legendre quadrature (the independent second method the closed forms are held to)."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -92,7 +93,9 @@ def nearest_to_anchor(arc: bool, h: float, x_c: float) -> float | None:
     return 0.5 * (1.0 - psi / theta) if abs(psi) < theta else None
 
 
-def line_integral_work(force, path, h, *, k=1.0, x_c=0.0, ell0=None, drag=1.0, mass=None, n=GAUSS_NODES, split=True, tol=None):
+def line_integral_work(
+    force, path, h, *, k=1.0, x_c=0.0, ell0=None, drag=1.0, mass=None, n=GAUSS_NODES, split=True, tol=None
+):
     """W = ∫ F · dr from A to B by n-point Gauss–Legendre on each smooth piece (one scalar case).
 
     `force` is SPRING (with an optional rest length, and gravity when `mass` is given) or DRAG of
@@ -117,6 +120,7 @@ def line_integral_work(force, path, h, *, k=1.0, x_c=0.0, ell0=None, drag=1.0, m
 
 def _gauss_piece(integrand, lo, hi, nodes, weights, tol, depth=0):
     """Gauss–Legendre over [lo, hi]; with `tol`, halved recursively until the halves agree with the whole."""
+
     def rule(a, b):
         return (b - a) / 2.0 * float(np.dot(weights, integrand(a + (b - a) * (nodes + 1.0) / 2.0)))
 
@@ -127,4 +131,6 @@ def _gauss_piece(integrand, lo, hi, nodes, weights, tol, depth=0):
     halves = rule(lo, mid) + rule(mid, hi)
     if abs(halves - whole) <= tol or depth >= 40:
         return halves
-    return _gauss_piece(integrand, lo, mid, nodes, weights, tol, depth + 1) + _gauss_piece(integrand, mid, hi, nodes, weights, tol, depth + 1)
+    return _gauss_piece(integrand, lo, mid, nodes, weights, tol, depth + 1) + _gauss_piece(
+        integrand, mid, hi, nodes, weights, tol, depth + 1
+    )

@@ -1,10 +1,11 @@
 """The vertices of I3's figure's moving shapes, in metres: the field arrows, the drag arrows on the
 path, the arrowhead at B and the rest-length circle."""
+
 from __future__ import annotations
 
 import numpy as np
 
-from .paths import ARC_POINTS, G, H_MAX, HALF_CHORD, arc_length, path_length, path_points, path_velocity, spring_force
+from .paths import ARC_POINTS, H_MAX, HALF_CHORD, G, arc_length, path_length, path_points, path_velocity, spring_force
 
 # Field arrows sit on a 15 x 9 grid whose spacing (0.3 m) is a
 # whole number of anchor-slider steps (0.05 m), so table rows for different anchors repeat (compress).

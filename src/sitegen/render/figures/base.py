@@ -1,4 +1,5 @@
 """What every figure view provides, and helpers for the ranges of its axes."""
+
 from __future__ import annotations
 
 import inspect
@@ -32,13 +33,18 @@ def figure_label(view: FigureView, scene: ResolvedScene) -> str:
     return describe(scene) if describe else view.label
 
 
-def scene_figures(view: FigureView, scene: ResolvedScene, tables: dict[str, Table], layers: list[Layer],
-                  points: list, prefix: str) -> list[str]:
+def scene_figures(
+    view: FigureView, scene: ResolvedScene, tables: dict[str, Table], layers: list[Layer], points: list, prefix: str
+) -> list[str]:
     """The scene's figure as inline SVG: wide, then narrow (ids prefixed "<prefix>-narrow") when the view draws one."""
     label = figure_label(view, scene)
     svgs = [figure_svg(laid_out(view.draw(scene, tables)), layers, points, prefix, label)]
     if "narrow" in inspect.signature(view.draw).parameters:
-        svgs.append(figure_svg(laid_out(view.draw(scene, tables, narrow=True)), layers, points, f"{prefix}-narrow", label, "narrow"))
+        svgs.append(
+            figure_svg(
+                laid_out(view.draw(scene, tables, narrow=True)), layers, points, f"{prefix}-narrow", label, "narrow"
+            )
+        )
     return svgs
 
 

@@ -8,12 +8,13 @@ sources and the same bench.json give the same bytes.
 The parts every book has are below; a model whose bench results fill parts declares them
 (`Model.reports`), and its plugin's report view (the registry's `reports`) draws them: this module names no model.
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from html import escape
-from typing import Mapping
 
 from ...compute.accuracy import SceneAccuracy
 from ...compute.cache import compute_now
@@ -111,33 +112,60 @@ def resolution_part(context: ReportContext) -> str:
 
     def draw(narrow):
         xlim = (min(r["bytes_float32"] for r in rows) / 2.5, max(r["bytes_float32"] for r in rows) * 2.5)
-        panels = [_resolution_panel([r for r in rows if r["line"] == key], xlim) for key in dict.fromkeys(r["line"] for r in rows)]
+        panels = [
+            _resolution_panel([r for r in rows if r["line"] == key], xlim)
+            for key in dict.fromkeys(r["line"] for r in rows)
+        ]
         return resolution_figure(panels, "labels: number of nodes; dashed: half of the last displayed digit", narrow)
 
     svg = figure(context, "resolution", rows, label, draw)
-    caption = ("Each output is stored at a few nodes and interpolated back to every slider stop; the error is the "
-               "largest difference from the model, in units of half the last digit the page shows (below the dashed "
-               "line an interpolated readout would round correctly). A coordinate in which the output is exactly "
-               "affine or quadratic (w₁ = m₁/(m₁+m₂), 1/m, quadratic in e) needs two or three nodes; the pole of "
-               "MA(x_p) defeats interpolation. The page ships every stop, rounded: no interpolation error at all.")
-    numbers = table(["output", "axis", "nodes", "max error", "÷ ½ digit", "float32", "JSON gzip"],
-                   [[escape(r["output"]), escape(r["axis_text"]), str(r["nodes"]), sci(r["error"]),
-                     sci(r["error"] / r["display_resolution"]), f"{r['bytes_float32']} B", f"{r['bytes_json_gzip']} B"]
-                    for r in rows], "Every axis choice and node count")
+    caption = (
+        "Each output is stored at a few nodes and interpolated back to every slider stop; the error is the "
+        "largest difference from the model, in units of half the last digit the page shows (below the dashed "
+        "line an interpolated readout would round correctly). A coordinate in which the output is exactly "
+        "affine or quadratic (w₁ = m₁/(m₁+m₂), 1/m, quadratic in e) needs two or three nodes; the pole of "
+        "MA(x_p) defeats interpolation. The page ships every stop, rounded: no interpolation error at all."
+    )
+    numbers = table(
+        ["output", "axis", "nodes", "max error", "÷ ½ digit", "float32", "JSON gzip"],
+        [
+            [
+                escape(r["output"]),
+                escape(r["axis_text"]),
+                str(r["nodes"]),
+                sci(r["error"]),
+                sci(r["error"] / r["display_resolution"]),
+                f"{r['bytes_float32']} B",
+                f"{r['bytes_json_gzip']} B",
+            ]
+            for r in rows
+        ],
+        "Every axis choice and node count",
+    )
     return figure_html("resolution", svg, label, caption, numbers)
 
 
-AXIS_GROUPS = {"linear": "linear axis", "log": "log axis", "w1": "exact coordinate", "inverse": "exact coordinate",
-               "quadratic": "exact coordinate", "per stop": "every stop"}
+AXIS_GROUPS = {
+    "linear": "linear axis",
+    "log": "log axis",
+    "w1": "exact coordinate",
+    "inverse": "exact coordinate",
+    "quadratic": "exact coordinate",
+    "per stop": "every stop",
+}
 
 
 def _resolution_panel(rows: list[dict], xlim: tuple[float, float]) -> Panel:
     series = []
     for group in dict.fromkeys(AXIS_GROUPS.values()):
         members = [r for r in rows if AXIS_GROUPS[r["axis"]] == group]
-        points = tuple(Point(r["bytes_float32"], r["error"] / r["display_resolution"], str(r["nodes"])) for r in members)
+        points = tuple(
+            Point(r["bytes_float32"], r["error"] / r["display_resolution"], str(r["nodes"])) for r in members
+        )
         series.append(Series(group, points))
-    return Panel(rows[0]["output"], tuple(series), floor=1e-13, ceiling=1e6, line=(1.0, "½ digit"), xlim=xlim, ylim=(1e-14, 1e6))
+    return Panel(
+        rows[0]["output"], tuple(series), floor=1e-13, ceiling=1e6, line=(1.0, "½ digit"), xlim=xlim, ylim=(1e-14, 1e6)
+    )
 
 
 # --- tables and text -----------------------------------------------------------------------------------------
@@ -148,11 +176,13 @@ def machine_part(context: ReportContext) -> str:
     if not context.bench:
         return MISSING
     m, plan = context.bench["machine"], context.bench["plan"]
-    return (f'<p class="report-machine">The timings on this page were measured on <strong>{m["date"]}</strong>, '
-            f'on a machine with {m["cores"]} cores ({escape(m["cpu"])}; Python {m["python"]}, NumPy {m["numpy"]}, '
-            f'SciPy {m["scipy"]}, one BLAS thread), in one run of <code>sitegen bench</code> that took '
-            f'{duration(context.bench["seconds"])}. Each time is a median: {escape(plan["repeats"])}. Read them '
-            f"as ratios: on another machine every time scales, the comparisons mostly do not.</p>\n")
+    return (
+        f'<p class="report-machine">The timings on this page were measured on <strong>{m["date"]}</strong>, '
+        f"on a machine with {m['cores']} cores ({escape(m['cpu'])}; Python {m['python']}, NumPy {m['numpy']}, "
+        f"SciPy {m['scipy']}, one BLAS thread), in one run of <code>sitegen bench</code> that took "
+        f"{duration(context.bench['seconds'])}. Each time is a median: {escape(plan['repeats'])}. Read them "
+        f"as ratios: on another machine every time scales, the comparisons mostly do not.</p>\n"
+    )
 
 
 def digits_part(context: ReportContext) -> str:
@@ -160,11 +190,22 @@ def digits_part(context: ReportContext) -> str:
     if not context.bench:
         return MISSING
     items = [item for view in context.views for item in view.findings(context.bench)]
-    rows = [[problem] + [factor(costs.get(m)) for m in PER_DIGIT_METHODS]
-            for view in context.views for problem, costs in view.per_digit(context.bench)]
-    numbers = table(["problem"] + list(PER_DIGIT_METHODS), rows, "Time multiplier per extra correct digit "
-                    "(least-squares slope of log time against −log error)")
-    return "<ul class=\"report-findings\">\n" + "\n".join(f"<li>{item}</li>" for item in items if item) + "\n</ul>\n" + numbers
+    rows = [
+        [problem] + [factor(costs.get(m)) for m in PER_DIGIT_METHODS]
+        for view in context.views
+        for problem, costs in view.per_digit(context.bench)
+    ]
+    numbers = table(
+        ["problem"] + list(PER_DIGIT_METHODS),
+        rows,
+        "Time multiplier per extra correct digit (least-squares slope of log time against −log error)",
+    )
+    return (
+        '<ul class="report-findings">\n'
+        + "\n".join(f"<li>{item}</li>" for item in items if item)
+        + "\n</ul>\n"
+        + numbers
+    )
 
 
 def scenes_part(context: ReportContext) -> str:
@@ -178,11 +219,18 @@ def scenes_part(context: ReportContext) -> str:
         raw, packed = context.table_bytes.get(key, (0, 0))
         within = "within" if record.error <= record.tolerance else "EXCEEDS"
         settings = "" if record.settings in ("", "—") else f'<span class="report-note">{escape(record.settings)}</span>'
-        rows.append([_scene_link(context, record.page, record.scene), f"{escape(record.method)}{settings}",
-                     f"{sci(record.error)} <span class=\"report-note\">{within} {sci(record.tolerance)}; "
-                     f"{escape(record.metric)}</span>", escape(record.reference),
-                     f"{record.stops_checked:,} stops<span class=\"report-note\">{record.evaluations:,} evaluations</span>",
-                     duration(cold["seconds"]) if cold else "—", f"{kib(packed)}<span class=\"report-note\">{kib(raw)} raw</span>" if raw else "—"])
+        rows.append(
+            [
+                _scene_link(context, record.page, record.scene),
+                f"{escape(record.method)}{settings}",
+                f'{sci(record.error)} <span class="report-note">{within} {sci(record.tolerance)}; '
+                f"{escape(record.metric)}</span>",
+                escape(record.reference),
+                f'{record.stops_checked:,} stops<span class="report-note">{record.evaluations:,} evaluations</span>',
+                duration(cold["seconds"]) if cold else "—",
+                f'{kib(packed)}<span class="report-note">{kib(raw)} raw</span>' if raw else "—",
+            ]
+        )
         ids.append(record.anchor)
     head = ["scene", "method", "measured error", "reference", "checked", "cold build", "tables (gzip)"]
     return table(head, rows, "Numerically computed scenes of this build", ids, text=(0, 1, 2, 3, 4))
@@ -198,22 +246,40 @@ def build_part(context: ReportContext) -> str:
         key = f"{item.page.slug}#{item.scene.id}"
         raw, packed = context.table_bytes.get(key, (0, 0))
         cold = timed.get(key)
-        rows.append([_scene_link(context, item.page.slug, item.scene.id), escape(item.scene.model.name),
-                     f"{math.prod(axis.count for axis in item.scene.axes):,}",
-                     f"{duration(cold['seconds'])} ({cold['repeats']})" if cold else "—", kib(raw), kib(packed)])
-    scenes = table(["scene", "model", "slider stops", "cold build (runs)", "tables", "gzip"], rows,
-                    "Cold build cost of every scene", text=(0,))
-    pages = table(["page", "HTML gzip", "with script, stylesheet and font, gzip"],
-                   [[f'<a href="{escape(name)}">{escape(name)}</a>', kib(p["html_gzip"]), kib(p["total_gzip"])]
-                    for name, p in context.bench["build"]["pages"].items()], "Bytes per page (as of the bench run)")
+        rows.append(
+            [
+                _scene_link(context, item.page.slug, item.scene.id),
+                escape(item.scene.model.name),
+                f"{math.prod(axis.count for axis in item.scene.axes):,}",
+                f"{duration(cold['seconds'])} ({cold['repeats']})" if cold else "—",
+                kib(raw),
+                kib(packed),
+            ]
+        )
+    scenes = table(
+        ["scene", "model", "slider stops", "cold build (runs)", "tables", "gzip"],
+        rows,
+        "Cold build cost of every scene",
+        text=(0,),
+    )
+    pages = table(
+        ["page", "HTML gzip", "with script, stylesheet and font, gzip"],
+        [
+            [f'<a href="{escape(name)}">{escape(name)}</a>', kib(p["html_gzip"]), kib(p["total_gzip"])]
+            for name, p in context.bench["build"]["pages"].items()
+        ],
+        "Bytes per page (as of the bench run)",
+    )
     return scenes + pages
 
 
 def _scene_link(context: ReportContext, slug: str, scene: str) -> str:
     """The scene's id, linked to it, with its page's title under it."""
     title = next((p.title for p in context.pages if p.slug == slug), slug)
-    return (f'<a href="{escape(slug)}.html#scene-{escape(scene)}">{escape(scene)}</a>'
-            f'<span class="report-note">{escape(title)}</span>')
+    return (
+        f'<a href="{escape(slug)}.html#scene-{escape(scene)}">{escape(scene)}</a>'
+        f'<span class="report-note">{escape(title)}</span>'
+    )
 
 
 BOOK_PARTS = {

@@ -1,4 +1,5 @@
 """How the accuracy report writes numbers, tables and diagrams (shared by every part)."""
+
 from __future__ import annotations
 
 import json
@@ -14,11 +15,14 @@ from ...render.work_precision import Point
 # What a diagram's bytes depend on besides its data: the drawing code (followed through its imports).
 DRAWING_CODE = frozenset({"sitegen.site.report", "sitegen.render.work_precision", "sitegen.render.svg"})
 FIGURES_KIND = "report-figures"  # what `figure` remembers its SVG as, by a key of its data and drawing code
-MISSING = ('<p class="report-missing">No benchmark results yet: run <code>make bench</code> (or '
-           '<code>sitegen bench</code>) to measure them.</p>')
+MISSING = (
+    '<p class="report-missing">No benchmark results yet: run <code>make bench</code> (or '
+    "<code>sitegen bench</code>) to measure them.</p>"
+)
 
 
 # --- numbers as the page writes them ------------------------------------------------------------------------
+
 
 def sci(value: float | None, digits: int = 2) -> str:
     """2.1 × 10<sup>−7</sup> as the captions write numbers; 0.083, 1.3 or 270 between 0.01 and 10⁴; "—" if none."""
@@ -65,7 +69,12 @@ def rtol_exponent(rtol: float) -> str:
 def figure(context, name: str, data, label: str, draw) -> str:
     """A diagram's inline SVG, wide and narrow (`draw(narrow)`), remembered by its data and the drawing code
     (same data, same bytes)."""
-    key = digest(name, json.dumps(data, sort_keys=True), source_digest(DRAWING_CODE), f"matplotlib {library_version('matplotlib')}")
+    key = digest(
+        name,
+        json.dumps(data, sort_keys=True),
+        source_digest(DRAWING_CODE),
+        f"matplotlib {library_version('matplotlib')}",
+    )
 
     def both() -> bytes:
         wide = figure_svg(laid_out(draw(False)), [], [], f"acc-{name}", label)
@@ -76,27 +85,39 @@ def figure(context, name: str, data, label: str, draw) -> str:
 
 def figure_html(name: str, svg: str, label: str, caption: str, data_table: str) -> str:
     """The diagram on a white card (wide, or narrow on a phone), its caption, and its numbers behind a disclosure."""
-    return (f'<figure class="report-figure" id="fig-{name}">\n<div class="report-card">\n{svg}</div>\n'
-            f'<figcaption>{caption}</figcaption>\n</figure>\n'
-            f'<details class="report-data">\n<summary>The numbers behind this diagram</summary>\n{data_table}</details>\n')
+    return (
+        f'<figure class="report-figure" id="fig-{name}">\n<div class="report-card">\n{svg}</div>\n'
+        f"<figcaption>{caption}</figcaption>\n</figure>\n"
+        f'<details class="report-data">\n<summary>The numbers behind this diagram</summary>\n{data_table}</details>\n'
+    )
 
 
-def table(head: list[str], rows: list[list[str]], caption: str = "", row_ids: list[str] | None = None,
-           text: tuple[int, ...] = ()) -> str:
+def table(
+    head: list[str],
+    rows: list[list[str]],
+    caption: str = "",
+    row_ids: list[str] | None = None,
+    text: tuple[int, ...] = (),
+) -> str:
     """A table in a scrolling box (wide tables scroll sideways on a phone, not the page); `text` columns wrap."""
     ids = row_ids or [""] * len(rows)
     body = "\n".join(_row(row, row_id, text) for row, row_id in zip(rows, ids))
     cap = f"<caption>{caption}</caption>\n" if caption else ""
     label = escape(re.sub(r"<[^>]+>", "", caption) or "table")
     heads = "".join(f'<th scope="col">{h}</th>' for h in head)
-    return (f'<div class="report-scroll" tabindex="0" role="region" aria-label="{label}">\n<table class="report">\n{cap}'
-            f"<thead><tr>{heads}</tr></thead>\n<tbody>\n{body}\n</tbody>\n</table>\n</div>\n")
+    return (
+        f'<div class="report-scroll" tabindex="0" role="region" aria-label="{label}">\n<table class="report">\n{cap}'
+        f"<thead><tr>{heads}</tr></thead>\n<tbody>\n{body}\n</tbody>\n</table>\n</div>\n"
+    )
 
 
 def _row(cells: list[str], row_id: str, text: tuple[int, ...]) -> str:
     attribute = f' id="{row_id}"' if row_id else ""
-    return f"<tr{attribute}>" + "".join(f'<td class="text">{c}</td>' if i in text else f"<td>{c}</td>"
-                                        for i, c in enumerate(cells)) + "</tr>"
+    return (
+        f"<tr{attribute}>"
+        + "".join(f'<td class="text">{c}</td>' if i in text else f"<td>{c}</td>" for i, c in enumerate(cells))
+        + "</tr>"
+    )
 
 
 def run_point(run: dict) -> Point:

@@ -3,6 +3,7 @@
 Pure functions of bench.json's data, so the accuracy page (built deterministically) and the
 bench's printout quote the same numbers. Every ratio compares runs of the same bench run.
 """
+
 from __future__ import annotations
 
 import math
@@ -15,8 +16,12 @@ EXACT = ("exact DST", "analytic")
 
 def usable(run: dict) -> bool:
     """A run that ran (not skipped, not failed) and has a time and a finite error."""
-    return "skipped" not in run and run.get("error") is not None and run.get("time_s") is not None \
+    return (
+        "skipped" not in run
+        and run.get("error") is not None
+        and run.get("time_s") is not None
         and run.get("status", "ok") in ("ok", "mach", "")
+    )
 
 
 def per_digit_cost(runs: list[dict]) -> float | None:
@@ -98,13 +103,23 @@ def chain_headlines(chain: dict, n: int) -> dict:
     halving = None
     if halvings:
         nu, fine = halvings[-1]
-        halving = {"from": nu, "to": nu / 2, "error": verlet[nu]["error"] / fine["error"],
-                   "time": ratio(fine, verlet[nu])}
+        halving = {
+            "from": nu,
+            "to": nu / 2,
+            "error": verlet[nu]["error"] / fine["error"],
+            "time": ratio(fine, verlet[nu]),
+        }
     integrators = [r for r in runs if r["method"] not in EXACT and usable(r) and r["error"] <= 1e-6]
     cheapest = min(integrators, key=lambda r: r["time_s"], default=None)
-    return {"N": n, "dst": dst, "halving": halving, "cheapest_1e-6": cheapest, "dst_advantage": ratio(cheapest, dst),
-            "per_digit": {m: per_digit_cost(rs) for m, rs in methods(runs).items() if m not in EXACT},
-            "pareto": pareto(runs)}
+    return {
+        "N": n,
+        "dst": dst,
+        "halving": halving,
+        "cheapest_1e-6": cheapest,
+        "dst_advantage": ratio(cheapest, dst),
+        "per_digit": {m: per_digit_cost(rs) for m, rs in methods(runs).items() if m not in EXACT},
+        "pareto": pareto(runs),
+    }
 
 
 TARGETS = (1e-3, 1e-6, 1e-9, 1e-12)  # error levels at which the cheapest run is quoted
@@ -121,9 +136,12 @@ def bubble_headlines(case: dict) -> dict:
     runs = case["runs"]
     chosen = case["chosen"]
     picked = find(runs, chosen["method"], **({"rtol": chosen["rtol"]} if chosen.get("rtol") else {}))
-    return {"per_digit": {m: per_digit_cost(rs) for m, rs in methods(runs).items() if m not in EXACT},
-            "pareto": pareto([r for r in runs if r["method"] not in EXACT]), "chosen": picked,
-            "cheapest": {target: cheapest_within(runs, target) for target in TARGETS}}
+    return {
+        "per_digit": {m: per_digit_cost(rs) for m, rs in methods(runs).items() if m not in EXACT},
+        "pareto": pareto([r for r in runs if r["method"] not in EXACT]),
+        "chosen": picked,
+        "cheapest": {target: cheapest_within(runs, target) for target in TARGETS},
+    }
 
 
 def tighter(runs: list[dict], method: str, loose: float, tight: float) -> dict | None:
@@ -131,5 +149,10 @@ def tighter(runs: list[dict], method: str, loose: float, tight: float) -> dict |
     a, b = find(runs, method, rtol=loose), find(runs, method, rtol=tight)
     if not a or not b or not b["error"]:
         return None
-    return {"method": method, "loose": loose, "tight": tight, "time": ratio(b, a),
-            "digits": math.log10(a["error"] / b["error"]) if a["error"] > 0 else None}
+    return {
+        "method": method,
+        "loose": loose,
+        "tight": tight,
+        "time": ratio(b, a),
+        "digits": math.log10(a["error"] / b["error"]) if a["error"] > 0 else None,
+    }

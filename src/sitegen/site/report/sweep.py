@@ -1,4 +1,5 @@
 """The bubble settings sweep (bench.json's "digits") as the accuracy page shows it: a diagram and a table."""
+
 from __future__ import annotations
 
 import math
@@ -30,8 +31,16 @@ def sweep_rows(sweep: dict) -> list[list[str]]:
         for run in data["runs"]:
             mark = " (chosen)" if run["rtol"] == data["chosen"] else ""
             units = "—" if run["max_units"] is None else f"{run['max_units']:.2g}"
-            rows.append([name.split("#")[1], f"1e−{-math.log10(run['rtol']):.0f}{mark}",
-                         f"{run['seconds'] / data['stops'] * 1e3:.2f}", f"{run['wrong']:,}", f"{run['near']:,}", units])
+            rows.append(
+                [
+                    name.split("#")[1],
+                    f"1e−{-math.log10(run['rtol']):.0f}{mark}",
+                    f"{run['seconds'] / data['stops'] * 1e3:.2f}",
+                    f"{run['wrong']:,}",
+                    f"{run['near']:,}",
+                    units,
+                ]
+            )
     return rows
 
 
@@ -40,7 +49,9 @@ def near_listing(sweep: dict) -> str:
     items = []
     for name, data in sweep.items():
         run = next(r for r in data["runs"] if r["rtol"] == data["chosen"])
-        listed = [f"wrong: {escape(s)}" for s in run["wrong_stops"]] + [f"near a boundary: {escape(s)}" for s in run["near_stops"]]
+        listed = [f"wrong: {escape(s)}" for s in run["wrong_stops"]] + [
+            f"near a boundary: {escape(s)}" for s in run["near_stops"]
+        ]
         more = run["wrong"] + run["near"] - len(listed)
         text = "; ".join(listed) + (f"; and {more} more" if more > 0 else "") if listed else "none"
         items.append(f"<li>{escape(name.split('#')[1])} ({data['stops']:,} stops): {text}</li>")

@@ -30,7 +30,8 @@ LAYERS = (
         "sitegen.review",
         "sitegen.preview",
         "sitegen.newbook",
-    ),  # tools that use the build and the layers below it
+        "sitegen.testing",
+    ),  # tools that use the build and the layers below it (sitegen.testing: checks a book's tests call)
     ("sitegen.cli", "sitegen.progress"),  # the command, and how it shows a build's progress on a terminal
 )
 # Who may import the built-in models by name: their own plugins, the registry (which lists them) and the

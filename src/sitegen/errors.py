@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import difflib
 from dataclasses import dataclass
+from pathlib import Path
 
 
 @dataclass(frozen=True, order=True)
@@ -14,6 +16,31 @@ class SourceLoc:
 
     def __str__(self) -> str:
         return f"{self.path}:{self.line}"
+
+
+def did_you_mean(name: str, choices) -> str:
+    """A " — did you mean 'x'?" for a near miss among `choices`, else just the end of the sentence."""
+    choices = list(choices)
+    close = difflib.get_close_matches(name, choices, n=1, cutoff=0.5)
+    # else a name the misspelling starts with ('freq' for 'f'), the longest
+    close = close or sorted((c for c in choices if name.startswith(c)), key=len)[-1:]
+    return f" — did you mean '{close[0]}'?" if close else "."
+
+
+def caller_line(frame, own_file: str) -> tuple[str, int] | None:
+    """The file and line of the first frame from `frame` outwards that is outside `own_file` and outside
+    generated code (a dataclass's `__init__`): where an author's code made the object being made."""
+    while frame is not None and (frame.f_code.co_filename == own_file or frame.f_code.co_filename.startswith("<")):
+        frame = frame.f_back
+    return (frame.f_code.co_filename, frame.f_lineno) if frame is not None else None
+
+
+def code_loc(file: str, line: int, root: Path | None = None) -> SourceLoc:
+    """A line of code as the author sees it: its path relative to the book's folder `root` when inside it."""
+    path = Path(file).resolve()
+    if root is not None and path.is_relative_to(root.resolve()):
+        path = path.relative_to(root.resolve())
+    return SourceLoc(path.as_posix(), line)
 
 
 @dataclass(eq=False)  # not frozen: the exception machinery sets attributes such as __cause__

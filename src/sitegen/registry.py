@@ -30,7 +30,7 @@ from importlib import metadata
 from pathlib import Path
 
 from .config import PLUGIN_GROUP, BookConfig
-from .errors import AuthorError, SourceLoc
+from .errors import AuthorError, SourceLoc, code_loc, did_you_mean
 from .physics.base import Model
 
 BUILTINS = (  # in this order: the accuracy page lists the models' report parts in it
@@ -173,6 +173,9 @@ def _gathered(plugins: list[Plugin], problems: list, broken: dict, book: BookCon
                 problem = check(name, thing) if check else None
                 if problem:
                     problems.append(AuthorError(_defined_at(thing, plugin, book), f"{plugin.source}: {problem}"))
+                elif kind == "MODELS" and (wrong := _output_problems(thing, plugin, book)):
+                    problems += wrong
+                    broken[name] = wrong[0].loc
                 elif what in origins:
                     problems.append(
                         AuthorError(
@@ -195,6 +198,34 @@ def _model_problem(name: str, model) -> str | None:
     if model.name != name:
         return f"MODELS['{name}'] is {model.__name__}, whose name is '{model.name}': the two must agree"
     return None
+
+
+def _output_problems(model: type[Model], plugin: Plugin, book: BookConfig | None) -> list[AuthorError]:
+    """An error at the `Output(...)` line of each output whose deps, effect or reason names something the
+    model does not declare (the build would otherwise fail on it deep inside sitegen)."""
+    params, outputs = [p.name for p in model.params], [o.name for o in model.outputs]
+    errors = []
+    for output in model.outputs:
+        where = (
+            code_loc(*output.where, book.root if book else None) if output.where else _defined_at(model, plugin, book)
+        )
+        named = [("dep", d) for d in output.deps] + [("dep", d) for _, extra in output.deps_with for d in extra]
+        wrong = [
+            f"its {what} '{d}' is no parameter{did_you_mean(d, params)} Parameters: {', '.join(params)}"
+            for what, d in named
+            if d not in params
+        ]
+        for effect in [output.effect] * bool(output.effect) + [e for e, _ in output.deps_with]:
+            if effect not in model.effects:
+                wrong.append(
+                    f"its effect '{effect}' is not one the model offers{did_you_mean(effect, model.effects)} Effects: {', '.join(model.effects) or 'none'}"
+                )
+        if output.why_from and output.why_from not in outputs:
+            wrong.append(f"its why_from '{output.why_from}' is no output{did_you_mean(output.why_from, outputs)}")
+        errors += [
+            AuthorError(where, f"{plugin.source}: model {model.__name__}, output '{output.name}': {w}") for w in wrong
+        ]
+    return errors
 
 
 def _figure_problem(name: str, view) -> str | None:

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from decimal import Decimal
 from fractions import Fraction
 
 from ..content.scenes import CHOICE_FORM, ChoiceSpec, SceneSpec, SliderSpec
-from ..errors import AuthorError, SourceLoc
+from ..errors import AuthorError, SourceLoc, did_you_mean
 from ..physics import Model, Output
 from ..physics.numerics import configure
 from .grid import CHOICE, LIST, Axis, as_decimal
@@ -310,5 +309,4 @@ def _bound(value: float) -> str:
 
 def _suggest(name: str, choices) -> str:
     """A " — did you mean 'x'?" for a near miss, else just the end of the sentence."""
-    close = difflib.get_close_matches(name, list(choices), n=1, cutoff=0.5)
-    return f" — did you mean '{close[0]}'?" if close else "."
+    return did_you_mean(name, choices)

@@ -11,6 +11,7 @@ from ..content.math import convert_math as tex_to_mathml
 from ..content.pages import discover_pages, read_page
 from ..content.reports import unknown_part_error
 from ..errors import AuthorError, SourceLoc
+from ..render.layers import layer_errors
 from ..site.report import report_parts
 from .record import Book, SceneRecord
 from .run import BuildRun
@@ -85,10 +86,17 @@ def resolve_record(record: SceneRecord, run: BuildRun) -> SceneRecord | None:
     if errors:
         return None
     record = replace(record, scene=scene, view=run.figures[figure])
+    layers = None
     with run.scene(
         record, "listing its figure's layers"
     ):  # the figure's own code: a mistake in it is named at its line
-        outputs = needed_outputs(scene, record.view)
+        layers = record.view.layers(scene)
+    errors = layer_errors(scene, layers, record.view, run.config.root) if layers is not None else []
+    for error in errors:
+        run.error(error)
+    if layers is None or errors:
+        return None
+    outputs = shown_outputs(scene, layers)
     caption = markdown_to_html(spec.caption, page.source, spec.loc_of("caption").line, page.found, inline=True)
     return replace(record, caption=caption, outputs=tuple(outputs), key=scene_key(scene, outputs))
 
@@ -100,9 +108,14 @@ def figure_name(spec) -> str:
 
 def needed_outputs(scene, view) -> list[str]:
     """The outputs a scene shows: its readouts and whatever its figure's layers read."""
+    return shown_outputs(scene, view.layers(scene))
+
+
+def shown_outputs(scene, layers) -> list[str]:
+    """The outputs a scene shows: its readouts and whatever `layers` (its figure's) read."""
     names = [o.name for o in scene.readouts]
     names += [o.why_from for o in scene.readouts if o.why_from and o.why_from not in names]
-    for layer in view.layers(scene):
+    for layer in layers:
         names += sorted(layer.outputs() - set(names))
     return names
 

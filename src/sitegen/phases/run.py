@@ -85,6 +85,11 @@ class BuildReport:
         default_factory=dict
     )  # "page#scene" -> raw, gzip bytes of its inline tables
 
+    @property
+    def notes(self) -> list[str]:
+        """What an author may want to change, short of an error (a dep that changes nothing; among the scene lines)."""
+        return [line for line in self.scene_lines if line.startswith("note: ")]
+
 
 class BuildRun:
     """What every phase is handed besides the book: the config, the registry of models and figures it

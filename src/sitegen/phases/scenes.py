@@ -9,9 +9,10 @@ from dataclasses import replace
 from functools import partial
 
 from ..compute.check import check_scenes as check_accuracy
+from ..compute.deps import inert_deps_note, verify_scene_deps
 from ..compute.executors import Background, executor_for, results_in_order
 from ..compute.sources import digest, library_version, source_digest
-from ..compute.tabulate import assemble_tables, evaluate_unit, plan_scene
+from ..compute.tabulate import assemble_tables, evaluate_unit, per_stop_outputs, plan_scene
 from ..render.figures.base import scene_figures
 from ..render.layers import layer_points
 from ..render.style import laid_out
@@ -77,8 +78,17 @@ def tabulate_scenes(book: Book, run: BuildRun) -> Book:
     with executor_for(run.config.jobs, run.config.scheduler) as executor:
         for record in book.current():
             with run.scene(record, "tabulating"):
-                records.append(_tabulated(record, run, executor))
+                records.append(_checked_deps(_tabulated(record, run, executor), run))
     return book.with_records(records)
+
+
+def _checked_deps(record: SceneRecord, run: BuildRun) -> SceneRecord:
+    """The record, once its outputs are found to change only with what their deps declare (probed, or read
+    back with its tables); each that does not is an author error, and the record keeps no tables."""
+    errors = verify_scene_deps(record.scene, planned_outputs(record), run.remember, run.config.root)
+    for error in errors:
+        run.error(error)
+    return replace(record, tables=None) if errors else record
 
 
 def _tabulated(record: SceneRecord, run: BuildRun, executor) -> SceneRecord:
@@ -104,6 +114,11 @@ def _tabulated(record: SceneRecord, run: BuildRun, executor) -> SceneRecord:
     if run.cache:
         run.cache.store(record.key, tables)
     return _noted(replace(record, tables=tables), run, cached=False, seconds=seconds)
+
+
+def planned_outputs(record: SceneRecord) -> list[str]:
+    """The outputs a scene evaluates: those it shows and those their exact forms read at every stop."""
+    return list(dict.fromkeys([*record.outputs, *per_stop_outputs(record.scene, list(record.outputs))]))
 
 
 def planned(record: SceneRecord) -> list:
@@ -156,6 +171,9 @@ def _noted(record: SceneRecord, run: BuildRun, cached: bool, seconds: float) -> 
     report.scene_lines.append(line)
     run.say(line)
     stored = sum(t.stored_values() for t in record.tables.values())
+    if note := inert_deps_note(record.scene, record.tables, run.config.root):
+        report.scene_lines.append(note)
+        run.say(note)
     return replace(record, status=status, stored_values=stored)
 
 

@@ -4,15 +4,24 @@ vectorised evaluation. Physics only: nothing here knows about pages or plotting.
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import math
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import ClassVar
 
 import numpy as np
 
+from ..errors import caller_line
 from .numerics import Measurement, Numerics
+
+
+class UnknownName(KeyError):
+    """A parameter or output name the model does not declare (its message says which it has)."""
+
+    def __str__(self) -> str:
+        return str(self.args[0]) if self.args else ""
 
 
 @dataclass(frozen=True)
@@ -117,6 +126,13 @@ class Output:
     # Its exact form (physics/structure.py), or a function of the scene's effects giving it; None:
     # the output is tabulated at every stop of its dependencies.
     structure: object = None
+    # Where the Output was declared (file, line): the line of the `Output(...)` call, which the build names
+    # when the output breaks its contract (a dep it leaves out). Set by itself; kept through `replace`.
+    where: tuple[str, int] | None = field(default=None, compare=False, repr=False)
+
+    def __post_init__(self):
+        if self.where is None:
+            object.__setattr__(self, "where", caller_line(inspect.currentframe(), __file__))
 
     def __reduce__(self):
         # Pickled (to a worker process) without its structure, whose kernels are local functions: a
@@ -165,13 +181,19 @@ class Model:
 
     @classmethod
     def param(cls, name: str) -> Param:
-        """The declared parameter called `name`."""
-        return next(p for p in cls.params if p.name == name)
+        """The declared parameter called `name` (UnknownName, a KeyError, if there is none)."""
+        found = next((p for p in cls.params if p.name == name), None)
+        if found is None:
+            raise UnknownName(f"model '{cls.name}' has no parameter '{name}'; its parameters: {_names(cls.params)}")
+        return found
 
     @classmethod
     def output(cls, name: str) -> Output:
-        """The declared output called `name`."""
-        return next(o for o in cls.outputs if o.name == name)
+        """The declared output called `name` (UnknownName, a KeyError, if there is none)."""
+        found = next((o for o in cls.outputs if o.name == name), None)
+        if found is None:
+            raise UnknownName(f"model '{cls.name}' has no output '{name}'; its outputs: {_names(cls.outputs)}")
+        return found
 
     @classmethod
     def deps_of(cls, name: str, effects: Iterable[str] = ()) -> tuple[str, ...]:
@@ -242,6 +264,10 @@ class Model:
 def _unless(param: Param, domain: Param) -> str:
     """How an effect would widen the domain, e.g. " (up to inf with effect explosive)"."""
     return "".join(f" (up to {_num(hi)} with effect {effect})" for effect, hi in domain.wider)
+
+
+def _names(declared) -> str:
+    return ", ".join(d.name for d in declared)
 
 
 def _num(value: float) -> str:

@@ -34,7 +34,7 @@ test: tools-test $(VENV)/.test-installed node_modules/.installed
 check: tools-check $(VENV)/.test-installed node_modules/.installed lint
 	SITEGEN_EXAMPLE_SHARE=0.2 $(BIN)/pytest -q -p no:cacheprovider -m "not browser and not slow" -n $(CHECK_WORKERS) --dist loadfile --no-loadscope-reorder
 
-# ruff (pinned in the test extras): the lint rules and the format are in ruff.toml.
+# ruff (pinned in the dev extras): the lint rules and the format are in ruff.toml.
 lint: $(VENV)/.test-installed
 	$(BIN)/ruff check --quiet src tests bench
 	$(BIN)/ruff format --check --quiet src tests bench
@@ -78,7 +78,7 @@ $(VENV)/.site-installed: pyproject.toml | $(BIN)/python
 # One pip run installs the package with its test tools, so it stands for the site's install too
 # (on a fresh clone, `make test` resolves and installs everything once).
 $(VENV)/.test-installed: pyproject.toml | $(BIN)/python
-	$(PIP_INSTALL) -e '.[test]'
+	$(PIP_INSTALL) -e '.[dev]'
 	touch $(VENV)/.site-installed $@
 
 node_modules/.installed: package.json package-lock.json | tools-node

@@ -88,6 +88,29 @@ def rebuild_times(runs: int = 3) -> dict:
         return result
 
 
+def deps_probe_cost(pairs: int = 3) -> dict:
+    """Cold builds of the book with and without the deps probe, in interleaved pairs (so that the machine's load
+    falls on both alike; each pair in the other order than the one before, after a build that loads what the
+    first build of a process loads): min, median and max seconds of each, and the probe's share of the median."""
+    import sitegen.phases.scenes as scenes
+
+    checked, seconds = scenes.verify_scene_deps, {"with": [], "without": []}
+    with tempfile.TemporaryDirectory() as tmp:
+        build(BuildConfig.at(ROOT, Path(tmp) / "warm", cache=None), progress=None)  # imports and compiled code loaded
+        for pair in range(pairs):
+            for side in ("with", "without") if pair % 2 == 0 else ("without", "with"):
+                scenes.verify_scene_deps = checked if side == "with" else (lambda *args, **kwargs: [])
+                try:
+                    start = time.perf_counter()
+                    build(BuildConfig.at(ROOT, Path(tmp) / side, cache=None), progress=None)
+                    seconds[side].append(time.perf_counter() - start)
+                finally:
+                    scenes.verify_scene_deps = checked
+    spread = {side: {"min_s": min(t), "median_s": statistics.median(t), "max_s": max(t)} for side, t in seconds.items()}
+    share = spread["with"]["median_s"] / spread["without"]["median_s"] - 1
+    return {"pairs": pairs, **spread, "share": share}
+
+
 def page_sizes(site: Path) -> dict:
     """Raw and gzip bytes of each page and of everything it loads."""
     return {page.name: page_bytes(site, page) for page in sorted(site.glob("*.html"))}
@@ -102,6 +125,7 @@ def main() -> int:
         "machine": {"python": platform.python_version(), "cpu_count": os.cpu_count(), "platform": platform.platform()},
         "build": build_times(),
         "rebuilds": rebuild_times(),
+        "deps_probe": deps_probe_cost(),
         "pages": page_sizes(site),
     }
     latency_file = OUT / "latency.json"
@@ -125,6 +149,12 @@ def main() -> int:
             if "dask_cold_s" in r
             else ""
         )
+    )
+    d = report["deps_probe"]
+    print(
+        f"deps probe: cold build {d['with']['median_s']:.2f} s (min {d['with']['min_s']:.2f}, max "
+        f"{d['with']['max_s']:.2f}) with it, {d['without']['median_s']:.2f} s (min {d['without']['min_s']:.2f}, "
+        f"max {d['without']['max_s']:.2f}) without, over {d['pairs']} interleaved pairs: {100 * d['share']:+.1f} %"
     )
     for name, s in report["pages"].items():
         print(

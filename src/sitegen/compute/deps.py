@@ -1,14 +1,17 @@
 """Checking what an output declares it depends on (its `deps`) against what the model computes.
 
 A scene tabulates each output only over the sliders in its deps, so a parameter missing from them would
-freeze that slider's effect and ship a wrong number on every other stop. Each output is therefore
-evaluated at a few seeded stops and again with each parameter moved — across its slider's stops, or
-across a stretch of its domain when it has no slider — in one call of the model. An output that changes
-with a parameter its deps leave out is an error naming the `Output(...)` line; a declared dep with a
-slider that never changes it is a note, with the factor its table grows by for nothing.
+freeze that slider's effect and ship a wrong number at every other stop. When a scene is tabulated, each
+output is evaluated at the scene's defaults and at stops seeded from the scene's key, and again with each
+parameter moved — to other stops of its slider, or to seeded values of its domain near its fixed value —
+all in one call of the model. An output that changes with a parameter its deps leave out is an error
+naming its `Output(...)` line, the parameter and the values. The finding is remembered under the scene's
+key: a warm build reads it back and evaluates nothing.
 
-The seed comes from the scene's own key, so the same scene is probed at the same points on every build;
-the result is remembered under the scene's key (a warm build reads it, evaluates nothing).
+The other way round is read from the tables themselves, at no cost: a declared dep whose slider leaves a
+table the same at every stop (at the digits shown) is a note with the factor of stops it costs. A book's
+tests run the same probe across the model's whole domain (`check_model`, through sitegen.testing), where a
+declared dep that never changed the output is reported too.
 """
 
 from __future__ import annotations

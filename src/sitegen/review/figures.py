@@ -123,7 +123,7 @@ class Rasterizer:
             from playwright.sync_api import Error, sync_playwright
         except ImportError:
             raise RasterUnavailable(
-                "Playwright is not installed; `make review` installs it (or: .venv/bin/pip install -e '.[test]')"
+                "Playwright is not installed; `make review` installs it (or: .venv/bin/pip install -e '.[dev]')"
             ) from None
         if not Path(CHROMIUM).exists():
             raise RasterUnavailable(f"no Chromium at {CHROMIUM}; install Debian's chromium (make tools-chromium)")

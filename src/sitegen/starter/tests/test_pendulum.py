@@ -1,13 +1,13 @@
 """The book's pendulum against references: the small-swing limit, the series in the amplitude, and
-the period measured by integrating the equation of motion (a second method). Run with `pytest`."""
+the period measured by integrating the equation of motion (a second method); then the checks every
+build makes, asked for by name (sitegen.testing). Run with `pytest` (`pip install "sitegen[test]"`)."""
 from pathlib import Path
 
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from sitegen.config import read_book
-from sitegen.registry import load_registry
+from sitegen.testing import book_model, deps_problems, scene_problems
 
 BOOK = Path(__file__).resolve().parents[1]
 
@@ -15,9 +15,7 @@ BOOK = Path(__file__).resolve().parents[1]
 @pytest.fixture(scope="module")
 def pendulum():
     """The model as a build finds it: from the book's models/ folder."""
-    registry = load_registry(read_book(BOOK))
-    assert not registry.problems, registry.problems
-    return registry.models["pendulum"]()
+    return book_model("pendulum", BOOK)
 
 
 def test_small_swings_have_the_textbook_period(pendulum):
@@ -56,3 +54,14 @@ def test_the_bob_stays_on_its_circle(pendulum):
     out = pendulum.evaluate({"theta0": np.array([10.0, 120.0]), "L": np.array([0.5, 2.0])})
     assert np.hypot(out["arc_x"], out["arc_y"]) == pytest.approx(np.array([[0.5], [2.0]]) * np.ones((1, out["arc_x"].shape[1])))
     assert out["arc_x"][:, -1] == pytest.approx(out["bob_x"]) and out["arc_y"][:, -1] == pytest.approx(out["bob_y"])
+
+
+def test_each_output_declares_exactly_what_it_depends_on(pendulum):
+    """Moving a parameter an output's deps leave out never changes it; moving one they name does, somewhere."""
+    assert deps_problems(pendulum, book=BOOK) == []
+
+
+def test_the_scenes_fit_their_model_and_figure():
+    """Every page reads, every scene resolves (the figure's layers name outputs and parameters the model has),
+    and each scene's outputs change only with what their deps name: what `sitegen build` checks first."""
+    assert scene_problems(BOOK) == []

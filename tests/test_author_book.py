@@ -72,7 +72,7 @@ def test_deps_leaving_out_zeta_fail_the_build_naming_zeta(book):
         '("f0", "f", "x_st"), decimals=2),',
     )
     assert _errors(book) == [
-        f"{SCENE}: models/oscillator/model.py:{X_LINE}: output 'X' changes with 'zeta' (125.00 nm → 15.62 nm as "
+        f"{SCENE}: models/oscillator/model.py:{X_LINE}: output 'X' changes with 'zeta' (125.00 nm → 15.63 nm as "
         "zeta goes 0.1 → 0.8, at f=1, t=5) but its deps leave 'zeta' out; add 'zeta' to its deps"
     ]
     assert not book.out.exists()

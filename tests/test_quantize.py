@@ -7,7 +7,7 @@ from decimal import Decimal
 import numpy as np
 import pytest
 
-from sitegen.compute.quantize import MINUS, fmt, format_quantum, quantize
+from sitegen.compute.quantize import MINUS, fmt, format_quantum, quantize, shown_integers, significant
 
 
 @pytest.mark.parametrize(
@@ -118,3 +118,73 @@ def test_fmt_agrees_with_printf_away_from_ties(decimals):
         if expected.lstrip(MINUS).strip("0.") == "":
             expected = expected.lstrip(MINUS)  # printf writes "-0.000"; the page writes "0.000"
         assert fmt(x, decimals) == expected, x
+
+
+# --- the one rounding rule: to the nearest, an exact tie of the double away from zero ----------------------------
+
+TIES = [
+    (0.125, 2, "0.13"),
+    (0.5625, 3, "0.563"),
+    (19.375, 2, "19.38"),
+    (-0.125, 2, "\u22120.13"),
+    (-0.5625, 3, "\u22120.563"),
+    (-19.375, 2, "\u221219.38"),
+    (2.5, 0, "3"),
+    (-2.5, 0, "\u22123"),
+    (0.0005, 3, "0.001"),  # the double is 0.000500000000000000010408…: above the tie, yet 0.0005·1000 rounds to 0.5
+    (1.005, 2, "1.00"),  # the double is 1.00499999999999989…: below the tie, whatever 1.005·100 gives
+    (0.285, 2, "0.28"),  # 0.28499999999999998…
+]
+
+
+@pytest.mark.parametrize("value, decimals, expected", TIES, ids=[f"{v}-to-{d}" for v, d, _ in TIES])
+def test_a_tie_rounds_away_from_zero_judged_on_the_exact_double(value, decimals, expected):
+    """Exact decimal ties go away from zero (as a printed table rounds, and as sitegen.js does); a value that
+    only looks like a tie goes where its exact binary value lies."""
+    exact = Decimal(value).scaleb(decimals).quantize(Decimal(1), rounding="ROUND_HALF_UP")
+    assert fmt(value, decimals) == expected
+    assert int(quantize(value, decimals)) == int(exact)
+
+
+def test_0_0005_is_above_its_tie():
+    """The reason the rule reads the exact double: 0.0005 is a little more than 5e-4, so 0.001 is right."""
+    assert Decimal(0.0005) > Decimal("0.0005") and fmt(0.0005, 3) == "0.001"
+
+
+@pytest.mark.parametrize("decimals", [0, 1, 2, 3, 4])
+def test_quantize_is_the_exact_rounding_of_the_double_everywhere(decimals):
+    """At 20,000 seeded values with few decimals (so that many products land on or near a half) and at every
+    multiple of 1/16 in ±64, quantize equals the correctly rounded exact value, ties away from zero."""
+    rng = np.random.default_rng(3000 + decimals)
+    values = np.concatenate([np.round(rng.uniform(-100, 100, 20_000), decimals + 1), np.arange(-1024, 1025) / 16])
+    expected = [
+        int(Decimal(v).scaleb(decimals).quantize(Decimal(1), rounding="ROUND_HALF_UP")) for v in values.tolist()
+    ]
+    assert quantize(values, decimals).tolist() == expected
+
+
+@pytest.mark.parametrize("power", [-1, -2, -3])
+def test_shown_integers_divides_by_the_same_rule(power):
+    """A negative power (a count of tens or hundreds) rounds the exact quotient, ties away from zero."""
+    values = np.concatenate(
+        [np.arange(-4000, 4001) * 5.0, np.random.default_rng(4000 - power).uniform(-1e6, 1e6, 5000)]
+    )
+    expected = [int(Decimal(v).scaleb(power).quantize(Decimal(1), rounding="ROUND_HALF_UP")) for v in values.tolist()]
+    assert shown_integers(values, power).tolist() == expected
+
+
+@pytest.mark.parametrize(
+    "value, digits, expected",
+    [
+        (0.5625, 3, (563, -3)),
+        (-0.5625, 3, (-563, -3)),
+        (19.375, 4, (1938, -2)),
+        (999.5, 3, (100, 1)),
+        (0.000125, 2, (13, -5)),
+    ],
+    ids=["0.5625", "-0.5625", "19.375", "999.5-carries", "0.000125"],
+)
+def test_significant_digits_round_ties_away_from_zero(value, digits, expected):
+    """Shown to significant digits the same rule holds: Python's formatting would round these ties to even."""
+    mantissa, exponent = significant([value], digits)
+    assert (int(mantissa[0]), int(exponent[0])) == expected

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..compute.quantize import quantize
 from ..registry import builtin_registry
 from ..site.sizes import gzip_bytes
 
@@ -141,7 +142,7 @@ CASES = (
 
 def json_gzip_bytes(values: np.ndarray, decimals: int) -> int:
     """Bytes of the values as our pages store them (integers of the last shown digit, JSON, gzip)."""
-    quanta = [int(q) for q in np.round(np.asarray(values) * 10**decimals)]
+    quanta = quantize(values, decimals).tolist()
     return gzip_bytes(json.dumps(quanta, separators=(",", ":")).encode())
 
 

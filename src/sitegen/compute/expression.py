@@ -8,6 +8,7 @@ import itertools
 
 import numpy as np
 
+from .quantize import shown_integers
 from .table import Table
 
 
@@ -73,8 +74,8 @@ def _poly_value(expr: dict, parts, sliders, stops: np.ndarray) -> np.ndarray:
 
 def shown(table, stops: np.ndarray) -> np.ndarray:
     """What the page shows of a `Structured` table at each row of `stops`: a label index, or integers of the last digit
-    (rounded half up: floor(x·10^d + 0.5), as the script rounds)."""
+    (rounded as every shown number is, ties away from zero: the script's toQuantum takes the same steps)."""
     value = evaluate(table.expr, table.parts, table.sliders, stops)
     if table.labels:
         return value.astype(np.int64)
-    return np.floor(value * 10.0**table.decimals + 0.5).astype(np.int64) + 0
+    return shown_integers(value, table.decimals)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from decimal import ROUND_HALF_UP, Decimal
 
 import numpy as np
 
@@ -12,7 +13,8 @@ SPECIAL = np.iinfo(np.int64).min  # marks a value the page shows in words (e.g. 
 
 
 def quantize(values, decimals: int, special: bool = False) -> np.ndarray:
-    """Round to `decimals` digits and return the integer count of 10**-decimals units.
+    """Round to `decimals` digits (`shown_integers`: ties away from zero) and return the integer count of
+    10**-decimals units.
 
     A value that rounds to zero becomes plain 0, so a page never shows "-0.000". With `special`,
     non-finite values (a singularity, or a quantity that does not exist there) become the SPECIAL marker.
@@ -20,9 +22,50 @@ def quantize(values, decimals: int, special: bool = False) -> np.ndarray:
     values = np.asarray(values, dtype=float)
     infinite = ~np.isfinite(values) if special else None
     source = values if infinite is None else np.where(infinite, 0.0, values)
-    scaled = np.multiply(source, 10.0**decimals, out=np.empty(values.shape))  # an array even for one value
-    quanta = np.rint(scaled, out=scaled).astype(np.int64)  # -0.0 becomes plain 0: integers carry no sign of zero
+    quanta = shown_integers(source, decimals)  # -0.0 becomes plain 0: integers carry no sign of zero
     return quanta if infinite is None else np.where(infinite, SPECIAL, quanta)
+
+
+# --- the one rounding rule -------------------------------------------------------------------------------------
+# Every number a page shows is rounded the way a printed table is: to the nearest digit, and a value exactly
+# half-way (0.125 to two decimals, 19.375 to two, -0.5625 to three) away from zero, judged on the double's
+# exact value, never on a product that rounding made a tie. Tables are rounded here; the page's script rounds
+# an expression's value by the same steps (sitegen.js toQuantum), and the build's checks compare with this.
+
+_SPLIT = 134217729.0  # 2**27 + 1: Veltkamp's split of a double into two halves of 26 bits
+
+
+def _product_error(a: np.ndarray, b: float, product: np.ndarray) -> np.ndarray:
+    """a·b − product exactly, where product = fl(a·b) (Dekker's two-product, without a fused multiply-add)."""
+    a_big = _SPLIT * a
+    a_hi = a_big - (a_big - a)
+    a_lo = a - a_hi
+    b_big = _SPLIT * b
+    b_hi = b_big - (b_big - b)
+    b_lo = b - b_hi
+    return ((a_hi * b_hi - product) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo
+
+
+def shown_integers(values, power: int = 0) -> np.ndarray:
+    """values × 10**power rounded to integers, each exact tie away from zero (int64).
+
+    Rounding the double product is right except where the product itself lands on a half-integer: then the
+    exact product (the double plus its rounding error) decides — above the tie, at it, or below. Negative
+    powers divide, with the exact remainder deciding the same way."""
+    values = np.asarray(values, dtype=float)
+    scale = 10.0 ** abs(power)  # exact up to 10**22
+    scaled = values * scale if power >= 0 else values / scale
+    nearest = np.rint(scaled)
+    tie = np.abs(scaled - np.trunc(scaled)) == 0.5
+    if tie.any():
+        if power >= 0:
+            above = _product_error(values, scale, scaled)  # exact product − scaled
+        else:  # values − scaled·scale, exactly (the two are within a factor of two: the difference is exact)
+            above = (values - scaled * scale) - _product_error(scaled, scale, scaled * scale)
+        away = np.where(scaled > 0, np.ceil(scaled), np.floor(scaled))
+        decided = np.where(above > 0, np.ceil(scaled), np.where(above < 0, np.floor(scaled), away))
+        nearest = np.where(tie, decided, nearest)
+    return nearest.astype(np.int64)
 
 
 def format_quantum(quantum: int, decimals: int) -> str:
@@ -65,8 +108,9 @@ class Written:
 def significant(values, digits: int, special: bool = False, floor: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Each value rounded to `digits` significant digits as (mantissa, exponent): value ≈ mantissa ×
     10**exponent with `digits` digits in the mantissa (zero as 0 × 10**0). Correctly rounded from the
-    double (Python's own decimal formatting). With `special`, non-finite values get the SPECIAL mantissa;
-    a value smaller in magnitude than `floor` (the output's accuracy) is zero."""
+    double (Python's own decimal formatting), an exact tie away from zero as every shown number is. With
+    `special`, non-finite values get the SPECIAL mantissa; a value smaller in magnitude than `floor` (the
+    output's accuracy) is zero."""
     values = np.asarray(values, dtype=float)
     mantissas, exponents = np.zeros(values.shape, np.int64), np.zeros(values.shape, np.int64)
     finite = np.isfinite(values)
@@ -75,10 +119,35 @@ def significant(values, digits: int, special: bool = False, floor: float = 0.0) 
     shown = finite & (np.abs(values) >= floor) & (values != 0.0)
     # Only the shown values go through Python's formatting; "d.ddde±x" is read back as the integers dddd and ±x.
     form = f"%.{digits - 1}e"
-    texts = " ".join([form % value for value in values[shown].tolist()])
+    kept = values[shown].tolist()
+    texts = " ".join([form % value for value in kept])
     both = np.fromstring(texts.replace(".", "").replace("e", " "), dtype=np.int64, sep=" ")
-    mantissas[shown], exponents[shown] = both[0::2], both[1::2] - (digits - 1)
+    both[1::2] -= digits - 1
+    for k in _exact_ties(kept, digits):  # formatting rounds a tie to even: these go away from zero
+        both[2 * k], both[2 * k + 1] = _away(kept[k], digits)
+    mantissas[shown], exponents[shown] = both[0::2], both[1::2]
     return mantissas, exponents
+
+
+def _exact_ties(values: list[float], digits: int) -> list[int]:
+    """Indices of the values whose exact decimal expansion ends in a 5 just after `digits` significant digits."""
+    longer = f"%.{digits}e"
+    found = []
+    for k, value in enumerate(values):
+        text = longer % value
+        if text.partition("e")[0][-1] == "5" and Decimal(value) == Decimal(text):
+            found.append(k)
+    return found
+
+
+def _away(value: float, digits: int) -> tuple[int, int]:
+    """(mantissa, exponent) of an exact tie rounded to `digits` significant digits away from zero."""
+    exact = Decimal(value)
+    exponent = exact.adjusted() - (digits - 1)
+    mantissa = int(exact.scaleb(-exponent).quantize(Decimal(1), rounding=ROUND_HALF_UP))
+    if abs(mantissa) == 10**digits:  # 9.995 -> 10.00: one digit more, so one place up
+        mantissa, exponent = mantissa // 10, exponent + 1
+    return mantissa, exponent
 
 
 def written(mantissa: int, exponent: int, digits: int, unit: str) -> Written:

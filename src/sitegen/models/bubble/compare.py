@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...compute.quantize import shown_integers
 from ...physics.base import Output
 from .point import read_run
 from .run import Run
@@ -59,12 +60,16 @@ def _last_digit(values: np.ndarray, output: Output):
     return 10.0 ** np.where(np.isfinite(lead), lead - (output.digits - 1), 0.0)
 
 
-def _shown(values: np.ndarray, unit: float) -> np.ndarray:
-    """Values as the page shows them: counts of the displayed unit (inf and NaN kept apart)."""
+def _shown(values: np.ndarray, unit) -> np.ndarray:
+    """Values as the page shows them: counts of the displayed unit (a power of ten, per value or for all),
+    rounded by the pages' one rule (ties away from zero); inf and NaN kept apart."""
     finite = np.isfinite(values)
-    return np.where(
-        finite, np.rint(np.where(finite, values, 0.0) / unit), np.where(np.isnan(values), -1.5, np.sign(values) * 0.5)
-    )
+    kept = np.where(finite, values, 0.0)
+    powers = np.broadcast_to(-np.rint(np.log10(unit)).astype(np.int64), values.shape)
+    counts = np.zeros(values.shape)
+    for power in np.unique(powers):
+        counts = np.where(powers == power, shown_integers(kept, int(power)), counts)
+    return np.where(finite, counts, np.where(np.isnan(values), -1.5, np.sign(values) * 0.5))
 
 
 def run_difference(run: Run, reference: Run, pb: Problem, scales, effects) -> float:

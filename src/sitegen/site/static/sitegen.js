@@ -25,8 +25,24 @@
     return flat;
   }
 
-  /* Rounded half up to a count of 10^-d units, as the build rounds. */
-  function toQuantum(v, d) { return Math.floor(v * Math.pow(10, d) + 0.5); }
+  /* v rounded to a count of 10^-d units as the build rounds every shown number (compute/quantize.py
+   * shown_integers): to the nearest, an exact tie away from zero. Where the product lands on a half, its
+   * exact value decides: the double plus its rounding error (Dekker's two-product). */
+  function toQuantum(v, d) {
+    var scale = 1, i;
+    for (i = 0; i < d; i++) scale *= 10; // exact up to 10^22
+    var x = v * scale;
+    if (Math.abs(x - Math.trunc(x)) !== 0.5) return Math.round(x) + 0; // + 0: no -0
+    var above = productError(v, scale, x);
+    return (above > 0 ? Math.ceil(x) : above < 0 ? Math.floor(x) : x > 0 ? Math.ceil(x) : Math.floor(x)) + 0;
+  }
+
+  /* a·b − fl(a·b) exactly, by Veltkamp's split into halves of 26 bits (as quantize.py's _product_error). */
+  function productError(a, b, product) {
+    var aBig = 134217729 * a, aHi = aBig - (aBig - a), aLo = a - aHi;
+    var bBig = 134217729 * b, bHi = bBig - (bBig - b), bLo = b - bHi;
+    return ((aHi * bHi - product) + aHi * bLo + aLo * bHi) + aLo * bLo;
+  }
 
   /* Tables stored as differences between neighbours (within each vector), added up. */
   function undelta(rows) {

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_bad_input import FINITE_HINT
 
 from sitegen.build import BuildConfig, build
 from sitegen.errors import BuildFailed
@@ -30,8 +31,9 @@ def make_book(tmp_path: Path, pages: dict[str, str]) -> BuildConfig:
 
 
 def _expected(name: str) -> list[str]:
-    """The messages a fixture must produce ({models} stands for the registry's model names)."""
+    """The messages a fixture must produce ({models} and {figures} stand for the registry's names)."""
     text = (INVALID / f"{name}.expected").read_text(encoding="utf-8")
+    text = text.replace("{figures}", ", ".join(sorted(builtin_registry().figures)))
     return text.replace("{models}", ", ".join(sorted(builtin_registry().models))).splitlines()
 
 
@@ -168,6 +170,7 @@ def test_non_finite_output_fails_the_build_naming_the_stop(tmp_path, register):
     page = '+++\ntitle = "Pole"\n+++\n\n```scene\nmodel: singular\nslider x: -1..1 step 0.5 default 1\n```\n'
     assert build_errors(make_book(tmp_path, {"pole": page})) == [
         "content/pole.md:5: scene 'singular': output 'inverse' is not finite (inf) at x=0.0; the model must return finite numbers"
+        + FINITE_HINT
     ]
 
 

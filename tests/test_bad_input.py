@@ -1,7 +1,6 @@
 """Bad input never crashes the build or the command: the cases tests/invalid/ cannot hold
-(a model that raises, returns non-finite values or runs out of time; a file that is not UTF-8;
-an unknown figure, whose list of names grows with the book), and how `sitegen build` reports
-each kind of failure — file:line errors, an exit status, and no Python traceback unless --debug.
+(a model that raises, returns non-finite values or runs out of time; a file that is not UTF-8), and how
+`sitegen build` reports each kind of failure — file:line errors, an exit status, and no Python traceback unless --debug.
 """
 
 from __future__ import annotations
@@ -15,10 +14,15 @@ from sitegen import cli
 from sitegen.build import BuildConfig, build
 from sitegen.errors import BuildFailed
 from sitegen.physics import Model, Output, Param
-from sitegen.registry import builtin_registry
+from sitegen.render.layers import Layer
 from sitegen.render.style import new_figure
 
 ROOT = Path(__file__).resolve().parents[1]
+# What a non-finite error suggests after "the model must return finite numbers".
+FINITE_HINT = (
+    ', or, where the physics is singular or the quantity does not exist, say how the page shows it: special="—" '
+    '(or "∞") and why="…" (or why_from=) on the Output'
+)
 HOME = '+++\ntitle = "Test book"\n+++\n\nA home page.\n'
 
 
@@ -107,6 +111,7 @@ def test_solve_out_of_time_reports_the_stop(tmp_path, register_model):
     config = make_book(tmp_path, {"slow": SCENE.format(name="capped")})
     assert build_errors(config) == [
         "content/slow.md:5: scene 'capped': output 'y' is not finite (nan) at x=2; the model must return finite numbers"
+        + FINITE_HINT
     ]
 
 
@@ -125,6 +130,35 @@ def test_model_returning_infinity_reports_the_stop(tmp_path, register_model):
     config = make_book(tmp_path, {"pole": SCENE.format(name="blowup")})
     assert build_errors(config) == [
         "content/pole.md:5: scene 'blowup': output 'y' is not finite (inf) at x=3; the model must return finite numbers"
+        + FINITE_HINT
+    ]
+
+
+class _Curve(Model):
+    """A curve of four points whose third is NaN at x = 3 (a quantity that does not exist there)."""
+
+    name = "curve"
+    title = "Curve"
+    params = (Param("x", "x", "", 1.0, 0.0, 3.0),)
+    outputs = (Output("ys", "curve", "", ("x",), size=4),)
+
+    def _evaluate(self, x, wanted, effects):
+        x = x["x"]
+        return {"ys": np.stack([x, 2 * x, np.where(x == 3, np.nan, x), x], axis=-1)}
+
+
+class _CurveFigure(_Figure):
+    def layers(self, scene):
+        return [Layer("curve", "polyline", 0, xs=(0.0, 1.0, 2.0, 3.0), ys="out:ys")]
+
+
+def test_a_vector_output_that_is_not_finite_names_the_element(tmp_path, register):
+    """The error names the element of the vector and the stop, and says how to show it in words instead."""
+    register({"curve": _Curve}, {"curve": _CurveFigure()})
+    config = make_book(tmp_path, {"curve": SCENE.format(name="curve")})
+    assert build_errors(config) == [
+        "content/curve.md:5: scene 'curve': output 'ys' (element 2) is not finite (nan) at x=3; the model must "
+        "return finite numbers" + FINITE_HINT
     ]
 
 
@@ -138,14 +172,6 @@ def test_value_too_large_to_show_exactly(tmp_path):
     assert build_errors(make_book(tmp_path, {"huge": page})) == [
         "content/huge.md:5: scene 'collision': output 'p_before' is 3e+20 at m1=1E+20, too large to show "
         "with 2 decimals (at most 9.0072e+13); narrow the sliders' ranges"
-    ]
-
-
-def test_unknown_figure_lists_the_figures(tmp_path):
-    """A figure name that is not registered is an error at its line, listing the figures."""
-    page = '+++\ntitle = "Figure"\n+++\n\n```scene\nmodel: impulse\nfigure: impuls\n```\n'
-    assert build_errors(make_book(tmp_path, {"fig": page})) == [
-        f"content/fig.md:7: scene 'impulse': unknown figure 'impuls'; figures: {', '.join(sorted(builtin_registry().figures))}"
     ]
 
 
@@ -224,5 +250,14 @@ def test_internal_error_is_reported_without_traceback(tmp_path, register_model, 
     )
     assert "--debug" in err and "Traceback" not in err
     assert not (tmp_path / "build").exists()
-    with pytest.raises(KeyError):
-        cli.main(["build", "--root", str(tmp_path), "--no-cache", "--debug"])
+
+
+def test_debug_shows_the_traceback_and_keeps_the_exit_status(tmp_path, register_model, capsys):
+    """--debug adds the traceback (ending in the exception and the line that raised it) to the same one-line
+    report, and the build still exits 3, as a script or a CI job reading the status expects."""
+    register_model("buggy", _raise(KeyError("oops")))
+    make_book(tmp_path, {"bug": SCENE.format(name="buggy")})
+    assert cli.main(["build", "--root", str(tmp_path), "--no-cache", "--debug"]) == 3
+    err = capsys.readouterr().err
+    assert err.startswith("Traceback (most recent call last):") and "KeyError: 'oops'\n" in err
+    assert err.rstrip().endswith("holds the last complete build") and "sitegen: content/bug.md:5: scene 'buggy'" in err

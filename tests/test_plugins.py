@@ -250,3 +250,17 @@ def test_an_exception_in_a_book_model_names_its_line_and_the_scene(book, jobs):
         f"content/index.md:{PENDULUM_SCENE_LINE - 1}: scene 'pendulum': models/pendulum/swing_time.py:7: "
         "RuntimeError: the bob fell off (while tabulating)"
     )
+
+
+def test_a_figure_named_unlike_its_model_is_pointed_out(book):
+    """FIGURES names the pendulum's figure 'pendulm': the scene's error says what the plugin declares instead."""
+    plugin = book.root / "models" / "pendulum" / "__init__.py"
+    plugin.write_text(plugin.read_text().replace('FIGURES = {"pendulum"', 'FIGURES = {"pendulm"'))
+    with pytest.raises(BuildFailed) as failure:
+        build(book, progress=None)
+    figures = ", ".join(sorted({*builtin_registry().figures, "pendulm", "swing"}))
+    assert [str(e) for e in failure.value.errors] == [
+        f"content/index.md:{PENDULUM_SCENE_LINE - 1}: scene 'pendulum': unknown figure 'pendulum' — did you mean "
+        "'pendulm'? models/pendulum (the book) defines model 'pendulum' but no figure of that name (its FIGURES: "
+        f"pendulm): name the figure after the model, or add 'figure: pendulm' to the scene. Figures: {figures}"
+    ]

@@ -8,6 +8,7 @@ import os
 import signal
 import sys
 import threading
+import traceback
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -238,25 +239,22 @@ def _build(args, book: BookConfig) -> int:
         )
         return 128 + signal.SIGTERM if isinstance(stop, Terminated) else 130
     except SceneCrashed as crash:  # an exception in a model's, a figure's or sitegen's code, met on one scene
-        if args.debug:
-            raise crash.error from None
-        print(
-            f"sitegen: {crash}\n{config.out} holds the last complete build; run again with --debug for the traceback",
-            file=sys.stderr,
-        )
+        if args.debug:  # the traceback, then the same line and status as without --debug
+            traceback.print_exception(crash.error, file=sys.stderr)
+        print(f"sitegen: {crash}\n{config.out} holds the last complete build{_rerun(args)}", file=sys.stderr)
         return 3
     except OSError as problem:  # the machine's side: a folder that cannot be written, a full disk
         if args.debug:
-            raise
+            traceback.print_exception(problem, file=sys.stderr)
         print(f"sitegen: {problem}; {config.out} holds the last complete build", file=sys.stderr)
         return 2
     except Exception as problem:  # a bug in sitegen or in a model, not in the book
         if args.debug:
-            raise
+            traceback.print_exception(problem, file=sys.stderr)
         where = raising_line(problem, [], book)
         print(
             f"sitegen: {where}: {type(problem).__name__}: {problem}\n"
-            f"{config.out} holds the last complete build; run again with --debug for the traceback",
+            f"{config.out} holds the last complete build{_rerun(args)}",
             file=sys.stderr,
         )
         return 3
@@ -269,6 +267,11 @@ def _build(args, book: BookConfig) -> int:
         f"{report.stored_values} stored values, {size / 1024:.0f} KiB in {total:.2f} s -> {config.out}"
     )
     return 0
+
+
+def _rerun(args) -> str:
+    """The advice after a crash: how to see the traceback, unless it was just shown."""
+    return "" if args.debug else "; run again with --debug for the traceback"
 
 
 class Terminated(KeyboardInterrupt):

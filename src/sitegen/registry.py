@@ -301,6 +301,24 @@ def _shown(filename: str, book: BookConfig | None) -> str:
     return book.relative(path) if book else str(path)
 
 
+def unknown_figure_message(figure: str, model: str, registry: Registry) -> str:
+    """Why a scene's figure is not found: "did you mean", and, for a figure named after its model, what the
+    model's own plugin declares as FIGURES instead (a name that differs from the model's, or none)."""
+    known = sorted(registry.figures)
+    text = f"unknown figure '{figure}'{did_you_mean(figure, known)}"
+    source = registry.origins.get(f"model {model}")
+    if figure == model and source and not source.startswith("built-in"):
+        own = [n for n in known if registry.origins.get(f"figure {n}") == source]
+        if own:
+            text += (
+                f" {source} defines model '{model}' but no figure of that name (its FIGURES: {', '.join(own)}): "
+                f"name the figure after the model, or add 'figure: {own[0]}' to the scene."
+            )
+        else:
+            text += f" {source} defines model '{model}' and no FIGURES: add FIGURES = {{'{model}': ...}} beside MODELS."
+    return f"{text} Figures: {', '.join(known)}"
+
+
 def unknown_model_hint(name: str, registry: Registry) -> str:
     """ " — did you mean 'x'?" for a misspelt model name, else ""."""
     close = difflib.get_close_matches(name, list(registry.models), n=1)

@@ -67,7 +67,8 @@ def resolve_scene(
 
     effects = frozenset(spec.effects) & frozenset(model.effects)  # the scene's effects that the model offers
     axes, stops = _controls(spec, model, effects, errors)
-    _check_animation(spec, axes, error)
+    reported = set(spec.unread) | {c.param for c in spec.sliders} - {a.param for a in axes}
+    _check_animation(spec, axes, error, reported)
     fixed = _fixed_values(spec, model, {a.param for a in axes}, effects, error)
     _check_effects_offered(spec, model, error)
     _check_params_need_their_effects(model, [a.param for a in axes] + [name for name, _ in fixed], effects, error)
@@ -104,10 +105,10 @@ def _controls(spec: SceneSpec, model: Model, effects: frozenset[str], errors: li
     return axes, stops
 
 
-def _check_animation(spec: SceneSpec, axes: list[Axis], error) -> None:
-    """What `animate:` names must be one of the scene's sliders."""
+def _check_animation(spec: SceneSpec, axes: list[Axis], error, reported: set[str]) -> None:
+    """What `animate:` names must be one of the scene's sliders (unless its control is `reported` already)."""
     sliders = [a.param for a in axes if a.kind != CHOICE]
-    if spec.animate is not None and spec.animate not in sliders:
+    if spec.animate is not None and spec.animate not in sliders and spec.animate not in reported:
         error("animate", f"animate '{spec.animate}' is not one of the scene's sliders: {', '.join(sliders) or 'none'}")
 
 

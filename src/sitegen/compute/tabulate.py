@@ -188,9 +188,11 @@ def _require_finite(scene: ResolvedScene, axes: tuple[int, ...], output, array: 
     finite = np.isfinite(array)
     if not finite.all():
         bad = np.argwhere(~finite)
+        element = f" (element {bad[0][-1]})" if output.size else ""
         raise AuthorError(
             scene.spec.loc,
-            f"output '{output.name}' is not finite ({array[tuple(bad[0])]}) {stop_text(scene, axes, bad[0])}; "
-            "the model must return finite numbers",
+            f"output '{output.name}'{element} is not finite ({array[tuple(bad[0])]}) {stop_text(scene, axes, bad[0])}; "
+            "the model must return finite numbers, or, where the physics is singular or the quantity does not exist, "
+            'say how the page shows it: special="—" (or "∞") and why="…" (or why_from=) on the Output',
             scene.id,
         )

@@ -148,10 +148,9 @@ class _SlotPreprocessor(Preprocessor):
         if closing:
             end, tex = i, closing["tex"]
         else:
-            end = next((j for j in range(i + 1, len(lines)) if _DISPLAY_END.match(lines[j])), None)
-            if end is None:
-                self.found.errors.append(AuthorError(loc, "display math '$$' is not closed; end it with '$$'"))
-                return len(lines)
+            end = self._display_end(lines, i, loc)
+            if end is None:  # the prose after it stays prose: only the opening line is left out
+                return i + 1
             closing = _DISPLAY_END.match(lines[end])
             tex = "\n".join([first, *lines[i + 1 : end], closing["tex"]])
         label = closing["label"]
@@ -167,6 +166,27 @@ class _SlotPreprocessor(Preprocessor):
         span = f"{first}-{len(self.found.maths) - 1}" if len(pieces) > 1 else f"{first}"
         out.extend(["", f'<div data-math-slot="{span}"></div>', ""])
         return end + 1
+
+    def _display_end(self, lines, i, loc) -> int | None:
+        """The line that closes the display opened at line i, or None (one error at the opening line).
+
+        A display holds no blank line and no fence (as in Pandoc): reading on past one would take the prose
+        that follows for TeX, and pair every later '$$' with the wrong partner."""
+        for j in range(i + 1, len(lines)):
+            if _DISPLAY_END.match(lines[j]):
+                return j
+            if not lines[j].strip() or _CODE_FENCE.match(lines[j].lstrip()):
+                what = "the blank line" if not lines[j].strip() else "the fence"
+                self.found.errors.append(
+                    AuthorError(
+                        loc,
+                        f"display math '$$' is not closed before {what} at line {self.first_line + j}; "
+                        "end it with '$$' (a display holds no blank line)",
+                    )
+                )
+                return None
+        self.found.errors.append(AuthorError(loc, "display math '$$' is not closed; end it with '$$'"))
+        return None
 
     def _reference(self, match: re.Match, loc: SourceLoc) -> str:
         self.found.references.append((match["label"], loc))

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
 from fractions import Fraction
 
-from ..errors import AuthorError, SourceLoc
+from ..errors import AuthorError, SourceLoc, did_you_mean
 
 KEYS = ("model", "id", "slider", "choice", "fix", "effects", "readouts", "figure", "caption", "animate", "numerics")
 _LINE = re.compile(r"^(?P<key>[A-Za-z_]+)(?:\s+(?P<name>[A-Za-z_][A-Za-z0-9_]*))?\s*:\s*(?P<value>.*?)\s*$")
@@ -87,6 +87,7 @@ class SceneSpec:
     animate: str | None = None  # a slider stepped by a play button
     numerics: tuple[tuple[str, str], ...] = ()  # (setting, value) as written, checked against the model later
     lines: tuple[tuple[str, SourceLoc], ...] = ()  # (key, place) of every line, to point errors at
+    unread: tuple[str, ...] = ()  # parameters of control lines that could not be read (already errors)
 
     def loc_of(self, key: str) -> SourceLoc:
         """Where the author wrote `key` (the block's opening line if nowhere)."""
@@ -105,6 +106,9 @@ def parse_scene_block(body: list[str], fence: SourceLoc) -> tuple[SceneSpec | No
             _parse_line(text.strip(), loc, fields)
         except AuthorError as error:
             errors.append(error)
+            line = _LINE.match(text.strip())
+            if line and line["name"]:  # a control already reported: nothing else is said of its parameter
+                fields.setdefault("unread", []).append(line["name"])
     if "model" not in fields:
         errors.append(AuthorError(fence, "scene block has no 'model:' line; add e.g. 'model: collision'"))
         return None, errors
@@ -123,6 +127,7 @@ def parse_scene_block(body: list[str], fence: SourceLoc) -> tuple[SceneSpec | No
         animate=fields.get("animate"),
         numerics=fields.get("numerics", ()),
         lines=tuple(fields["lines"]),
+        unread=tuple(fields.get("unread", ())),
     )
     return spec, errors
 
@@ -133,7 +138,9 @@ def _parse_line(text: str, loc: SourceLoc, fields: dict) -> None:
         raise AuthorError(loc, f"cannot read '{text}'; a scene line is 'KEY: VALUE' with KEY one of {', '.join(KEYS)}")
     key, name, value = match["key"], match["name"], match["value"]
     if key not in KEYS:
-        raise AuthorError(loc, f"unknown key '{key}'; a scene block takes {', '.join(KEYS)}")
+        raise AuthorError(
+            loc, f"unknown directive '{key}'{did_you_mean(key, KEYS)} A scene block takes {', '.join(KEYS)}"
+        )
     needs_name = key in ("slider", "choice", "fix")
     if needs_name != bool(name):
         forms = {"slider": SLIDER_FORM, "choice": CHOICE_FORM, "fix": "fix NAME: VALUE"}

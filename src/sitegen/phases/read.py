@@ -11,6 +11,7 @@ from ..content.math import convert_math as tex_to_mathml
 from ..content.pages import discover_pages, read_page
 from ..content.reports import unknown_part_error
 from ..errors import AuthorError, SourceLoc
+from ..registry import unknown_figure_message
 from ..render.layers import layer_errors
 from ..site.report import report_parts
 from .record import Book, SceneRecord
@@ -77,9 +78,7 @@ def resolve_record(record: SceneRecord, run: BuildRun) -> SceneRecord | None:
     figure = figure_name(spec)
     if scene is not None and figure not in run.figures:
         errors.append(
-            AuthorError(
-                spec.loc_of("figure"), f"unknown figure '{figure}'; figures: {', '.join(sorted(run.figures))}", spec.id
-            )
+            AuthorError(spec.loc_of("figure"), unknown_figure_message(figure, spec.model, run.registry), spec.id)
         )
     for error in errors:
         run.error(error)

@@ -29,6 +29,26 @@ from .server import Live
 
 SETTLE_MS = 50  # a batch of changes ends after this long without another (one save is often several events)
 LONGEST_MS = 400  # ... or after this long in all, while changes keep coming
+# Files editors and tools write beside the one being saved, which the build never reads: a save rebuilds once,
+# on the file itself, not on these (watchfiles' own list already has *.swp, *~, .#lock and *.py[cod]).
+EDITOR_TEMPORARIES = (
+    r"\.tmp$",  # a temporary written then renamed over the file, e.g. .model.py.b4bce7….tmp
+    r"^sed[A-Za-z0-9]{6}$",  # sed -i's temporary copy
+    r"^4913$",  # vim's test that the folder is writable
+    r"^#.*#$",  # emacs's auto-save
+    r"\.(bak|orig|rej|part|crdownload)$",  # backups, patches' leftovers, downloads in progress
+    r"\.sw[a-p]x?$",  # vim's swap files (.swp, .swo, .swx, ...)
+)
+
+
+def watched(path: str) -> bool:
+    """Whether a change to `path` is one the build may read (not an editor's or a tool's temporary)."""
+    return BOOK_FILTER(watchfiles.Change.modified, path)
+
+
+BOOK_FILTER = watchfiles.DefaultFilter(
+    ignore_entity_patterns=(*watchfiles.DefaultFilter.ignore_entity_patterns, *EDITOR_TEMPORARIES)
+)
 
 
 def serve_watching(book: BookConfig, out: Path, server: ThreadingHTTPServer, live: Live, say=print) -> int:
@@ -117,7 +137,8 @@ class Builder:
         return []
 
     def _scene_line(self, line: str) -> None:
-        if line.startswith("[") and not line.endswith("cached"):  # the scenes this edit recomputed
+        # the scenes this edit recomputed, and what the author may want to change (notes, pages over budget)
+        if line.startswith(("note: ", "warning: ")) or line.startswith("[") and not line.endswith("cached"):
             self.say(f"  {line}", flush=True)
 
 
@@ -172,7 +193,7 @@ class BookWatcher:
             if not folders:
                 self.regroup.wait(0.5)
                 continue
-            self._watch(folders, recursive=True, keep=watchfiles.DefaultFilter(), stop=_Either(self.stop, self.regroup))
+            self._watch(folders, recursive=True, keep=BOOK_FILTER, stop=_Either(self.stop, self.regroup))
 
     def _watch(self, paths: list[Path], recursive: bool, keep, stop) -> None:
         for found in watchfiles.watch(

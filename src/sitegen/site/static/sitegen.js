@@ -79,7 +79,8 @@
     });
     var button = root.querySelector("button[data-animate]");
     if (button) this.animation = new Animation(this, root, button);
-    root.querySelector("button[data-reset]").addEventListener("click", function () { self.setStops(self.defaults); });
+    var reset = root.querySelector("button[data-reset]"); // none on a scene without controls
+    if (reset) reset.addEventListener("click", function () { self.setStops(self.defaults); });
     this.update();
   }
 

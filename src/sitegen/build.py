@@ -23,6 +23,7 @@ from .phases.record import Book
 from .phases.run import BuildConfig, BuildReport, BuildRun
 from .phases.scenes import check_scenes, compile_kernels, render_figures, tabulate_scenes
 from .registry import Registry, builtin_registry, load_registry
+from .site.weight import page_weights, weight_lines, weight_warnings
 from .site.writer import staged_tree
 
 __all__ = ["BuildConfig", "BuildReport", "build", "needed_outputs", "resolve_book", "tabulate_book"]
@@ -92,7 +93,16 @@ def _finish(run: BuildRun, book: Book) -> BuildReport:
     report.accuracy = [r.accuracy for r in book.scenes if r.accuracy is not None]
     report.data_bytes = {r.name: r.data_bytes for r in book.scenes}
     report.files = dict(sorted(run.tree.sizes.items()))
+    report.weights = page_weights(_site_files(run.config.out, report.files), book.scenes, run.remember)
+    report.warnings = weight_warnings(report.weights, run.config.book.page_budget_kb, book.scenes)
+    for line in weight_lines(report.weights) + report.warnings:
+        run.say(line)
     return report
+
+
+def _site_files(out, names) -> dict[str, bytes]:
+    """The pages and assets of the site just written (what a reader downloads)."""
+    return {n: (out / n).read_bytes() for n in names if n.endswith(".html") or n.startswith("assets/")}
 
 
 def needed_outputs(scene, registry: Registry | None = None) -> list[str]:

@@ -11,6 +11,7 @@ the folders of its parts). Every key is optional; a folder is relative to the bo
     theme = "theme"                       # templates that replace the built-in ones, and CSS to add
     output = "build"                      # where the site is written
     goldens = "goldens"                   # the figure goldens of `sitegen check-figures`
+    page_budget_kb = 400                  # a page above this (gzip, with its assets) is a warning
 """
 
 from __future__ import annotations
@@ -25,6 +26,8 @@ PLUGIN_GROUP = "sitegen.models"  # the entry-point group of installed model plug
 DEFAULT_FOOTER = "Built by sitegen. Every figure was computed when the book was built; this page works offline."
 TEXTS = ("title", "author", "language", "base_url", "footer")
 FOLDERS = ("content", "models", "theme", "output", "goldens")
+NUMBERS = ("page_budget_kb",)
+PAGE_BUDGET_KB = 400  # what a page may weigh as a phone downloads it: gzip, with the script, stylesheet and math font
 
 
 class ConfigError(ValueError):
@@ -46,6 +49,7 @@ class BookConfig:
     theme: Path | None = None
     output: Path | None = None
     goldens: Path | None = None
+    page_budget_kb: float = PAGE_BUDGET_KB
 
     def __post_init__(self):
         for name in FOLDERS:  # a folder left out is the one named like its key
@@ -81,13 +85,18 @@ def read_book(root: Path, required: bool = False) -> BookConfig:
 
 def _checked(data: dict, root: Path) -> dict:
     """The keys of book.toml as BookConfig's fields; ConfigError naming the first key that is wrong."""
-    known = TEXTS + FOLDERS
+    known = TEXTS + FOLDERS + NUMBERS
     values = {}
     for key, value in data.items():
         if key not in known:
             close = difflib.get_close_matches(key, known, n=1)
             hint = f"; did you mean '{close[0]}'?" if close else ""
             raise ConfigError(f"{CONFIG_FILE}: unknown key '{key}'{hint} Keys: {', '.join(known)}")
+        if key in NUMBERS:
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 < value < float("inf"):
+                raise ConfigError(f"{CONFIG_FILE}: '{key}' must be a positive number, e.g. {key} = {PAGE_BUDGET_KB}")
+            values[key] = float(value)
+            continue
         if not isinstance(value, str):
             raise ConfigError(f"{CONFIG_FILE}: '{key}' must be a string, e.g. {key} = \"...\"")
         values[key] = (root / value).resolve() if key in FOLDERS else value

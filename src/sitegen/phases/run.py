@@ -80,6 +80,8 @@ class BuildReport:
     phases: dict[str, float] = field(default_factory=dict)
     files: dict[str, int] = field(default_factory=dict)
     scene_lines: list[str] = field(default_factory=list)  # one line per scene: cached or computed and why
+    weights: list = field(default_factory=list)  # a site.weight.PageWeight per page
+    warnings: list[str] = field(default_factory=list)  # pages above the book's budget, and what would shrink them
     accuracy: list[SceneAccuracy] = field(default_factory=list)  # numerically computed scenes, in page/scene order
     data_bytes: dict[str, tuple[int, int]] = field(
         default_factory=dict

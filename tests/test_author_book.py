@@ -13,7 +13,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from sitegen.build import BuildConfig, build
-from sitegen.errors import BuildFailed
+from sitegen.errors import BuildFailed, SceneCrashed
 
 AUTHOR = Path(__file__).resolve().parent / "authors" / "oscillator"
 SCENE = "content/membrane.md:22: scene 'resonance'"  # the scene's fence, where its errors are reported
@@ -140,3 +140,32 @@ def test_a_declared_dep_that_changes_nothing_is_a_note_with_the_factor(book):
         "with 'x_st' (4×)"
     ]
     assert build(book, progress=None).notes == report.notes  # and again from the cache
+
+
+@pytest.mark.parametrize(
+    "old, new, line, message",
+    [
+        (
+            'table_range(tables["gain_curve"])',
+            'table_range(tables["gain_curv"])',
+            26,
+            "UnknownName: the scene has no table 'gain_curv' — did you mean 'gain_curve'? Its tables (the outputs it "
+            "shows: its readouts and what its layers read): X, gain_curve, phase, ring, x_now",
+        ),
+        (
+            'param_range(scene, "t")',
+            'param_range(scene, "time")',
+            32,
+            "UnknownName: model 'oscillator' has no parameter 'time' — did you mean 't'? Its parameters: f0, zeta, f, "
+            "x_st, t",
+        ),
+    ],
+    ids=["a-table-it-does-not-show", "a-parameter-it-does-not-have"],
+)
+def test_a_typo_in_the_figures_draw_names_the_authors_line(book, old, new, line, message):
+    """A name the scene has no table or parameter of, asked for in `draw`: the crash names the figure's own line
+    and says what the scene has, not a bare KeyError inside sitegen."""
+    _edit(book, "models/oscillator/figure.py", old, new)
+    with pytest.raises(SceneCrashed) as crash:
+        build(book, progress=None)
+    assert str(crash.value) == f"{SCENE}: models/oscillator/figure.py:{line}: {message} (while drawing its figure)"

@@ -51,20 +51,24 @@ def shown_integers(values, power: int = 0) -> np.ndarray:
 
     Rounding the double product is right except where the product itself lands on a half-integer: then the
     exact product (the double plus its rounding error) decides — above the tie, at it, or below. Negative
-    powers divide, with the exact remainder deciding the same way."""
+    powers divide, with the exact remainder deciding the same way. (No more arrays the size of `values` at
+    once than two of doubles: tables run to millions of values.)"""
     values = np.asarray(values, dtype=float)
     scale = 10.0 ** abs(power)  # exact up to 10**22
-    scaled = values * scale if power >= 0 else values / scale
-    nearest = np.rint(scaled)
-    tie = np.abs(scaled - np.trunc(scaled)) == 0.5
-    if tie.any():
+    offset, nearest = np.empty(values.shape), np.empty(values.shape)  # arrays even for one value
+    (np.multiply if power >= 0 else np.divide)(values, scale, out=offset)
+    np.rint(offset, out=nearest)
+    np.subtract(offset, nearest, out=offset)  # now scaled − nearest, in [−0.5, 0.5]
+    at = np.flatnonzero((offset == 0.5) | (offset == -0.5))
+    if at.size:
+        value, scaled = values.reshape(-1)[at], nearest.reshape(-1)[at] + offset.reshape(-1)[at]  # exact halves
         if power >= 0:
-            above = _product_error(values, scale, scaled)  # exact product − scaled
-        else:  # values − scaled·scale, exactly (the two are within a factor of two: the difference is exact)
-            above = (values - scaled * scale) - _product_error(scaled, scale, scaled * scale)
+            above = _product_error(value, scale, scaled)  # exact product − scaled
+        else:  # value − scaled·scale, exactly (the two are within a factor of two: the difference is exact)
+            above = (value - scaled * scale) - _product_error(scaled, scale, scaled * scale)
         away = np.where(scaled > 0, np.ceil(scaled), np.floor(scaled))
-        decided = np.where(above > 0, np.ceil(scaled), np.where(above < 0, np.floor(scaled), away))
-        nearest = np.where(tie, decided, nearest)
+        nearest.reshape(-1)[at] = np.where(above > 0, np.ceil(scaled), np.where(above < 0, np.floor(scaled), away))
+    del offset
     return nearest.astype(np.int64)
 
 

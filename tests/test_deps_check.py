@@ -82,7 +82,7 @@ def test_a_parameter_an_effect_replaces_must_not_change_the_output(tmp_path, lam
     (it has no slider), it changes w."""
     assert build_errors(make_book(tmp_path, {"lamp": _page("w", "glow")})) == [
         f"content/lamp.md:5: scene 'lamp': {HERE}/test_deps_check.py:{LINES['w']}: output 'w' changes with 'c' "
-        "(3.000 → 1.334 as c goes 2 → 0.334078, at a=1) but its deps leave 'c' out; add 'c' to its deps"
+        "(3.000 → 3.164 as c goes 2 → 2.16418, at a=1) but its deps leave 'c' out; add 'c' to its deps"
     ]
 
 
@@ -98,7 +98,7 @@ def test_a_vector_output_names_the_element_that_changed(tmp_path, register):
     register({"lamp": Lamp}, {"lamp": _CurveFigure()})
     assert build_errors(make_book(tmp_path, {"lamp": _page("y")})) == [
         f"content/lamp.md:5: scene 'lamp': {HERE}/test_deps_check.py:{LINES['v']}: output 'v' (element 2) changes "
-        "with 'd' (4.000 → 2.138 as d goes 3 → 1.13848, at a=1) but its deps leave 'd' out; add 'd' to its deps"
+        "with 'd' (4.000 → 2.536 as d goes 3 → 1.53588, at a=1) but its deps leave 'd' out; add 'd' to its deps"
     ]
 
 

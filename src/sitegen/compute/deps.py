@@ -2,9 +2,9 @@
 
 A scene tabulates each output only over the sliders in its deps, so a parameter missing from them would
 freeze that slider's effect and ship a wrong number at every other stop. When a scene is tabulated, each
-output is evaluated at the scene's defaults and at stops seeded from the scene's key, and again with each
-parameter moved — to other stops of its slider, or to seeded values of its domain near its fixed value —
-all in one call of the model. An output that changes with a parameter its deps leave out is an error
+output is evaluated at the scene's defaults and at a stop seeded from the scene's key, and again with each
+parameter of the scene moved — to both ends of its slider and a seeded stop, or to seeded values of its
+domain near its fixed value — all in one call of the model. An output that changes with a parameter its deps leave out is an error
 naming its `Output(...)` line, the parameter and the values. The finding is remembered under the scene's
 key: a warm build reads it back and evaluates nothing.
 
@@ -26,12 +26,12 @@ import numpy as np
 
 from ..errors import AuthorError, code_loc
 from .cache import compute_now, scene_key
-from .quantize import fmt, with_unit
+from .quantize import fmt, significant_text, with_unit
 from .scenes import ResolvedScene
 from .sources import digest, source_digest
 
-BASE_STOPS = 3  # stops a scene is probed at: its defaults and seeded others
-MOVES = 4  # values each parameter is moved to from each of them
+BASE_STOPS = 2  # stops a scene is probed at: its defaults and a seeded other
+MOVES = 3  # values each parameter is moved to from each of them (a slider: both ends and a seeded stop)
 RELATIVE = 1e-12  # a change smaller than this (relative) is float noise no page shows
 NOTED = 4  # outputs a scene's note names (then how many more)
 DEPS_MODULES = frozenset({__name__})
@@ -45,12 +45,13 @@ class Probe:
     values: dict[str, np.ndarray]
     base: np.ndarray  # per point: the base point it moved from (itself for a base point)
     moved: tuple[str, ...]  # per point: the parameter moved ("" for a base point)
-    sliders: dict[str, int]  # the parameters with a slider in the scene: their stop count
+    noted: frozenset[str] = frozenset()  # the declared deps to note when they never changed an output
 
 
 @dataclass(frozen=True)
 class Checked:
-    """What the probe found: an error text per undeclared dependency, a note text per inert declared dep."""
+    """What the probe found: an error text per undeclared dependency, a note text per declared dep that never
+    changed an output (for the deps the probe notes)."""
 
     errors: tuple[str, ...] = ()
     notes: tuple[str, ...] = ()
@@ -128,7 +129,7 @@ def check(model, names, effects, probe: Probe, root=None, where=None) -> Checked
             change = changes.get(param)
             if param not in deps and change is not None:
                 errors.append(f"{declared}: {_undeclared(output, param, change, probe, where)}")
-            elif param in deps and change is None and param in probe.sliders:
+            elif param in deps and change is None and param in probe.noted:
                 notes.append(f"{declared}: {_inert(output, param, probe)}")
     return Checked(tuple(errors), tuple(notes))
 
@@ -137,8 +138,9 @@ def check(model, names, effects, probe: Probe, root=None, where=None) -> Checked
 
 
 def scene_probe(scene: ResolvedScene, seed: int) -> Probe:
-    """The scene's defaults and seeded stops, each with every parameter moved: to other stops of its
-    slider, or to values near its fixed value in its domain."""
+    """The scene's defaults and seeded stops, each with every parameter of the scene moved: to other stops of
+    its slider, or to values near its fixed value in its domain (a parameter replaced by one of the scene's
+    effects too: it must change nothing)."""
     rng = np.random.default_rng(seed)
     counts = [axis.count for axis in scene.axes]
     stops = [scene.default_stops]
@@ -153,6 +155,8 @@ def scene_probe(scene: ResolvedScene, seed: int) -> Probe:
         bases.append(values)
     points, base_of, moved = list(bases), list(range(len(bases))), [""] * len(bases)
     for param in scene.model.params:
+        if param.effect and param.effect not in scene.effects:
+            continue  # a parameter of an effect the scene leaves out: no control can set it here
         index = scene.axis_index(param.name)
         for b, values in enumerate(bases):
             if index is not None:
@@ -165,8 +169,7 @@ def scene_probe(scene: ResolvedScene, seed: int) -> Probe:
                 points.append({**values, param.name: value})
                 base_of.append(b)
                 moved.append(param.name)
-    sliders = {a.param: a.count for a in scene.axes if a.count > 1}
-    return _probe(scene.model, points, base_of, moved, sliders)
+    return _probe(scene.model, points, base_of, moved)  # (an idle dep of a scene is read from its tables)
 
 
 def model_probe(model, effects: frozenset[str], points: int, seed: int, moves: int = MOVES) -> Probe:
@@ -181,12 +184,12 @@ def model_probe(model, effects: frozenset[str], points: int, seed: int, moves: i
                 every.append({**values, param.name: value})
                 base_of.append(b)
                 moved.append(param.name)
-    return _probe(model, every, base_of, moved, {p.name: 0 for p in model.params})
+    return _probe(model, every, base_of, moved, frozenset(p.name for p in model.params))
 
 
-def _probe(model, points: list[dict], base_of: list[int], moved: list[str], sliders: dict) -> Probe:
+def _probe(model, points: list[dict], base_of: list[int], moved: list[str], noted=frozenset()) -> Probe:
     values = {p.name: np.array([point[p.name] for point in points], dtype=float) for p in model.params}
-    return Probe(values, np.array(base_of), tuple(moved), sliders)
+    return Probe(values, np.array(base_of), tuple(moved), noted)
 
 
 def _other_stops(count: int, own: int, rng) -> list[int]:
@@ -285,15 +288,7 @@ def _undeclared(output, param: str, change: _Change, probe: Probe, where) -> str
 
 def _inert(output, param: str, probe: Probe) -> str:
     moves = sum(1 for m in probe.moved if m == param)
-    factor = probe.sliders[param]
-    if not factor:
-        return (
-            f"output '{output.name}' declares '{param}' in its deps but did not change when it moved ({moves} probes)"
-        )
-    return (
-        f"output '{output.name}' declares '{param}' in its deps but did not change when it moved ({moves} "
-        f"probes across its slider): its table is {factor}× larger for it; leave '{param}' out of its deps"
-    )
+    return f"output '{output.name}' declares '{param}' in its deps but did not change when it moved ({moves} probes)"
 
 
 def _value(output, value: float) -> str:
@@ -303,6 +298,8 @@ def _value(output, value: float) -> str:
     if output.labels:
         index = int(value)
         return repr(output.labels[index]) if 0 <= index < len(output.labels) else str(value)
+    if output.digits:
+        return significant_text(value, output.digits, output.unit)
     return with_unit(fmt(value, output.decimals), output.unit)
 
 

@@ -1,5 +1,5 @@
-"""A scene with no controls (every parameter fixed) has nothing to reset: no Reset button, and its script runs
-without one."""
+"""A scene with no controls (every parameter fixed) has nothing to reset: no Reset button (and no empty column of
+controls beside its readouts), and its script runs without one."""
 
 from __future__ import annotations
 
@@ -23,6 +23,7 @@ def site(tmp_path_factory):
 def test_a_scene_without_controls_has_no_reset_button(site):
     still, moving = (site / "still.html").read_text(), (site / "moving.html").read_text()
     assert "data-reset" not in still and "Reset</button>" not in still
+    assert 'class="scene-controls"' not in still  # its readouts take the panel's first column
     assert moving.count("data-reset") == 1  # a scene with a slider keeps its button
 
 

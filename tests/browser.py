@@ -32,7 +32,7 @@ import numpy as np
 
 from sitegen.build import BuildConfig, resolve_book
 from sitegen.compute.grid import CHOICE, LIST, RANGE
-from sitegen.compute.quantize import MINUS, fmt, significant_text
+from sitegen.compute.quantize import MINUS, fmt, format_quantum, quantize, significant_text
 from sitegen.compute.scenes import ResolvedScene
 from sitegen.content.pages import Page
 from sitegen.registry import builtin_registry
@@ -521,8 +521,9 @@ def _roundings(value: float, decimals: int) -> list[str]:
     scaled = value * 10.0**decimals
     if abs(abs(scaled - math.floor(scaled)) - 0.5) > 1e-9 * max(1.0, abs(scaled)):
         return [shown]
-    other = math.floor(scaled) if round(scaled) != math.floor(scaled) else math.ceil(scaled)
-    return [shown, fmt(other * 10.0**-decimals, decimals)]
+    quantum = int(quantize(value, decimals))
+    other = quantum - 1 if quantum > scaled else quantum + 1  # the neighbour on the tie's other side
+    return [shown, format_quantum(other, decimals)]
 
 
 def expected_readouts(scene: BookScene, stops) -> dict[str, str]:

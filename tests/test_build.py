@@ -16,7 +16,7 @@ from sitegen.site.sizes import gzip_bytes
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGE_BUDGET_GZIP = 400 * 1024
-SCRIPT_BUDGET = 16 * 1024
+SCRIPT_BUDGET = 24 * 1024  # the design's budget for the one script, unminified
 
 
 def _tree(folder: Path) -> dict[str, bytes]:
@@ -113,7 +113,7 @@ def test_page_and_what_it_loads_fit_the_budget(built_site, page):
 
 
 def test_one_small_script(built_site):
-    """The page script is one file within 16 KB unminified, loaded as a classic script by every page;
+    """The page script is one file within 24 KB unminified, loaded as a classic script by every page;
     the only other script is the search index with its code, a classic script that the search box
     loads when first used (assets/search.js)."""
     assert sorted(p.name for p in (built_site / "assets").glob("*.js")) == ["search.js", "sitegen.js"]

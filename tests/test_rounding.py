@@ -150,3 +150,36 @@ def test_the_build_digit_check_reads_a_tie_as_the_page_shows_it(run, reference, 
     no difference. Against a reference just below, the digits differ, within the error of the boundary: near."""
     outputs = (Output("p_x", "x", "", (), decimals=3),)
     assert shown_difference({"x": run}, {"x": reference}, "p", 1e-9, outputs) == ((), ("p_x",) if near else ())
+
+
+def test_the_script_rounds_as_the_build_does():
+    """sitegen.js's toQuantum, run by node, gives shown_integers' counts at 30,000 values on, near and far from a
+    half, positive and negative, at 0 to 4 decimals: the same steps on the same doubles."""
+    import json
+    import re
+    import subprocess
+
+    import numpy as np
+
+    from sitegen.compute.quantize import shown_integers
+    from sitegen.site.assets import script
+
+    source = script().decode()
+    function = re.search(r"  function toQuantum\(v, d\) \{.*?\n  \}\n", source, re.S)[0]
+    rng = np.random.default_rng(38)
+    halves = (rng.integers(-(10**6), 10**6, 10_000) + 0.5) / 10.0 ** rng.integers(0, 5, 10_000)
+    values = np.concatenate([halves, halves * (1 + 1e-15), halves * (1 - 1e-11), rng.uniform(-1e3, 1e3, 10_000)])
+    decimals = rng.integers(0, 5, values.size)
+    run = subprocess.run(
+        [
+            "node",
+            "-e",
+            f"{function}\nconst [v, d] = JSON.parse(require('fs').readFileSync(0, 'utf8'));"
+            "process.stdout.write(JSON.stringify(v.map((x, i) => toQuantum(x, d[i]))));",
+        ],
+        input=json.dumps([values.tolist(), decimals.tolist()]),
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    assert json.loads(run.stdout) == shown_integers(values, decimals).tolist()

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from decimal import ROUND_HALF_UP, Decimal
 
 import numpy as np
 
@@ -27,49 +26,38 @@ def quantize(values, decimals: int, special: bool = False) -> np.ndarray:
 
 
 # --- the one rounding rule -------------------------------------------------------------------------------------
-# Every number a page shows is rounded the way a printed table is: to the nearest digit, and a value exactly
-# half-way (0.125 to two decimals, 19.375 to two, -0.5625 to three) away from zero, judged on the double's
-# exact value, never on a product that rounding made a tie. Tables are rounded here; the page's script rounds
-# an expression's value by the same steps (sitegen.js toQuantum), and the build's checks compare with this.
+# Every number a page shows is rounded the way a printed table is: to the nearest digit, and a value half-way
+# (0.125 to two decimals, 19.375 to two, -0.5625 to three) away from zero. "Half-way" is judged to 12 significant
+# digits: a double computed from decimal inputs is off by about 1e-16, so 47.5 × 0.23 / 2, stored as
+# 5.46250000000000036, and the same value interpolated by the page a few units of its last place below 5.4625,
+# both read 5.463, as the exact 5.4625 does; 1.005, stored as 1.00499999999999989, reads 1.01. Tables are rounded here; the page's script rounds an expression's value by the same steps in
+# the same order (sitegen.js toQuantum), and the build's checks of displayed digits compare by this rule.
 
-_SPLIT = 134217729.0  # 2**27 + 1: Veltkamp's split of a double into two halves of 26 bits
-
-
-def _product_error(a: np.ndarray, b: float, product: np.ndarray) -> np.ndarray:
-    """a·b − product exactly, where product = fl(a·b) (Dekker's two-product, without a fused multiply-add)."""
-    a_big = _SPLIT * a
-    a_hi = a_big - (a_big - a)
-    a_lo = a - a_hi
-    b_big = _SPLIT * b
-    b_hi = b_big - (b_big - b)
-    b_lo = b - b_hi
-    return ((a_hi * b_hi - product) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo
+TIE = 1e-12  # relative: a value this close to half a digit is half-way
+_CHUNK = 1 << 20  # values rounded at a time (tables run to millions: the temporaries stay small)
 
 
-def shown_integers(values, power: int = 0) -> np.ndarray:
-    """values × 10**power rounded to integers, each exact tie away from zero (int64).
-
-    Rounding the double product is right except where the product itself lands on a half-integer: then the
-    exact product (the double plus its rounding error) decides — above the tie, at it, or below. Negative
-    powers divide, with the exact remainder deciding the same way. (No more arrays the size of `values` at
-    once than two of doubles: tables run to millions of values.)"""
+def shown_integers(values, power=0) -> np.ndarray:
+    """values × 10**power rounded to integers by the pages' rule (int64); `power` may be an array (one each)."""
     values = np.asarray(values, dtype=float)
-    scale = 10.0 ** abs(power)  # exact up to 10**22
-    offset, nearest = np.empty(values.shape), np.empty(values.shape)  # arrays even for one value
-    (np.multiply if power >= 0 else np.divide)(values, scale, out=offset)
-    np.rint(offset, out=nearest)
-    np.subtract(offset, nearest, out=offset)  # now scaled − nearest, in [−0.5, 0.5]
-    at = np.flatnonzero((offset == 0.5) | (offset == -0.5))
-    if at.size:
-        value, scaled = values.reshape(-1)[at], nearest.reshape(-1)[at] + offset.reshape(-1)[at]  # exact halves
-        if power >= 0:
-            above = _product_error(value, scale, scaled)  # exact product − scaled
-        else:  # value − scaled·scale, exactly (the two are within a factor of two: the difference is exact)
-            above = (value - scaled * scale) - _product_error(scaled, scale, scaled * scale)
-        away = np.where(scaled > 0, np.ceil(scaled), np.floor(scaled))
-        nearest.reshape(-1)[at] = np.where(above > 0, np.ceil(scaled), np.where(above < 0, np.floor(scaled), away))
-    del offset
-    return nearest.astype(np.int64)
+    powers = np.broadcast_to(np.asarray(power, dtype=np.int64), values.shape)
+    out = np.empty(values.shape, dtype=np.int64)
+    flat, flat_powers, flat_out = values.reshape(-1), powers.reshape(-1), out.reshape(-1)
+    for start in range(0, flat.size, _CHUNK):
+        part = slice(start, start + _CHUNK)
+        flat_out[part] = _half_away(flat[part], flat_powers[part])
+    return out
+
+
+def _half_away(values: np.ndarray, powers: np.ndarray) -> np.ndarray:
+    """The rule on one block, in sitegen.js toQuantum's steps: |x| split into its whole part and the rest, which
+    rounds up from half a digit less 1e-12 of the value (of one digit, below 1)."""
+    scales = 10.0 ** np.abs(powers).astype(float)  # exact up to 10**22, as the script's Math.pow(10, d)
+    scaled = np.where(powers >= 0, values * scales, values / scales)
+    magnitude = np.abs(scaled)
+    whole = np.floor(magnitude)
+    whole += magnitude - whole >= 0.5 - TIE * np.maximum(whole, 1.0)
+    return np.copysign(whole, scaled).astype(np.int64)  # -0.0 becomes plain 0: integers carry no sign of zero
 
 
 def format_quantum(quantum: int, decimals: int) -> str:
@@ -111,8 +99,8 @@ class Written:
 
 def significant(values, digits: int, special: bool = False, floor: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Each value rounded to `digits` significant digits as (mantissa, exponent): value ≈ mantissa ×
-    10**exponent with `digits` digits in the mantissa (zero as 0 × 10**0). Correctly rounded from the
-    double (Python's own decimal formatting), an exact tie away from zero as every shown number is. With
+    10**exponent with `digits` digits in the mantissa (zero as 0 × 10**0), by the pages' rule (a tie away
+    from zero). With
     `special`, non-finite values get the SPECIAL mantissa; a value smaller in magnitude than `floor` (the
     output's accuracy) is zero."""
     values = np.asarray(values, dtype=float)
@@ -127,31 +115,14 @@ def significant(values, digits: int, special: bool = False, floor: float = 0.0) 
     texts = " ".join([form % value for value in kept])
     both = np.fromstring(texts.replace(".", "").replace("e", " "), dtype=np.int64, sep=" ")
     both[1::2] -= digits - 1
-    for k in _exact_ties(kept, digits):  # formatting rounds a tie to even: these go away from zero
-        both[2 * k], both[2 * k + 1] = _away(kept[k], digits)
+    # Formatting rounds the double correctly, a tie to even; the pages' rule takes over at the digit it chose, and
+    # where that carries into one digit more (9.995 -> 10.00), the last digit goes one place up.
+    kept_mantissas = shown_integers(np.asarray(kept, dtype=float), -both[1::2])
+    carried = np.abs(kept_mantissas) >= 10**digits
+    both[0::2] = np.where(carried, kept_mantissas // 10, kept_mantissas)
+    both[1::2] += carried
     mantissas[shown], exponents[shown] = both[0::2], both[1::2]
     return mantissas, exponents
-
-
-def _exact_ties(values: list[float], digits: int) -> list[int]:
-    """Indices of the values whose exact decimal expansion ends in a 5 just after `digits` significant digits."""
-    longer = f"%.{digits}e"
-    found = []
-    for k, value in enumerate(values):
-        text = longer % value
-        if text.partition("e")[0][-1] == "5" and Decimal(value) == Decimal(text):
-            found.append(k)
-    return found
-
-
-def _away(value: float, digits: int) -> tuple[int, int]:
-    """(mantissa, exponent) of an exact tie rounded to `digits` significant digits away from zero."""
-    exact = Decimal(value)
-    exponent = exact.adjusted() - (digits - 1)
-    mantissa = int(exact.scaleb(-exponent).quantize(Decimal(1), rounding=ROUND_HALF_UP))
-    if abs(mantissa) == 10**digits:  # 9.995 -> 10.00: one digit more, so one place up
-        mantissa, exponent = mantissa // 10, exponent + 1
-    return mantissa, exponent
 
 
 def written(mantissa: int, exponent: int, digits: int, unit: str) -> Written:

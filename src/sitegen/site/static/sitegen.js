@@ -25,23 +25,12 @@
     return flat;
   }
 
-  /* v rounded to a count of 10^-d units as the build rounds every shown number (compute/quantize.py
-   * shown_integers): to the nearest, an exact tie away from zero. Where the product lands on a half, its
-   * exact value decides: the double plus its rounding error (Dekker's two-product). */
+  /* Rounded to a count of 10^-d units by the build's rule, in its steps (compute/quantize.py _half_away):
+   * to the nearest, a value half-way to 12 significant digits away from zero. */
   function toQuantum(v, d) {
-    var scale = 1, i;
-    for (i = 0; i < d; i++) scale *= 10; // exact up to 10^22
-    var x = v * scale;
-    if (Math.abs(x - Math.trunc(x)) !== 0.5) return Math.round(x) + 0; // + 0: no -0
-    var above = productError(v, scale, x);
-    return (above > 0 ? Math.ceil(x) : above < 0 ? Math.floor(x) : x > 0 ? Math.ceil(x) : Math.floor(x)) + 0;
-  }
-
-  /* a·b − fl(a·b) exactly, by Veltkamp's split into halves of 26 bits (as quantize.py's _product_error). */
-  function productError(a, b, product) {
-    var aBig = 134217729 * a, aHi = aBig - (aBig - a), aLo = a - aHi;
-    var bBig = 134217729 * b, bHi = bBig - (bBig - b), bLo = b - bHi;
-    return ((aHi * bHi - product) + aHi * bLo + aLo * bHi) + aLo * bLo;
+    var x = v * Math.pow(10, d), a = Math.abs(x), w = Math.floor(a);
+    w += a - w >= 0.5 - 1e-12 * Math.max(w, 1) ? 1 : 0;
+    return x < 0 && w ? -w : w;
   }
 
   /* Tables stored as differences between neighbours (within each vector), added up. */

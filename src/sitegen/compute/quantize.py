@@ -34,26 +34,26 @@ def quantize(values, decimals: int, special: bool = False) -> np.ndarray:
 # the same order (sitegen.js toQuantum), and the build's checks of displayed digits compare by this rule.
 
 TIE = 1e-12  # relative: a value this close to half a digit is half-way
-_CHUNK = 1 << 20  # values rounded at a time (tables run to millions: the temporaries stay small)
+_CHUNK = 1 << 16  # values rounded at a time (tables run to millions: the temporaries stay small)
 
 
 def shown_integers(values, power=0) -> np.ndarray:
     """values × 10**power rounded to integers by the pages' rule (int64); `power` may be an array (one each)."""
     values = np.asarray(values, dtype=float)
-    powers = np.broadcast_to(np.asarray(power, dtype=np.int64), values.shape)
     out = np.empty(values.shape, dtype=np.int64)
-    flat, flat_powers, flat_out = values.reshape(-1), powers.reshape(-1), out.reshape(-1)
+    flat, flat_out = values.reshape(-1), out.reshape(-1)
+    powers = None if np.ndim(power) == 0 else np.broadcast_to(np.asarray(power), values.shape).reshape(-1)
     for start in range(0, flat.size, _CHUNK):
         part = slice(start, start + _CHUNK)
-        flat_out[part] = _half_away(flat[part], flat_powers[part])
+        flat_out[part] = _half_away(flat[part], power if powers is None else powers[part])
     return out
 
 
-def _half_away(values: np.ndarray, powers: np.ndarray) -> np.ndarray:
+def _half_away(values: np.ndarray, powers) -> np.ndarray:
     """The rule on one block, in sitegen.js toQuantum's steps: |x| split into its whole part and the rest, which
     rounds up from half a digit less 1e-12 of the value (of one digit, below 1)."""
-    scales = 10.0 ** np.abs(powers).astype(float)  # exact up to 10**22, as the script's Math.pow(10, d)
-    scaled = np.where(powers >= 0, values * scales, values / scales)
+    scales = 10.0 ** np.abs(powers)  # exact up to 10**22, as the script's Math.pow(10, d)
+    scaled = values * scales if np.all(powers >= 0) else np.where(powers >= 0, values * scales, values / scales)
     magnitude = np.abs(scaled)
     whole = np.floor(magnitude)
     whole += magnitude - whole >= 0.5 - TIE * np.maximum(whole, 1.0)

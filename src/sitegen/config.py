@@ -11,11 +11,15 @@ the folders of its parts). Every key is optional; a folder is relative to the bo
     theme = "theme"                       # templates that replace the built-in ones, and CSS to add
     output = "build"                      # where the site is written
     goldens = "goldens"                   # the figure goldens of `sitegen check-figures`
+    date = "2026-12-01"                   # the book's date (YYYY-MM-DD): its PDF's title page and metadata
+    paper = "a4"                          # the PDF's page size: "a4" or "letter"
 """
 
 from __future__ import annotations
 
+import datetime
 import difflib
+import re
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -23,7 +27,8 @@ from pathlib import Path
 CONFIG_FILE = "book.toml"
 PLUGIN_GROUP = "sitegen.models"  # the entry-point group of installed model plugins
 DEFAULT_FOOTER = "Built by sitegen. Every figure was computed when the book was built; this page works offline."
-TEXTS = ("title", "author", "language", "base_url", "footer")
+TEXTS = ("title", "author", "language", "base_url", "footer", "date", "paper")
+PAPERS = ("a4", "letter")
 FOLDERS = ("content", "models", "theme", "output", "goldens")
 
 
@@ -41,6 +46,8 @@ class BookConfig:
     language: str = "en"
     base_url: str = ""
     footer: str = DEFAULT_FOOTER
+    date: str = ""  # "": the book has no date
+    paper: str = "a4"
     content: Path | None = None
     models: Path | None = None
     theme: Path | None = None
@@ -91,4 +98,17 @@ def _checked(data: dict, root: Path) -> dict:
         if not isinstance(value, str):
             raise ConfigError(f"{CONFIG_FILE}: '{key}' must be a string, e.g. {key} = \"...\"")
         values[key] = (root / value).resolve() if key in FOLDERS else value
+    if values.get("paper", "a4") not in PAPERS:
+        raise ConfigError(
+            f'{CONFIG_FILE}: paper \'{values["paper"]}\' is not a size sitegen knows; use "a4" or "letter"'
+        )
+    if values.get("date"):
+        try:
+            if not re.fullmatch(r"\d{4}-\d{2}-\d{2}", values["date"]):
+                raise ValueError
+            datetime.date.fromisoformat(values["date"])
+        except ValueError:
+            raise ConfigError(
+                f"{CONFIG_FILE}: date '{values['date']}' is not a date written YYYY-MM-DD, e.g. date = \"2026-12-01\""
+            ) from None
     return values

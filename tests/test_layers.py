@@ -30,6 +30,7 @@ LAYERS = (
         "sitegen.review",
         "sitegen.preview",
         "sitegen.newbook",
+        "sitegen.pdf",
     ),  # tools that use the build and the layers below it
     ("sitegen.cli", "sitegen.progress"),  # the command, and how it shows a build's progress on a terminal
 )

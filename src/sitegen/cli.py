@@ -8,6 +8,7 @@ import os
 import signal
 import sys
 import threading
+import time
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -121,6 +122,11 @@ def command_parser() -> argparse.ArgumentParser:
     bench_cmd.add_argument(
         "--quick", action="store_true", help="a few points, one run each: a smoke test, not a measurement"
     )
+    pdf_cmd = _command(commands, "pdf", "build the site, then print the whole book as one PDF (needs Chromium)")
+    pdf_cmd.add_argument(
+        "--output", type=Path, default=None, help="the PDF to write (default: book.pdf in the book's folder)"
+    )
+    pdf_cmd.add_argument("--chromium", default=None, metavar="PATH", help="the Chromium to print with")
     models_cmd = _command(commands, "models", "list the models a book can use: parameters, outputs, effects, numerics")
     models_cmd.add_argument("name", nargs="?", help="one model (default: every model)")
     models_cmd.add_argument(
@@ -192,6 +198,30 @@ def _models(args, book: BookConfig) -> int:
         return 2
     print(models_reference(registry, [args.name] if args.name else None), end="")
     return 1 if registry.problems else 0
+
+
+def _pdf(args, book: BookConfig) -> int:
+    build_args = argparse.Namespace(out=None, debug=False, explain=False, jobs=1, scheduler=None, no_cache=False)
+    built = _build(build_args, book)
+    if built != 0:
+        return built
+    from .pdf import BrokenLinks, ChromiumMissing, PrintFailed, make_pdf
+
+    out = (args.output or book.root / "book.pdf").resolve()
+    start = time.perf_counter()
+    try:
+        made = make_pdf(book, book.output, out, args.chromium)
+    except ChromiumMissing as problem:
+        print(f"sitegen: {problem}", file=sys.stderr)
+        return 2
+    except (PrintFailed, BrokenLinks) as problem:
+        print(f"sitegen: {problem}", file=sys.stderr)
+        return 3
+    print(
+        f"printed {made.pages} pages, {made.size / 1024:.0f} KiB in {time.perf_counter() - start:.1f} s "
+        f"({made.prints} prints) -> {made.path}"
+    )
+    return 0
 
 
 def _build(args, book: BookConfig) -> int:
@@ -352,6 +382,7 @@ COMMANDS = {
     "check-figures": _goldens,
     "bench": _bench,
     "models": _models,
+    "pdf": _pdf,
 }
 
 if __name__ == "__main__":

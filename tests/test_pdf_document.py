@@ -79,3 +79,13 @@ def test_the_contents_order_is_read_from_the_home_pages_panel():
         '<ol><li><a href="b.html">B</a></li></ol></li><li><a href="c.html">C</a></li></ol></nav>'
     )
     assert reading_order(index) == [(0, "index"), (0, "a"), (1, "b"), (0, "c")]
+
+
+def test_sitegen_pdf_without_its_browser_says_so_and_keeps_the_site(tiny_book, capsys, monkeypatch):
+    from sitegen.cli import main
+
+    monkeypatch.chdir(tiny_book.root)
+    assert main(["pdf", "--chromium", "/nonexistent/chromium"]) == 2
+    assert "sitegen: no Chromium at /nonexistent/chromium" in capsys.readouterr().err
+    assert (tiny_book.out / "index.html").is_file()  # built first, as `sitegen build` would
+    assert not (tiny_book.root / "book.pdf").exists()

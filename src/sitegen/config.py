@@ -11,6 +11,8 @@ the folders of its parts). Every key is optional; a folder is relative to the bo
     theme = "theme"                       # templates that replace the built-in ones, and CSS to add
     output = "build"                      # where the site is written
     goldens = "goldens"                   # the figure goldens of `sitegen check-figures`
+    bibliography = "references.bib"       # the BibTeX file that [@key] citations name
+    csl = "styles/nature.csl"             # the CSL style that formats them (default: American Physical Society)
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ PLUGIN_GROUP = "sitegen.models"  # the entry-point group of installed model plug
 DEFAULT_FOOTER = "Built by sitegen. Every figure was computed when the book was built; this page works offline."
 TEXTS = ("title", "author", "language", "base_url", "footer")
 FOLDERS = ("content", "models", "theme", "output", "goldens")
+FILES = ("bibliography", "csl")  # optional files, relative to the book's folder
 
 
 class ConfigError(ValueError):
@@ -46,6 +49,8 @@ class BookConfig:
     theme: Path | None = None
     output: Path | None = None
     goldens: Path | None = None
+    bibliography: Path | None = None  # None: the book cites nothing
+    csl: Path | None = None  # None: the American Physical Society's style
 
     def __post_init__(self):
         for name in FOLDERS:  # a folder left out is the one named like its key
@@ -81,7 +86,7 @@ def read_book(root: Path, required: bool = False) -> BookConfig:
 
 def _checked(data: dict, root: Path) -> dict:
     """The keys of book.toml as BookConfig's fields; ConfigError naming the first key that is wrong."""
-    known = TEXTS + FOLDERS
+    known = TEXTS + FOLDERS + FILES
     values = {}
     for key, value in data.items():
         if key not in known:
@@ -90,5 +95,5 @@ def _checked(data: dict, root: Path) -> dict:
             raise ConfigError(f"{CONFIG_FILE}: unknown key '{key}'{hint} Keys: {', '.join(known)}")
         if not isinstance(value, str):
             raise ConfigError(f"{CONFIG_FILE}: '{key}' must be a string, e.g. {key} = \"...\"")
-        values[key] = (root / value).resolve() if key in FOLDERS else value
+        values[key] = (root / value).resolve() if key in FOLDERS + FILES else value
     return values

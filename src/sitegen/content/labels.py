@@ -88,7 +88,7 @@ def reference_html(target: Target, page: Page) -> str:
     elif label.kind == "section":
         text = escape(target.title)
     else:
-        text = f"{NAMES[label.kind]}&#160;{label.number}"
+        text = f"{NAMES[label.kind]}\u00a0{label.number}"
     if there.slug != page.slug:
         text = f"{text} in {escape(there.title)}"
     return f'<a class="ref" href="{href}">{text}</a>'

@@ -45,7 +45,7 @@ def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> 
     caption = fill_slots(
         record.caption, page.found, book.mathml[page.slug], [], (), cited and cited.citations, book.reference(page)
     )
-    number = f'<span class="caption-label">Figure&#160;{page.found.scene_number(record.index)}</span>'
+    number = f'<span class="caption-label">Figure\u00a0{page.found.scene_number(record.index)}</span>'
     caption = f"{number} {caption}".strip()
     if record.accuracy is not None:
         caption = f"{caption} {caption_sentence(record.accuracy, linked)}".strip()

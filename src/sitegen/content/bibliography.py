@@ -50,6 +50,7 @@ _TEXT_FIELDS = {
     "pages": "page",
     "edition": "edition",
     "series": "collection-title",
+    "type": "genre",
     "note": "note",
     "doi": "DOI",
     "url": "URL",
@@ -77,10 +78,10 @@ def read_bibliography(path: Path, source: str, style: Path = DEFAULT_STYLE) -> t
     text = path.read_text(encoding="utf-8")
     library = bibtexparser.parse_string(
         text,
-        append_middleware=[
-            middlewares.LatexDecodingMiddleware(),
+        append_middleware=[  # names split first, where their braces still group words ({Lord Rayleigh})
             middlewares.SeparateCoAuthors(),
             middlewares.SplitNameParts(),
+            middlewares.LatexDecodingMiddleware(),
         ],
     )
     errors, items = [], {}
@@ -122,8 +123,10 @@ def csl_item(entry) -> tuple[dict, str | None]:
     for name in ("author", "editor"):
         if name in fields:
             item[name] = [_csl_name(person) for person in fields[name]]
+    if kind == "report" and "number" in fields:
+        item["number"] = str(fields["number"])  # a report's own number, not an issue of a journal
     for field, variable in _TEXT_FIELDS.items():
-        if field in fields and variable not in item:
+        if field in fields and variable not in item and not (kind == "report" and field == "number"):
             item[variable] = " ".join(str(fields[field]).split())
     if "year" in fields:
         year = str(fields["year"]).strip()
@@ -138,13 +141,15 @@ def csl_item(entry) -> tuple[dict, str | None]:
 
 
 def _csl_name(person) -> dict:
-    name = {"family": " ".join(person.last)}
-    if person.first:
-        name["given"] = " ".join(person.first)
-    if person.von:
-        name["non-dropping-particle"] = " ".join(person.von)
-    if person.jr:
-        name["suffix"] = " ".join(person.jr)
+    from pylatexenc.latex2text import LatexNodes2Text
+
+    def text(words: list[str]) -> str:
+        return LatexNodes2Text().latex_to_text(" ".join(words)).strip()
+
+    name = {"family": text(person.last)}
+    for part, variable in ((person.first, "given"), (person.von, "non-dropping-particle"), (person.jr, "suffix")):
+        if part:
+            name[variable] = text(part)
     return name
 
 

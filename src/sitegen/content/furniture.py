@@ -135,7 +135,7 @@ class FurnitureProcessor(Treeprocessor):
                     self._table_caption(parent, child)
                 elif child.tag == "div" and "admonition" in child.get("class", "").split():
                     _callout(child)
-                elif child.tag == "details":
+                elif child.tag == "details" and _kind(child):  # ??? TYPE, not a <details> the author wrote
                     _callout(child, title_tag="summary")
                 elif child.tag == "div" and child.get("class") == "footnote":
                     _endnotes(child)
@@ -200,9 +200,14 @@ def _prepend_label(element: etree.Element, text: str) -> None:
     element.insert(0, label)
 
 
+def _kind(element: etree.Element) -> str | None:
+    """The callout type an element's classes name, if any."""
+    classes = [_ALIASES.get(c, c) for c in element.get("class", "").split()]
+    return next((c for c in classes if c in CALLOUT_TYPES), None)
+
+
 def _callout(element: etree.Element, title_tag: str = "p") -> None:
-    classes = element.get("class", "").split()
-    kind = next((_ALIASES.get(c, c) for c in classes if _ALIASES.get(c, c) in CALLOUT_TYPES), "note")
+    kind = _kind(element) or "note"
     element.set("class", " ".join(["callout", kind] + (["admonition"] if title_tag == "p" else [])))
     if title_tag == "p":
         element.set("role", "note")

@@ -15,9 +15,9 @@ LABEL = r"[a-z0-9][a-z0-9-]*"
 _CODE_SPAN = re.compile(r"(`+)(?!`).+?(?<!`)\1(?!`)")
 _REFERENCE = re.compile(rf"\(@(?P<label>{LABEL})\)")
 _KEY = r"[A-Za-z0-9_](?:[\w:.+/-]*[A-Za-z0-9_])?"
-_BRACKETED = re.compile(r"(?<![\\!])\[(?P<body>[^\[\]^]*?@[^\[\]]*)\](?![(\[:])")
+_BRACKETED = re.compile(r"(?<![\\!])\[(?P<body>[^\[\]^]*?@[^\[\]]*)\](?![(\[])")
 _CITE_PART = re.compile(rf"^\s*(?P<prefix>[^@]*?)\s*-?@(?P<key>{_KEY})\s*(?:,\s*(?P<locator>.*?))?\s*$")
-_IN_TEXT = re.compile(rf"(?<![\w@.\\`/:=\"'])@(?P<key>{_KEY})")
+_IN_TEXT = re.compile(rf"(?<![\w@.\\`/:=\"'\[])@(?P<key>{_KEY})")
 _LINK = re.compile(
     r"(?P<bang>!?)\[(?P<text>(?:[^\[\]]|\[[^\[\]]*\])*)\]\(\s*(?P<target><[^>]*>|[^)\s]+)(?:\s+\"[^\"]*\")?\s*\)"
 )

@@ -54,7 +54,7 @@ def test_an_empty_book_toml_means_every_default(tmp_path):
         (
             'titel = "x"\n',
             "book.toml: unknown key 'titel'; did you mean 'title'? Keys: title, author, language, base_url, "
-            "footer, date, paper, content, models, theme, output, goldens",
+            "footer, date, paper, content, models, theme, output, goldens, bibliography, csl",
         ),
         ("language = 2\n", "book.toml: 'language' must be a string, e.g. language = \"...\""),
         ('title = "x\n', "book.toml: Illegal character '\\n' (at line 1, column 11)"),

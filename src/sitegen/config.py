@@ -13,6 +13,8 @@ the folders of its parts). Every key is optional; a folder is relative to the bo
     goldens = "goldens"                   # the figure goldens of `sitegen check-figures`
     date = "2026-12-01"                   # the book's date (YYYY-MM-DD): its PDF's title page and metadata
     paper = "a4"                          # the PDF's page size: "a4" or "letter"
+    bibliography = "references.bib"       # the BibTeX file that [@key] citations name
+    csl = "styles/nature.csl"             # the CSL style that formats them (default: American Physical Society)
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ DEFAULT_FOOTER = "Built by sitegen. Every figure was computed when the book was 
 TEXTS = ("title", "author", "language", "base_url", "footer", "date", "paper")
 PAPERS = ("a4", "letter")
 FOLDERS = ("content", "models", "theme", "output", "goldens")
+FILES = ("bibliography", "csl")  # optional files, relative to the book's folder
 
 
 class ConfigError(ValueError):
@@ -53,6 +56,8 @@ class BookConfig:
     theme: Path | None = None
     output: Path | None = None
     goldens: Path | None = None
+    bibliography: Path | None = None  # None: the book cites nothing
+    csl: Path | None = None  # None: the American Physical Society's style
 
     def __post_init__(self):
         for name in FOLDERS:  # a folder left out is the one named like its key
@@ -88,7 +93,7 @@ def read_book(root: Path, required: bool = False) -> BookConfig:
 
 def _checked(data: dict, root: Path) -> dict:
     """The keys of book.toml as BookConfig's fields; ConfigError naming the first key that is wrong."""
-    known = TEXTS + FOLDERS
+    known = TEXTS + FOLDERS + FILES
     values = {}
     for key, value in data.items():
         if key not in known:
@@ -97,7 +102,7 @@ def _checked(data: dict, root: Path) -> dict:
             raise ConfigError(f"{CONFIG_FILE}: unknown key '{key}'{hint} Keys: {', '.join(known)}")
         if not isinstance(value, str):
             raise ConfigError(f"{CONFIG_FILE}: '{key}' must be a string, e.g. {key} = \"...\"")
-        values[key] = (root / value).resolve() if key in FOLDERS else value
+        values[key] = (root / value).resolve() if key in FOLDERS + FILES else value
     if values.get("paper", "a4") not in PAPERS:
         raise ConfigError(
             f'{CONFIG_FILE}: paper \'{values["paper"]}\' is not a size sitegen knows; use "a4" or "letter"'

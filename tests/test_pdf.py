@@ -10,6 +10,7 @@ import html
 import re
 import subprocess
 import sys
+import unicodedata
 from pathlib import Path
 
 import pytest
@@ -30,8 +31,9 @@ _TAG = re.compile(r"<[^>]+>")
 
 
 def _squeezed(text: str) -> str:
-    """Text without white space, which PDF text extraction places differently from HTML."""
-    return re.sub(r"\s+", "", text)
+    """Text without white space, which PDF text extraction places differently from HTML, and with the
+    ligatures and mathematical letters of the fonts read as plain letters."""
+    return re.sub(r"\s+", "", unicodedata.normalize("NFKC", text))
 
 
 def _plain(fragment: str) -> str:
@@ -173,3 +175,61 @@ def find_chromium_with_no_path():
 def test_a_chromium_named_but_missing_is_an_error(given):
     with pytest.raises(ChromiumMissing, match="no Chromium at"):
         find_chromium(given)
+
+
+@pytest.fixture(scope="module")
+def furniture_pdf(tmp_path_factory, printed) -> PdfReader:
+    """The small book of every piece of a page's furniture (tests/furniture/), built and printed."""
+    import shutil
+
+    from sitegen.build import BuildConfig, build
+
+    root = tmp_path_factory.mktemp("pdf-furniture")
+    shutil.copytree(Path(__file__).parent / "furniture", root, dirs_exist_ok=True)
+    build(BuildConfig.at(root, cache=None), progress=None)
+    book = read_book(root)
+    return PdfReader(make_pdf(book, book.output, root / "book.pdf").path)
+
+
+@pytest.mark.parametrize(
+    "words",
+    [
+        "Greenwood [2] fitted with a single formula",  # a citation
+        "Its stiffness falls by about a hundredfold",  # the footnote, at the end of its chapter
+        "Why a single oscillator is not the whole story",  # a callout's title
+        "The travelling wave peaks where the local resonance",  # a collapsible callout, printed open
+        "def best_frequency(",  # fenced code
+        "an indented block",  # indented code
+        "Figure 1 Greenwood's map",  # a numbered picture's caption
+        "Table 1 Best frequencies",  # a numbered table's caption
+        "equation (1) in Hearing, as physics",  # a reference to an equation on another page
+        "D. D. Greenwood, A cochlear frequency-position function",  # the references list
+    ],
+    ids=[
+        "citation",
+        "footnote",
+        "callout",
+        "collapsed-callout",
+        "fenced",
+        "indented",
+        "figure",
+        "table",
+        "reference",
+        "bibliography",
+    ],
+)
+def test_the_furniture_of_every_page_is_printed(furniture_pdf, words):
+    text = _squeezed(" ".join(page.extract_text() for page in furniture_pdf.pages))
+    assert _squeezed(words) in text
+
+
+def test_a_picture_of_a_page_is_in_the_pdf_and_its_notes_link_both_ways(furniture_pdf):
+    assert sum(len(page.images) for page in furniture_pdf.pages) == 1
+    internal = {target for _, kind, target in links(furniture_pdf) if kind == "dest"}
+    assert {
+        "cochlea--fn:stiff",
+        "cochlea--fnref:stiff",
+        "cochlea--ref-greenwood1990",
+        "index--eq-oscillator",
+    } <= internal
+    assert broken_links(furniture_pdf) == []

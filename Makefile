@@ -11,7 +11,7 @@ export OPENBLAS_NUM_THREADS := 1
 # git and left out of the wheel) rather than compile the package's sources in every one.
 unexport PYTHONDONTWRITEBYTECODE
 
-.PHONY: site test check lint serve bench clean tools-node tools-chromium tools-check tools-test review accept-figures
+.PHONY: site test check lint pdf serve bench clean tools-node tools-chromium tools-check tools-test review accept-figures
 # One target at a time: the tool targets may each run apt, which takes a lock (the tests run in parallel by themselves).
 .NOTPARALLEL:
 
@@ -38,6 +38,10 @@ check: tools-check $(VENV)/.test-installed node_modules/.installed lint
 lint: $(VENV)/.test-installed
 	$(BIN)/ruff check --quiet src tests bench
 	$(BIN)/ruff format --check --quiet src tests bench
+
+# The whole book as one PDF (book.pdf), printed by Debian's chromium.
+pdf: $(VENV)/.site-installed tools-chromium
+	$(BIN)/sitegen pdf
 
 # Build, serve on 127.0.0.1 and rebuild on every change to the book; open pages reload by themselves.
 serve: $(VENV)/.site-installed tools-node

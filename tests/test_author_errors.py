@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import shutil
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -9,6 +11,7 @@ import pytest
 from test_bad_input import FINITE_HINT
 
 from sitegen.build import BuildConfig, build
+from sitegen.config import BookConfig
 from sitegen.errors import BuildFailed
 from sitegen.physics import Model, Output, Param
 from sitegen.registry import builtin_registry
@@ -51,8 +54,15 @@ def test_every_invalid_fixture_has_expected_messages():
 
 @pytest.mark.parametrize("name", CASES)
 def test_invalid_page_reports_exact_errors(tmp_path, name):
-    """A broken page fails the build with exactly the expected `file:line: message` lines."""
+    """A broken page fails the build with exactly the expected `file:line: message` lines (with the files of
+    its folder next to it, and its .bib as the book's bibliography, where it has them)."""
     config = make_book(tmp_path, {name: (INVALID / f"{name}.md").read_text(encoding="utf-8")})
+    if (INVALID / name).is_dir():
+        shutil.copytree(INVALID / name, config.content, dirs_exist_ok=True)
+    if (INVALID / f"{name}.bib").is_file():
+        shutil.copy(INVALID / f"{name}.bib", tmp_path / "references.bib")
+        book = BookConfig(tmp_path, content=config.content, output=config.out, bibliography=tmp_path / "references.bib")
+        config = replace(config, book=book)
     assert build_errors(config) == _expected(name)
 
 

@@ -54,10 +54,19 @@ def test_an_empty_book_toml_means_every_default(tmp_path):
         (
             'titel = "x"\n',
             "book.toml: unknown key 'titel'; did you mean 'title'? Keys: title, author, language, base_url, "
-            "footer, content, models, theme, output, goldens, page_budget_kb",
+            "footer, date, paper, content, models, theme, output, goldens, bibliography, csl, page_budget_kb",
         ),
         ("language = 2\n", "book.toml: 'language' must be a string, e.g. language = \"...\""),
         ('title = "x\n', "book.toml: Illegal character '\\n' (at line 1, column 11)"),
+        ('paper = "a5"\n', 'book.toml: paper \'a5\' is not a size sitegen knows; use "a4" or "letter"'),
+        (
+            'date = "1 December 2026"\n',
+            "book.toml: date '1 December 2026' is not a date written YYYY-MM-DD, e.g. date = \"2026-12-01\"",
+        ),
+        (
+            'date = "2026-02-30"\n',
+            "book.toml: date '2026-02-30' is not a date written YYYY-MM-DD, e.g. date = \"2026-12-01\"",
+        ),
         (
             'page_budget_kb = "400"\n',
             "book.toml: 'page_budget_kb' must be a positive number, e.g. page_budget_kb = 400",
@@ -66,7 +75,18 @@ def test_an_empty_book_toml_means_every_default(tmp_path):
         ("page_budget_kb = true\n", "book.toml: 'page_budget_kb' must be a positive number, e.g. page_budget_kb = 400"),
         ("page_budget_kb = inf\n", "book.toml: 'page_budget_kb' must be a positive number, e.g. page_budget_kb = 400"),
     ],
-    ids=["unknown-key", "not-a-string", "not-toml", "budget-a-string", "budget-zero", "budget-a-bool", "budget-inf"],
+    ids=[
+        "unknown-key",
+        "not-a-string",
+        "not-toml",
+        "unknown-paper",
+        "date-in-words",
+        "no-such-day",
+        "budget-a-string",
+        "budget-zero",
+        "budget-a-bool",
+        "budget-inf",
+    ],
 )
 def test_a_wrong_book_toml_says_what_is_wrong(tmp_path, text, message):
     """Mistakes in book.toml name the key and what would be right."""

@@ -914,6 +914,8 @@ def test_links_resolve_to_files(built_site, loaded, name, transport):
             continue
         target = urlparse(urljoin(page.url, href))
         here = urlparse(page.url)
+        if target.scheme == "https" and href.startswith("https://"):
+            continue  # a source's DOI or address in a list of references: the reader's to follow, never loaded
         assert (target.scheme, target.netloc) == (here.scheme, here.netloc), f"link leaves the site: {href!r}"
         if transport == "file":
             path = Path(unquote(target.path))

@@ -11,6 +11,8 @@ from sitegen.build import BuildConfig, build
 from sitegen.compute import cache as cache_module
 from sitegen.compute import sources
 
+HOME_PAGE = '+++\ntitle = "Mechanics, interactively"\n+++\n\nThe home page of a test book.\n'  # links nowhere
+
 ROOT = Path(__file__).resolve().parents[1]
 CHAPTER = "newtons-laws.md"
 
@@ -41,7 +43,7 @@ def _write_book(root: Path) -> BuildConfig:
     """A small book (home page and a page with two scenes) at `root`, with its own cache."""
     content = root / "content"
     content.mkdir()
-    shutil.copy(ROOT / "content" / "index.md", content / "index.md")
+    (content / "index.md").write_text(HOME_PAGE)
     (content / CHAPTER).write_text(PAGE)
     return BuildConfig(root, content, root / "build", cache=root / ".cache")
 

@@ -10,7 +10,6 @@ own test files.
 from __future__ import annotations
 
 import inspect
-import shutil
 import sys
 from pathlib import Path
 
@@ -33,6 +32,8 @@ from sitegen.models.chain import motion
 from sitegen.models.impulse import pulses
 from sitegen.physics import contact
 from sitegen.registry import builtin_registry
+
+HOME_PAGE = '+++\ntitle = "Mechanics, interactively"\n+++\n\nThe home page of a test book.\n'  # links nowhere
 
 MODELS = builtin_registry().models
 
@@ -411,7 +412,7 @@ def book(tmp_path) -> BuildConfig:
     """A small book with the two-scene page and its own cache."""
     content = tmp_path / "content"
     content.mkdir()
-    shutil.copy(ROOT / "content" / "index.md", content / "index.md")
+    (content / "index.md").write_text(HOME_PAGE)
     (content / "page.md").write_text(PAGE.format(effects=""))
     return BuildConfig(tmp_path, content, tmp_path / "build", cache=tmp_path / ".cache")
 

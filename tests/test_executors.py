@@ -25,6 +25,7 @@ from sitegen.physics import Model, Output, Param
 from sitegen.registry import builtin_registry
 
 ROOT = Path(__file__).resolve().parents[1]
+HOME_PAGE = '+++\ntitle = "Mechanics, interactively"\n+++\n\nThe home page of a test book.\n'  # links nowhere
 PAGE = """+++
 title = "Scenes"
 +++
@@ -49,7 +50,7 @@ slider e: 0..1 step 0.25 default 1
 
 def _book(tmp_path: Path, name: str, page: str = PAGE, **options) -> BuildConfig:
     """The project's home page and `page` as scenes.md, built into tmp_path/name with no cache."""
-    pages = {"index.md": (ROOT / "content" / "index.md").read_text(), "scenes.md": page}
+    pages = {"index.md": HOME_PAGE, "scenes.md": page}
     return _chapters(tmp_path, name, pages, cache=None, **options)
 
 
@@ -203,7 +204,7 @@ def test_a_table_on_two_pages_is_tabulated_ahead_once(tmp_path, bubble_kernels):
     _no_other_thread()
     bubble = BUBBLE_PAGE[BUBBLE_PAGE.index("```scene\nmodel: bubble") :]
     pages = {
-        "index.md": (ROOT / "content" / "index.md").read_text(),
+        "index.md": HOME_PAGE,
         "one.md": PAGE + bubble,
         "two.md": PAGE.replace('title = "Scenes"', 'title = "Two"') + bubble,
     }
@@ -434,7 +435,7 @@ def _chapters_of(page: str = PAGE + WORK, same: bool = False) -> dict[str, str]:
     for old, new in () if same else _OWN_RANGES:
         second = second.replace(old, new)
     return {
-        "index.md": (ROOT / "content" / "index.md").read_text(),
+        "index.md": HOME_PAGE,
         "one.md": page.replace('title = "Scenes"', 'title = "One"'),
         "two.md": second,
     }

@@ -145,6 +145,8 @@ def test_the_wheel_carries_temml_templates_and_assets(wheel):
         "sitegen/site/templates/base.html",
         "sitegen/site/static/sitegen.js",
         "sitegen/site/static/latinmodern-math.woff2",
+        "sitegen/pdf/book.html",
+        "sitegen/pdf/print.css",
         "sitegen/models/chain/__init__.py",
     ):
         assert needed in names

@@ -30,6 +30,7 @@ LAYERS = (
         "sitegen.review",
         "sitegen.preview",
         "sitegen.newbook",
+        "sitegen.pdf",
         "sitegen.testing",
     ),  # tools that use the build and the layers below it (sitegen.testing: checks a book's tests call)
     ("sitegen.cli", "sitegen.progress"),  # the command, and how it shows a build's progress on a terminal

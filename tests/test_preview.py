@@ -167,6 +167,36 @@ def test_an_edit_to_the_books_model_recomputes_its_scene_only(server, book):
     assert f'data-out="T">{_period(60):.4f} s<'.encode() in page
 
 
+def _rebuilt(server, path: Path, line: str) -> None:
+    """Wait for the rebuild after an edit of `path`, saving it again (same bytes) if the first save came
+    before the watcher was watching (it starts once the first build is served)."""
+    for _ in range(3):
+        try:
+            server.lines_until(line, timeout=20)
+            return
+        except AssertionError:
+            path.write_bytes(path.read_bytes())
+    server.lines_until(line, timeout=20)
+
+
+def test_an_edited_picture_is_rebuilt_and_served(server, book):
+    """A picture next to the pages is part of the book: editing it rebuilds, and the server sends its new bytes."""
+    picture = book / "content" / "images" / "pendulum.svg"
+    _edit(picture, 'fill="#1f63b5"', 'fill="#146c2e"')
+    _rebuilt(server, picture, "built content/images/pendulum.svg")
+    status, served = _get(server, "/images/pendulum.svg")
+    assert status == 200 and served == picture.read_bytes()
+
+
+def test_an_edited_bibliography_is_rebuilt(server, book):
+    """The BibTeX file book.toml names (beside it, in the book's folder) is watched too."""
+    bibliography = book / "references.bib"
+    _edit(bibliography, "title     = {Mechanics}", "title     = {Mechanics, Course of Theoretical Physics 1}")
+    _rebuilt(server, bibliography, "built references.bib")
+    status, page = _get(server, "/pendulum.html")
+    assert status == 200 and b"Mechanics, Course of Theoretical Physics 1" in page
+
+
 def test_the_event_stream_sends_the_state_at_once(server):
     """A page that connects learns the last good build's number and that there are no errors."""
     host, port = server.origin.removeprefix("http://").split(":")

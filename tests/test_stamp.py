@@ -48,6 +48,11 @@ def test_any_change_to_an_input_or_the_output_builds_again(stamped, capsys):
         "a file in the models folder": lambda: (
             (root / "models").mkdir() or (root / "models" / "notes.txt").write_text("x")
         ),
+        "a file next to the pages": lambda: (root / "content" / "notes.txt").write_text("x"),
+        "the bibliography": lambda: (
+            (root / "book.toml").write_text('bibliography = "refs.bib"\n') or (root / "refs.bib").write_text("% none\n")
+        ),
+        "the bibliography edited": lambda: (root / "refs.bib").write_text("% still none\n"),
         "output edited": lambda: (out / "index.html").write_text("edited by hand"),
         "output removed": lambda: (out / "index.html").unlink(),
         "output added": lambda: (out / "stray.html").write_text("a file the build did not write"),

@@ -16,6 +16,7 @@ from .compute.sources import forget_sources
 from .phases.ahead import work_ahead
 from .phases.beside import hand_over_pages, take_pages
 from .phases.collect import collect_garbage, collecting_per_page
+from .phases.link import link_book
 from .phases.pages import assemble_scenes, write_assets, write_page
 from .phases.read import convert_math, figure_name, read_pages, resolve_scenes
 from .phases.read import needed_outputs as _needed_outputs
@@ -30,6 +31,7 @@ __all__ = ["BuildConfig", "BuildReport", "build", "needed_outputs", "resolve_boo
 
 BOOK_PHASES = (
     ("read", read_pages),
+    ("link", link_book),
     ("resolve", resolve_scenes),
     ("math", convert_math),
     ("compile", compile_kernels),

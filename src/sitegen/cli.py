@@ -8,6 +8,7 @@ import os
 import signal
 import sys
 import threading
+import time
 import traceback
 from contextlib import contextmanager
 from pathlib import Path
@@ -65,17 +66,10 @@ def command_parser() -> argparse.ArgumentParser:
         commands, "build", "build the site into the book's output folder (book.toml 'output', default build/)"
     )
     build_cmd.add_argument("--out", type=Path, default=None, help="output folder (default: the book's)")
-    build_cmd.add_argument("--debug", action="store_true", help="show Python tracebacks")
     build_cmd.add_argument(
         "--explain", action="store_true", help="say for each scene why it was computed or that it was cached"
     )
-    build_cmd.add_argument("--jobs", type=int, default=1, help="tabulate in N local processes (default 1: serial)")
-    build_cmd.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT", help="tabulate on a Dask cluster")
-    build_cmd.add_argument(
-        "--no-cache",
-        action="store_true",
-        help="compute every scene; neither read nor write tables in .cache/ (compiled code is still kept in .cache/compiled/)",
-    )
+    _build_options(build_cmd)
     serve_cmd = _command(commands, "serve", "serve the built site on 127.0.0.1")
     serve_cmd.add_argument("--dir", type=Path, default=None, help="folder to serve (default: the book's output folder)")
     serve_cmd.add_argument("--port", type=int, default=8000, help="port (default 8000; 0: any free port)")
@@ -122,12 +116,31 @@ def command_parser() -> argparse.ArgumentParser:
     bench_cmd.add_argument(
         "--quick", action="store_true", help="a few points, one run each: a smoke test, not a measurement"
     )
+    pdf_cmd = _command(commands, "pdf", "build the site, then print the whole book as one PDF (needs Chromium)")
+    pdf_cmd.add_argument(
+        "--output", type=Path, default=None, help="the PDF to write (default: book.pdf in the book's folder)"
+    )
+    pdf_cmd.add_argument("--chromium", default=None, metavar="PATH", help="the Chromium to print with")
+    _build_options(pdf_cmd)
+    pdf_cmd.set_defaults(out=None, explain=False)  # the site goes where `sitegen build` puts it
     models_cmd = _command(commands, "models", "list the models a book can use: parameters, outputs, effects, numerics")
     models_cmd.add_argument("name", nargs="?", help="one model (default: every model)")
     models_cmd.add_argument(
         "--builtin", action="store_true", help="only sitegen's built-in models (as in docs/models.md)"
     )
     return parser
+
+
+def _build_options(command) -> None:
+    """The options of a command that builds the site: where its work runs, the cache, tracebacks."""
+    command.add_argument("--debug", action="store_true", help="show Python tracebacks")
+    command.add_argument("--jobs", type=int, default=1, help="tabulate in N local processes (default 1: serial)")
+    command.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT", help="tabulate on a Dask cluster")
+    command.add_argument(
+        "--no-cache",
+        action="store_true",
+        help="compute every scene; neither read nor write tables in .cache/ (compiled code is still kept in .cache/compiled/)",
+    )
 
 
 def _needs_book(args) -> bool:
@@ -193,6 +206,29 @@ def _models(args, book: BookConfig) -> int:
         return 2
     print(models_reference(registry, [args.name] if args.name else None), end="")
     return 1 if registry.problems else 0
+
+
+def _pdf(args, book: BookConfig) -> int:
+    built = _build(args, book)
+    if built != 0:
+        return built
+    from .pdf import BrokenLinks, ChromiumMissing, PrintFailed, make_pdf
+
+    out = (args.output or book.root / "book.pdf").resolve()
+    start = time.perf_counter()
+    try:
+        made = make_pdf(book, book.output, out, args.chromium)
+    except ChromiumMissing as problem:
+        print(f"sitegen: {problem}", file=sys.stderr)
+        return 2
+    except (PrintFailed, BrokenLinks) as problem:
+        print(f"sitegen: {problem}", file=sys.stderr)
+        return 3
+    print(
+        f"printed {made.pages} pages, {made.size / 1024:.0f} KiB in {time.perf_counter() - start:.1f} s "
+        f"({made.prints} prints) -> {made.path}"
+    )
+    return 0
 
 
 def _build(args, book: BookConfig) -> int:
@@ -355,6 +391,7 @@ COMMANDS = {
     "check-figures": _goldens,
     "bench": _bench,
     "models": _models,
+    "pdf": _pdf,
 }
 
 if __name__ == "__main__":

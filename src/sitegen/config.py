@@ -11,12 +11,18 @@ the folders of its parts). Every key is optional; a folder is relative to the bo
     theme = "theme"                       # templates that replace the built-in ones, and CSS to add
     output = "build"                      # where the site is written
     goldens = "goldens"                   # the figure goldens of `sitegen check-figures`
+    date = "2026-12-01"                   # the book's date (YYYY-MM-DD): its PDF's title page and metadata
+    paper = "a4"                          # the PDF's page size: "a4" or "letter"
+    bibliography = "references.bib"       # the BibTeX file that [@key] citations name
+    csl = "styles/nature.csl"             # the CSL style that formats them (default: American Physical Society)
     page_budget_kb = 400                  # a page above this (gzip, with its assets) is a warning
 """
 
 from __future__ import annotations
 
+import datetime
 import difflib
+import re
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,8 +30,10 @@ from pathlib import Path
 CONFIG_FILE = "book.toml"
 PLUGIN_GROUP = "sitegen.models"  # the entry-point group of installed model plugins
 DEFAULT_FOOTER = "Built by sitegen. Every figure was computed when the book was built; this page works offline."
-TEXTS = ("title", "author", "language", "base_url", "footer")
+TEXTS = ("title", "author", "language", "base_url", "footer", "date", "paper")
+PAPERS = ("a4", "letter")
 FOLDERS = ("content", "models", "theme", "output", "goldens")
+FILES = ("bibliography", "csl")  # optional files, relative to the book's folder
 NUMBERS = ("page_budget_kb",)
 PAGE_BUDGET_KB = 400  # what a page may weigh as a phone downloads it: gzip, with the script, stylesheet and math font
 
@@ -44,11 +52,15 @@ class BookConfig:
     language: str = "en"
     base_url: str = ""
     footer: str = DEFAULT_FOOTER
+    date: str = ""  # "": the book has no date
+    paper: str = "a4"
     content: Path | None = None
     models: Path | None = None
     theme: Path | None = None
     output: Path | None = None
     goldens: Path | None = None
+    bibliography: Path | None = None  # None: the book cites nothing
+    csl: Path | None = None  # None: the American Physical Society's style
     page_budget_kb: float = PAGE_BUDGET_KB
 
     def __post_init__(self):
@@ -85,7 +97,7 @@ def read_book(root: Path, required: bool = False) -> BookConfig:
 
 def _checked(data: dict, root: Path) -> dict:
     """The keys of book.toml as BookConfig's fields; ConfigError naming the first key that is wrong."""
-    known = TEXTS + FOLDERS + NUMBERS
+    known = TEXTS + FOLDERS + FILES + NUMBERS
     values = {}
     for key, value in data.items():
         if key not in known:
@@ -99,5 +111,18 @@ def _checked(data: dict, root: Path) -> dict:
             continue
         if not isinstance(value, str):
             raise ConfigError(f"{CONFIG_FILE}: '{key}' must be a string, e.g. {key} = \"...\"")
-        values[key] = (root / value).resolve() if key in FOLDERS else value
+        values[key] = (root / value).resolve() if key in FOLDERS + FILES else value
+    if values.get("paper", "a4") not in PAPERS:
+        raise ConfigError(
+            f'{CONFIG_FILE}: paper \'{values["paper"]}\' is not a size sitegen knows; use "a4" or "letter"'
+        )
+    if values.get("date"):
+        try:
+            if not re.fullmatch(r"\d{4}-\d{2}-\d{2}", values["date"]):
+                raise ValueError
+            datetime.date.fromisoformat(values["date"])
+        except ValueError:
+            raise ConfigError(
+                f"{CONFIG_FILE}: date '{values['date']}' is not a date written YYYY-MM-DD, e.g. date = \"2026-12-01\""
+            ) from None
     return values

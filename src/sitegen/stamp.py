@@ -4,7 +4,8 @@ new build would write, byte for byte, so `sitegen build` says so and stops befor
 matplotlib or any model (a rebuild with nothing changed costs a fraction of a second, whatever the
 size of the book).
 
-What a build reads: the book's config, pages, models and theme; sitegen's own files; the source of
+What a build reads: the book's config, pages (with every file next to them), bibliography, citation
+style, models and theme; sitegen's own files; the source of
 every plugin declared by an entry point; the Python version and every installed package's version
 (numpy's, scipy's, matplotlib's, numba's and the plugins'); the compile target. Anything else a
 build could depend on is not an input: the clock, the load and the machine's speed never change
@@ -47,6 +48,9 @@ def inputs_digest(book: BookConfig) -> str | None:
     ]:
         _add_files(sha, label, folder)
     _add_files(sha, "config", book.root / CONFIG_FILE)
+    for label, path in (("bibliography", book.bibliography), ("csl", book.csl)):
+        if path is not None:  # wherever book.toml puts them, inside the content folder or not
+            _add_files(sha, label, path)
     return sha.hexdigest()
 
 

@@ -10,24 +10,30 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from html import escape
 
 import markdown
 from markdown.extensions import Extension
 from markdown.preprocessors import Preprocessor
 
 from ..errors import AuthorError, SourceLoc
+from . import furniture, prose
+from .furniture import Figure
+from .prose import Citation, Link
 from .reports import ReportBlock, parse_report_block
 from .scenes import SceneSpec, parse_scene_block
 
 _SCENE_FENCE = re.compile(r"^```\s*scene\s*$")
 _REPORT_FENCE = re.compile(r"^```\s*accuracy-report\s*$")
 _CODE_FENCE = re.compile(r"^(```|~~~)")
+_FENCE_RUN = re.compile(r"^(`{3,}|~{3,})")
 _INLINE_MATH = re.compile(r"(?<![\\$\w])\$(?=[^\s$])(?P<tex>[^$\n]*?[^\s\\$])\$(?![\w$])")
-_SLOT = re.compile(r'<(div|span) data-(math|scene|report)-slot="(\d+)(?:-(\d+))?"></\1>')
+_SLOT = re.compile(r'<(div|span) data-(math|scene|report|cite)-slot="(\d+)(?:-(\d+))?"></\1>')
 _LIST_BREAK = re.compile(r"\\(qquad|begin|end)\b|[{}]")
 _DISPLAY_END = re.compile(r"^(?P<tex>.*)\$\$\s*(?:\{#(?P<label>eq-[a-z0-9-]+)\})?\s*$")
-_EQ_REF = re.compile(r"\(@(?P<label>eq-[a-z0-9-]+)\)")
-_EQ_REF_SLOT = re.compile(r'<a data-eqref="(eq-[a-z0-9-]+)"></a>')
+_REF_SLOT = re.compile(r'<a data-ref="([a-z0-9-]+)"></a>')
+_HEADING_LABEL = re.compile(r"^#{1,6}\s.*\{#(?P<label>sec-[^}\s]*)[^}]*\}\s*$")
+_LABEL_NAME = re.compile(r"^(eq|fig|tbl|sec)-[a-z0-9]+(?:-[a-z0-9]+)*$")
 
 
 @dataclass(frozen=True)
@@ -40,9 +46,22 @@ class MathItem:
     label: str | None = None  # "eq-name" for a numbered display equation
 
 
+@dataclass(frozen=True)
+class Label:
+    """A place on a page that `(@name)` refers to: an equation, a figure (an image or a scene), a table or a
+    section, its number on the page (None for a section: it is referred to by its title) and its element's id."""
+
+    name: str
+    kind: str  # "equation", "figure", "table" or "section"
+    number: int | None
+    loc: SourceLoc
+    anchor: str
+
+
 @dataclass
 class Extracted:
-    """What the preprocessor lifted out of one page: formulas, scenes and the errors it met."""
+    """What the preprocessor lifted out of one page: formulas, scenes, labels, citations, links and the
+    errors it met."""
 
     maths: list[MathItem] = field(default_factory=list)
     scenes: list[SceneSpec] = field(default_factory=list)
@@ -50,6 +69,24 @@ class Extracted:
     errors: list[AuthorError] = field(default_factory=list)
     numbers: dict[str, int] = field(default_factory=dict)  # equation label -> its number on the page
     references: list[tuple[str, SourceLoc]] = field(default_factory=list)
+    labels: list[Label] = field(default_factory=list)  # in page order
+    figures: list[Figure] = field(default_factory=list)  # pictures on lines of their own
+    citations: list[Citation] = field(default_factory=list)
+    links: list[Link] = field(default_factory=list)
+    captions: list[str] = field(default_factory=list)  # each scene's caption as HTML (math still as slots)
+    prose: list[tuple[SourceLoc, str]] = field(default_factory=list)  # the lines outside code and blocks
+    figure_count: int = 0
+    table_count: int = 0
+
+    def next_figure(self) -> int:
+        """The number of the page's next figure (images and scenes count alike)."""
+        self.figure_count += 1
+        return self.figure_count
+
+    def scene_number(self, index: int) -> int:
+        """The figure number of the page's scene at `index`."""
+        anchor = f"scene-{self.scenes[index].id}"
+        return next(label.number for label in self.labels if label.anchor == anchor and label.kind == "figure")
 
 
 class _SlotPreprocessor(Preprocessor):
@@ -58,7 +95,6 @@ class _SlotPreprocessor(Preprocessor):
         self.path, self.first_line, self.found = path, first_line, found
 
     def run(self, lines: list[str]) -> list[str]:
-        first_reference = len(self.found.references)
         out: list[str] = []
         i = 0
         while i < len(lines):
@@ -68,23 +104,83 @@ class _SlotPreprocessor(Preprocessor):
                 i = self._scene(lines, i, loc, out)
             elif _REPORT_FENCE.match(line):
                 i = self._report(lines, i, loc, out)
-            elif _CODE_FENCE.match(line):
-                i = self._copy_code(lines, i, out)
+            elif _CODE_FENCE.match(line.lstrip()):
+                i = self._copy_code(lines, i, loc, out)
             elif line.lstrip().startswith("$$"):
                 i = self._display_math(lines, i, loc, out)
             else:
-                line = _INLINE_MATH.sub(lambda m: self._inline_math(m, loc), line)
-                out.append(_EQ_REF.sub(lambda m: self._reference(m, loc), line))
+                self._furniture(lines, i, loc, out)
                 i += 1
-        for label, where in self.found.references[first_reference:]:
-            if label not in self.found.numbers:
-                known = ", ".join(self.found.numbers) or "none"
-                self.found.errors.append(
-                    AuthorError(
-                        where, f"reference (@{label}) names no equation on this page; labelled equations: {known}"
-                    )
-                )
         return out
+
+    def _furniture(self, lines, i, loc, out) -> None:
+        """One line of prose: a figure or a table's caption on its own, or text with math, references,
+        citations and links."""
+        line, found = lines[i], self.found
+        found.prose.append((loc, line))
+        problem = furniture.callout_problem(line, loc)
+        if problem:
+            found.errors.append(problem)
+        alone = (i == 0 or not lines[i - 1].strip()) and (i + 1 == len(lines) or not lines[i + 1].strip())
+        figure = furniture.figure_line(line, loc, found.figure_count + 1, found) if alone else None
+        caption = furniture.table_caption(line, lines[i - 1] if i else "")
+        heading = _HEADING_LABEL.match(line)
+        if figure is not None:
+            self._figure(figure, line, loc, out)
+        elif caption is not None:
+            self._table_caption(*caption, loc, out)
+        else:
+            if heading:
+                self._label(heading["label"], "section", None, loc)
+            out.append(self._prose(line, loc))
+
+    def _prose(self, text: str, loc: SourceLoc) -> str:
+        """Prose with its math, references and citations as placeholders, its links recorded."""
+        text = _INLINE_MATH.sub(lambda m: self._inline_math(m, loc), text)
+
+        def rest(stretch: str) -> str:
+            problem = prose.unconverted_dollar(stretch, loc)
+            if problem:
+                self.found.errors.append(problem)
+            prose.record_links(stretch, loc, self.found)
+            return prose.citation_slots(prose.reference_slots(stretch, loc, self.found), loc, self.found)
+
+        return prose.outside_code(text, rest)
+
+    def _figure(self, figure: Figure, line: str, loc: SourceLoc, out: list[str]) -> None:
+        found = self.found
+        if figure.label:
+            found.next_figure()
+            self._label(figure.label, "figure", figure.number, loc)
+        found.links.append(Link(figure.src, loc, True, figure.alt))
+        found.figures.append(figure)
+        if not figure.caption:  # a picture without a caption (its alt text given in braces)
+            src, alt = escape(figure.src), escape(figure.alt)
+            out.extend(["", f'<figure class="figure"><img src="{src}" alt="{alt}"></figure>', ""])
+            return
+        out.extend(["", self._prose(figure.caption, loc), f'{{: data-figure="{len(found.figures) - 1}"}}', ""])
+
+    def _table_caption(self, caption: str, label: str | None, loc: SourceLoc, out: list[str]) -> None:
+        number = ""
+        if label:
+            self.found.table_count += 1
+            number = str(self.found.table_count)
+            self._label(label, "table", self.found.table_count, loc)
+        attrs = f'data-table-caption="{number}"' + (f' data-table-label="{label}"' if label else "")
+        out.extend(["", self._prose(caption, loc), f"{{: {attrs}}}", ""])
+
+    def _label(self, name: str, kind: str, number: int | None, loc: SourceLoc, anchor: str | None = None) -> None:
+        prefix = {"equation": "eq", "figure": "fig", "table": "tbl", "section": "sec"}[kind]
+        if anchor is None and not _LABEL_NAME.match(name):
+            self.found.errors.append(
+                AuthorError(
+                    loc,
+                    f"label '{name}' is not a {kind} label: write {{#{prefix}-name}}, lower-case letters, "
+                    "digits and '-'",
+                )
+            )
+            return
+        self.found.labels.append(Label(name, kind, number, loc, anchor or name))
 
     def _scene(self, lines, i, loc, out) -> int:
         end = self._block_end(lines, i, loc, "scene")
@@ -94,6 +190,10 @@ class _SlotPreprocessor(Preprocessor):
         self.found.errors.extend(errors)
         if spec is not None:
             self.found.scenes.append(spec)
+            self._label(spec.id, "figure", self.found.next_figure(), loc, anchor=f"scene-{spec.id}")
+            # the caption now, so that its citations and references come in the page's order
+            line = spec.loc_of("caption").line
+            self.found.captions.append(markdown_to_html(spec.caption, self.path, line, self.found, inline=True))
             slot = f'<div data-scene-slot="{len(self.found.scenes) - 1}"></div>'
             out.extend(["", slot, ""])
         return end + 1
@@ -136,9 +236,15 @@ class _SlotPreprocessor(Preprocessor):
         """Where reading goes on after an unclosed block: at the next fence, or at the end of the page."""
         return next((j for j in range(i + 1, len(lines)) if _CODE_FENCE.match(lines[j].lstrip())), len(lines))
 
-    def _copy_code(self, lines, i, out) -> int:
-        fence = lines[i][:3]
-        end = next((j for j in range(i + 1, len(lines)) if lines[j].startswith(fence)), len(lines) - 1)
+    def _copy_code(self, lines, i, loc, out) -> int:
+        """A fenced code block as it is (its text is code, not prose); the fence closes at a line of the same
+        character at least as long, as CommonMark has it."""
+        fence = _FENCE_RUN.match(lines[i].lstrip())[1]
+        closing = re.compile(rf"^\s*{re.escape(fence[0])}{{{len(fence)},}}\s*$")
+        end = next((j for j in range(i + 1, len(lines)) if closing.match(lines[j])), None)
+        if end is None:
+            self.found.errors.append(AuthorError(loc, f"code block is not closed; end it with a line '{fence}'"))
+            end = len(lines) - 1
         out.extend(lines[i : end + 1])
         return end + 1
 
@@ -156,9 +262,11 @@ class _SlotPreprocessor(Preprocessor):
         label = closing["label"]
         pieces = split_display(tex.strip())
         if label:
-            if label in self.found.numbers:
-                self.found.errors.append(AuthorError(loc, f"equation label '{label}' is used twice on this page"))
-            self.found.numbers.setdefault(label, len(self.found.numbers) + 1)
+            if label not in self.found.numbers:  # a label used twice is reported by the book-wide check
+                self.found.numbers[label] = len(self.found.numbers) + 1
+                self._label(label, "equation", self.found.numbers[label], loc)
+            else:
+                self.found.labels.append(Label(label, "equation", self.found.numbers[label], loc, label))
             if len(pieces) == 1:  # a list's number is set after its last item by fill_slots
                 pieces[0] = f"{pieces[0]} \\tag{{{self.found.numbers[label]}}}"
         first = len(self.found.maths)
@@ -187,10 +295,6 @@ class _SlotPreprocessor(Preprocessor):
                 return None
         self.found.errors.append(AuthorError(loc, "display math '$$' is not closed; end it with '$$'"))
         return None
-
-    def _reference(self, match: re.Match, loc: SourceLoc) -> str:
-        self.found.references.append((match["label"], loc))
-        return f'<a data-eqref="{match["label"]}"></a>'
 
     def _inline_math(self, match: re.Match, loc: SourceLoc) -> str:
         self.found.maths.append(MathItem(match["tex"], False, loc))
@@ -227,10 +331,19 @@ class SlotExtension(Extension):
 
 
 def markdown_to_html(text: str, path: str, first_line: int, found: Extracted, inline: bool = False) -> str:
-    """Convert one page's Markdown (or one inline snippet) to HTML with math and scene slots."""
+    """Convert one page's Markdown (or one inline snippet) to HTML with slots for math, scenes, citations and
+    references."""
     md = markdown.Markdown(
-        extensions=["toc", "attr_list", "md_in_html", "tables", SlotExtension(path, first_line, found)],
-        extension_configs={"toc": {"permalink": False}},
+        extensions=[
+            "toc",
+            "attr_list",
+            "md_in_html",
+            "tables",
+            *furniture.MARKDOWN_EXTENSIONS,
+            furniture.FurnitureExtension(found),
+            SlotExtension(path, first_line, found),
+        ],
+        extension_configs={"toc": {"permalink": False}, **furniture.MARKDOWN_CONFIGS},
     )
     html = md.convert(text)
     if inline and html.startswith("<p>") and html.endswith("</p>") and html.count("<p>") == 1:
@@ -238,8 +351,9 @@ def markdown_to_html(text: str, path: str, first_line: int, found: Extracted, in
     return html
 
 
-def fill_slots(html: str, found: Extracted, mathml, scenes, reports=()) -> str:
-    """Replace every placeholder with its MathML, scene HTML, report part or equation number."""
+def fill_slots(html: str, found: Extracted, mathml, scenes, reports=(), citations=(), reference=None) -> str:
+    """Replace every placeholder with its MathML, scene HTML, report part, citation or reference
+    (`reference(label)`: the link to a label, with its number)."""
 
     def substitute(match: re.Match) -> str:
         tag, kind, index = match[1], match[2], int(match[3])
@@ -247,6 +361,8 @@ def fill_slots(html: str, found: Extracted, mathml, scenes, reports=()) -> str:
             return scenes[index]
         if kind == "report":
             return reports[index]
+        if kind == "cite":
+            return citations[index]
         if tag == "span":
             return mathml[index]
         label = found.maths[index].label
@@ -260,4 +376,4 @@ def fill_slots(html: str, found: Extracted, mathml, scenes, reports=()) -> str:
         return f'<div class="equation list"{anchor}>{items}{number}</div>'
 
     html = _SLOT.sub(substitute, html)
-    return _EQ_REF_SLOT.sub(lambda m: f'<a class="eqref" href="#{m[1]}">({found.numbers[m[1]]})</a>', html)
+    return _REF_SLOT.sub(lambda m: reference(m[1]), html) if reference else html

@@ -41,7 +41,12 @@ def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> 
     # The figure's layers go into the payload: a change to the view's layers is a new payload.
     key = digest(scene_digest(record), source_digest(PAYLOAD_CODE), repr(figure.layers))
     payload = run.remember("payloads", key, lambda: scene_payload(scene, tables, figure.layers).encode())
-    caption = fill_slots(record.caption, page.found, book.mathml[page.slug], [])
+    cited = book.citations.get(page.slug)
+    caption = fill_slots(
+        record.caption, page.found, book.mathml[page.slug], [], (), cited and cited.citations, book.reference(page)
+    )
+    number = f'<span class="caption-label">Figure\u00a0{page.found.scene_number(record.index)}</span>'
+    caption = f"{number} {caption}".strip()
     if record.accuracy is not None:
         caption = f"{caption} {caption_sentence(record.accuracy, linked)}".strip()
     html = scene_html(scene, tables, figure, caption, payload.decode(), run.config.book)
@@ -62,7 +67,11 @@ def write_page(book: Book, run: BuildRun) -> Book:
     page, records = book.page, book.current()
     context = _report_context(book, run) if page.found.reports else None
     reports = [report_part(block.part, context) for block in page.found.reports]
-    body = fill_slots(page.html, page.found, book.mathml[page.slug], [r.html for r in records], reports)
+    cited = book.citations.get(page.slug)
+    scenes = [r.html for r in records]
+    body = fill_slots(
+        page.html, page.found, book.mathml[page.slug], scenes, reports, cited and cited.citations, book.reference(page)
+    )
     html = page_html(page, body, list(book.pages), run.config.book.title or book.title, run.config.book)
     run.tree.write(page.output_name, html.encode())
     run.math_characters |= assets.math_characters(html)
@@ -92,8 +101,10 @@ def _remember_drawn(run: BuildRun):
 
 def write_assets(book: Book, run: BuildRun) -> Book:
     """The script, the stylesheet (with the theme's CSS), the math font (cut down to the characters the
-    pages use) and the search index of every page with its code."""
+    pages use), the search index of every page with its code, and the files the pages name, as they are."""
     if not run.failed:
+        for name in book.files:
+            run.tree.write(name, (run.config.content / name).read_bytes())
         run.tree.write("assets/sitegen.js", assets.script())
         run.tree.write(search.SEARCH_SCRIPT, search.search_script(run.searchable, list(book.pages)))
         run.tree.write("assets/sitegen.css", assets.stylesheet(assets.theme_css(run.config.book.theme)))

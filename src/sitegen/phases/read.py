@@ -6,7 +6,6 @@ from dataclasses import replace
 
 from ..compute.cache import scene_key
 from ..compute.scenes import resolve_scene
-from ..content.markdown_ext import markdown_to_html
 from ..content.math import convert_math as tex_to_mathml
 from ..content.pages import discover_pages, read_page
 from ..content.reports import unknown_part_error
@@ -96,7 +95,7 @@ def resolve_record(record: SceneRecord, run: BuildRun) -> SceneRecord | None:
     if layers is None or errors:
         return None
     outputs = shown_outputs(scene, layers)
-    caption = markdown_to_html(spec.caption, page.source, spec.loc_of("caption").line, page.found, inline=True)
+    caption = page.found.captions[record.index]
     return replace(record, caption=caption, outputs=tuple(outputs), key=scene_key(scene, outputs))
 
 

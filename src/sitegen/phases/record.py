@@ -13,6 +13,8 @@ from ..compute.accuracy import SceneAccuracy
 from ..compute.cache import CacheKey
 from ..compute.scenes import ResolvedScene
 from ..compute.table import Table
+from ..content.bibliography import PageCitations
+from ..content.labels import Target, reference_html
 from ..content.pages import Page
 from ..content.scenes import SceneSpec
 from ..render.figures.base import FigureView
@@ -59,11 +61,15 @@ class SceneRecord:
 
 @dataclass(frozen=True)
 class Book:
-    """The pages, a record per resolved scene (page and scene order), and the MathML of each page."""
+    """The pages, a record per resolved scene (page and scene order), the MathML of each page, the book's
+    labels, each citing page's citations and the files the pages name."""
 
     pages: tuple[Page, ...] = ()
     scenes: tuple[SceneRecord, ...] = ()
     mathml: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    labels: Mapping[str, Target] = field(default_factory=dict)  # link: every label, by name
+    citations: Mapping[str, PageCitations] = field(default_factory=dict)  # link: by page slug
+    files: tuple[str, ...] = ()  # link: the files under content/ the pages name, copied into the site
     page: Page | None = None  # the page the scene phases are working on (None: every page)
 
     def current(self) -> tuple[SceneRecord, ...]:
@@ -92,6 +98,10 @@ class Book:
     def pages_with(self, models: Collection[str]) -> set[str]:
         """The slugs of the pages with a scene of one of `models` (by name)."""
         return {r.page.slug for r in self.scenes if r.scene.model.name in models}
+
+    def reference(self, page: Page):
+        """How a reference on `page` is written: label -> the link to it, with its number."""
+        return lambda name: reference_html(self.labels[name], page)
 
     @property
     def has_reports(self) -> bool:

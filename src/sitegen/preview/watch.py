@@ -1,5 +1,6 @@
-"""`sitegen serve --watch`: build the book, serve it, and rebuild it whenever its pages, book.toml,
-theme or models change, telling the open pages (server.Live) after every attempt.
+"""`sitegen serve --watch`: build the book, serve it, and rebuild it whenever its pages (or the files next
+to them: pictures, the bibliography), book.toml, theme or models change, telling the open pages
+(server.Live) after every attempt.
 
 Changes come from the system's file events through watchfiles (no polling loop). The rebuild runs in
 this process with what is already loaded: the registry of models is kept unless a model or book.toml
@@ -56,6 +57,8 @@ def serve_watching(book: BookConfig, out: Path, server: ThreadingHTTPServer, liv
     change until Ctrl-C; the exit status."""
     stop, serving = threading.Event(), threading.Thread(target=server.serve_forever, name="preview-server", daemon=True)
     try:
+        watcher = BookWatcher(book, stop)
+        watcher.start()  # before the first build, so that no edit made once it is served goes unseen
         builder = Builder(book, out, live, say)
         builder.rebuild(set())
         serving.start()
@@ -64,7 +67,7 @@ def serve_watching(book: BookConfig, out: Path, server: ThreadingHTTPServer, liv
             f"serving {builder.out} at http://{host}:{port}/index.html, rebuilding on changes (Ctrl-C stops)",
             flush=True,
         )
-        for changed in BookWatcher(builder.book, stop).batches():
+        for changed in watcher.batches():
             builder.rebuild(changed)
     except KeyboardInterrupt:
         pass
@@ -156,23 +159,35 @@ def attempt(config: BuildConfig, registry: Registry, progress) -> tuple[object |
 
 class BookWatcher:
     """Batches of the book's changed files: its content, theme and models folders (each watched with
-    all it holds, where it exists) and, in the book's own folder, book.toml and those folders coming
-    or going. The book's folder itself is not watched deeply: it holds the output, .cache and more."""
+    all it holds, where it exists) and, in the book's own folder, book.toml, the bibliography and
+    citation style it names, and those folders coming or going. The book's folder itself is not watched deeply: it holds the output, .cache and more."""
 
     def __init__(self, book: BookConfig, stop: threading.Event):
         self.book, self.stop = book, stop
         self.changes: queue.Queue[set[Path]] = queue.Queue()
         self.regroup = threading.Event()  # a watched folder appeared or went: watch the folders anew
+        self.started = False
 
-    def batches(self) -> Iterator[set[Path]]:
-        """Each batch of changes, as they come (until `stop` is set)."""
-        top = {CONFIG_FILE} | {f.name for f in self._folders(existing=False) if f.parent == self.book.root}
+    def start(self) -> None:
+        """Start watching (the changes are queued until `batches` reads them)."""
+        top = self._top()
         self._start(
             lambda: self._watch(
                 [self.book.root], recursive=False, keep=lambda _, path: Path(path).name in top, stop=self.stop
             )
         )
         self._start(self._watch_folders)
+
+    def _top(self) -> set[str]:
+        """The names watched in the book's own folder."""
+        top = {CONFIG_FILE} | {f.name for f in self._folders(existing=False) if f.parent == self.book.root}
+        return top | {f.name for f in (self.book.bibliography, self.book.csl) if f and f.parent == self.book.root}
+
+    def batches(self) -> Iterator[set[Path]]:
+        """Each batch of changes, as they come (until `stop` is set); watching starts here unless `start` came first."""
+        if not self.started:
+            self.start()
+        top = self._top()
         while not self.stop.is_set():
             try:
                 batch = self.changes.get(timeout=0.5)
@@ -209,8 +224,8 @@ class BookWatcher:
         ):
             self.changes.put({Path(path) for _, path in found})
 
-    @staticmethod
-    def _start(target) -> None:
+    def _start(self, target) -> None:
+        self.started = True
         threading.Thread(target=target, name="preview-watcher", daemon=True).start()
 
 

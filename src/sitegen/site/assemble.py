@@ -32,6 +32,8 @@ def templates(theme: Path | None = None) -> jinja2.Environment:
     )
 
 
+# The ids the page template gives its own elements (a link may name them too).
+TEMPLATE_IDS = ("main-content", "book-contents", "search-box", "search-status", "search-results")
 SEARCH_SCRIPT = "assets/search.js"  # the search index and its code, loaded when the search box is first used
 _BIG_SVG, _BIG_DATA, _BIG_BODY = (f"\x00sitegen-{name}\x00" for name in ("svg", "data", "body"))
 

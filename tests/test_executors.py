@@ -3,12 +3,16 @@ from each, the same errors, and no process left behind."""
 
 from __future__ import annotations
 
+import json
 import math
 import os
+import shutil
 import signal
 import subprocess
 import sys
 import time
+from contextlib import contextmanager
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -298,3 +302,86 @@ def test_sigterm_stops_a_build_and_its_workers(tmp_path, bubble_kernels):
     assert _all_ended(workers), f"processes {workers} outlived the build"
     assert not [p.name for p in root.iterdir() if p.name.startswith(".build")]
     assert (root / "build" / "index.html").read_text() == "the last complete build"
+
+
+PENDULUM_PAGE = """+++
+title = "The pendulum"
++++
+
+A scene of the book's own model.
+
+```scene
+model: pendulum
+slider theta0: 5..175 step 10 default 65
+slider L: 0.5..2 step 0.5 default 1
+fix g: 9.81
+readouts: T T0 ratio
+```
+"""
+
+
+def _book_with_its_own_model(root: Path) -> BuildConfig:
+    """The tiny book with a page of the starter book's model, in models/ (no cache: everything computed)."""
+    from conftest import copy_book
+
+    from sitegen.newbook import STARTER
+
+    copy_book(root)
+    shutil.copytree(STARTER / "models", root / "models", ignore=shutil.ignore_patterns("__pycache__"))
+    (root / "content" / "pendulum.md").write_text(PENDULUM_PAGE)
+    return BuildConfig.at(root, cache=None)
+
+
+@contextmanager
+def _cluster(folder: Path):
+    """A real Dask cluster on 127.0.0.1: `dask scheduler` and two `dask worker` processes, started in a folder of
+    their own (no book there), one thread each; its scheduler's address."""
+    dask = str(Path(sys.executable).with_name("dask"))
+    folder.mkdir()
+    address_file = folder / "scheduler.json"
+    common = ["--no-dashboard"]
+    started = [
+        subprocess.Popen(
+            [dask, "scheduler", "--host", "127.0.0.1", "--port", "0", "--scheduler-file", str(address_file), *common],
+            cwd=folder,
+            stderr=subprocess.DEVNULL,
+        )
+    ]
+    try:
+        deadline = time.monotonic() + 120
+        while not address_file.exists() and time.monotonic() < deadline:
+            time.sleep(0.2)
+        address = json.loads(address_file.read_text())["address"]
+        for n in range(2):
+            (folder / f"worker-{n}").mkdir()
+            started.append(
+                subprocess.Popen(
+                    [dask, "worker", address, "--nthreads", "1", "--host", "127.0.0.1", *common],
+                    cwd=folder / f"worker-{n}",
+                    stderr=subprocess.DEVNULL,
+                )
+            )
+        from distributed import Client
+
+        with Client(address) as client:
+            client.wait_for_workers(2, timeout=120)
+        yield address
+    finally:
+        for process in reversed(started):
+            process.terminate()
+        for process in started:
+            process.wait(timeout=60)
+
+
+@pytest.mark.slow
+def test_a_cluster_without_the_book_builds_its_own_models_to_the_local_bytes(tmp_path, bubble_kernels):
+    """A real cluster (a scheduler and two workers, processes of their own) whose workers do not have the book
+    builds the tiny book with a model of its own (models/) to the bytes of a build in this process."""
+    pytest.importorskip("distributed", reason="the Dask extra is part of the test install")
+    config = _book_with_its_own_model(tmp_path / "book")
+    build(config, progress=None)
+    with _cluster(tmp_path / "cluster") as address:
+        report = build(replace(config, out=tmp_path / "dask", scheduler=address), progress=None)
+    assert report.computed == report.scenes
+    assert any("pendulum#" in line for line in report.scene_lines)
+    assert _tree(tmp_path / "dask") == _tree(config.out)

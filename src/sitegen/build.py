@@ -21,7 +21,7 @@ from .phases.read import needed_outputs as _needed_outputs
 from .phases.record import Book
 from .phases.run import BuildConfig, BuildReport, BuildRun
 from .phases.scenes import check_scenes, compile_first_stops, render_figures, send_work, tabulate_scenes
-from .registry import Registry, builtin_registry, load_registry
+from .registry import BookModels, Registry, builtin_registry, load_registry
 from .site.weight import page_weights, weight_lines, weight_warnings
 from .site.writer import staged_tree
 
@@ -51,7 +51,8 @@ def build(config: BuildConfig, progress=print, registry: Registry | None = None)
     `registry`: the models and figures to use (default: the book's, found by `load_registry`)."""
     forget_sources()  # a long-lived process (tests, a watcher) must see edited model code
     registry = registry or load_registry(config.book)
-    with executor_for(config.jobs, config.scheduler) as executor, collecting_per_page():
+    setup = BookModels.of(config.book)  # the book's own models, for workers to import
+    with executor_for(config.jobs, config.scheduler, setup) as executor, collecting_per_page():
         run = BuildRun(config, progress, registry, executor)
         book = Book()
         for name, phase in BOOK_PHASES:

@@ -60,32 +60,53 @@ def worker_count(jobs: int | str) -> int:
     return int(jobs)
 
 
-def _pin_blas_threads() -> None:
-    # Small linear algebra is ~10x faster single-threaded, and workers must not oversubscribe cores.
+def start_worker(setup=None) -> None:
+    """What a worker process does before its first call: BLAS on one thread (small linear algebra is ~10x
+    faster so, and workers must not oversubscribe cores), then `setup()` if given."""
     os.environ["OPENBLAS_NUM_THREADS"] = "1"
     os.environ["OMP_NUM_THREADS"] = "1"
+    if setup is not None:
+        setup()
 
 
 @contextmanager
-def executor_for(jobs: int | str = 1, scheduler: str | None = None) -> Iterator[Executor]:
-    """This process, a pool of `jobs` local processes, or a Dask cluster's executor; shut down after."""
+def executor_for(jobs: int | str = 1, scheduler: str | None = None, setup=None) -> Iterator[Executor]:
+    """This process, a pool of `jobs` local processes, or a Dask cluster's executor; shut down after.
+
+    `setup`: a picklable call that every worker makes before its work (the book's models made importable)."""
     if scheduler:
-        yield from _dask_executor(scheduler)
+        yield from _dask_executor(scheduler, setup)
     elif worker_count(jobs) > 1:
         # New interpreters ("spawn"): they start with nothing of this process (its threads, locks and heap),
         # import what the work needs, and load the compiled kernels from their cache.
         context = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(worker_count(jobs), mp_context=context, initializer=_pin_blas_threads) as pool:
+        pool = ProcessPoolExecutor(worker_count(jobs), mp_context=context, initializer=start_worker, initargs=(setup,))
+        try:
             yield pool
+        finally:  # a build that stops early does not wait for the work it no longer wants
+            pool.shutdown(wait=True, cancel_futures=True)
     else:
         yield InProcess()
 
 
-def _dask_executor(scheduler: str) -> Iterator[Executor]:
+def _dask_executor(scheduler: str, setup) -> Iterator[Executor]:
     try:
         from distributed import Client
+        from distributed.diagnostics.plugin import WorkerPlugin
     except ImportError:
         raise RuntimeError("--scheduler needs Dask: pip install -e '.[dask]'") from None
+
+    class StartWorker(WorkerPlugin):
+        """`start_worker(setup)` on every worker of the cluster, those that join later too."""
+
+        def setup(self, worker) -> None:
+            start_worker(setup)
+
     with Client(scheduler) as client:
-        client.run(_pin_blas_threads)
-        yield client.get_executor()
+        # Named by what it sets up: a build with other models registers anew, the same ones do not.
+        client.register_plugin(StartWorker(), name=f"sitegen-start-worker-{getattr(setup, 'digest', '')}")
+        executor = client.get_executor()
+        try:
+            yield executor
+        finally:
+            executor.shutdown(wait=False)  # the client's end cancels what is left

@@ -251,12 +251,13 @@
         }).join("");
         return;
       }
-      var vertices = self.vertices(layer, stops), dots = layer.kind === "dots";
-      var text = vertices.map(function (p) {
-        var xy = short(p[0]) + "," + short(p[1]);
-        return dots ? "M" + xy + "h0" : xy;
-      }).join(" ");
-      for (var j = 0; j < elements.length; j++) elements[j].setAttribute(dots ? "d" : "points", text);
+      var pairs = self.vertices(layer, stops).map(function (p) { return short(p[0]) + "," + short(p[1]); });
+      var points = layer.kind === "dots" ? null : pairs.join(" ");
+      for (var j = 0; j < elements.length; j++) {
+        if (points !== null) { elements[j].setAttribute("points", points); continue; }
+        var step = "h" + elements[j].getAttribute("data-dot"); // a dot: a stroke too short to see (render/svg.py)
+        elements[j].setAttribute("d", pairs.map(function (xy) { return "M" + xy + step; }).join(" "));
+      }
     });
   };
 
@@ -341,6 +342,18 @@
     }, { once: true });
   }
 
+  /* Paper shows what a closed <details> holds (a derivation): opened for printing, closed again after. */
+  function openDetailsToPrint() {
+    var opened = [];
+    window.addEventListener("beforeprint", function () {
+      var closed = document.querySelectorAll("details:not([open])");
+      for (var i = 0; i < closed.length; i++) { closed[i].open = true; opened.push(closed[i]); }
+    });
+    window.addEventListener("afterprint", function () {
+      opened.splice(0).forEach(function (details) { details.open = false; });
+    });
+  }
+
   function start() {
     markScrollers();
     window.addEventListener("resize", markScrollers);
@@ -354,6 +367,7 @@
     openLink(scenes);
     window.addEventListener("hashchange", function () { openLink(scenes); });
     searchOnDemand();
+    openDetailsToPrint();
     var contents = document.getElementById("book-contents"); // the phone's panel closes on a link
     if (contents) contents.addEventListener("click", function (e) { if (e.target.closest("a") && contents.matches(":popover-open")) contents.hidePopover(); });
   }

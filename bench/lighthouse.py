@@ -32,6 +32,7 @@ CHROMIUM = "/usr/bin/chromium"
 CHROME_FLAGS = "--headless=new --no-sandbox --disable-gpu --disable-background-networking --disable-extensions"
 CATEGORIES = ("performance", "accessibility", "best-practices", "seo")
 METRICS = {"fcp": "first-contentful-paint", "lcp": "largest-contentful-paint", "tbt": "total-blocking-time"}
+ATTEMPTS = 3
 COMPRESSED = (".html", ".css", ".js", ".json", ".svg", ".txt")
 
 
@@ -79,8 +80,12 @@ def lighthouse(url: str, preset: str, out: Path) -> dict:
     ]
     if preset == "desktop":
         command.append("--preset=desktop")
-    subprocess.run(command, check=True, env={**os.environ, "CHROME_PATH": CHROMIUM})
-    return json.loads(out.read_text())
+    for attempt in range(ATTEMPTS):  # on a loaded machine a run may time out: tried again
+        run = subprocess.run(command, env={**os.environ, "CHROME_PATH": CHROMIUM}, capture_output=True, text=True)
+        if run.returncode == 0:
+            return json.loads(out.read_text())
+        print(f"lighthouse {preset} {url} failed (attempt {attempt + 1}): {run.stderr.strip()[-500:]}", file=sys.stderr)
+    raise SystemExit(f"lighthouse failed {ATTEMPTS} times on {url} ({preset})")
 
 
 def summary(report: dict) -> dict:
@@ -118,6 +123,7 @@ def measure(site: Path, runs: int = 1) -> dict:
     server = serve(site)
     base = f"http://127.0.0.1:{server.server_address[1]}/"
     result = {"lighthouse": subprocess.run([str(LIGHTHOUSE), "--version"], capture_output=True, text=True).stdout}
+    result["load_average"] = os.getloadavg()[0]  # scores fall on a busy machine: the load they were taken at
     result["pages"] = {}
     try:
         with tempfile.TemporaryDirectory() as tmp:
@@ -138,7 +144,8 @@ def measure(site: Path, runs: int = 1) -> dict:
 def table(result: dict) -> str:
     """The report as lines of text: one per page and preset, then the main thread's time and failing audits."""
     lines = [
-        f"Lighthouse {result['lighthouse']}, served gzip-compressed on 127.0.0.1",
+        f"Lighthouse {result['lighthouse']}, served gzip-compressed on 127.0.0.1 "
+        f"(load average {result['load_average']:.1f} on {os.cpu_count()} cores at the start)",
         f"{'page':<28} {'preset':<8} {'perf':>4} {'FCP s':>6} {'LCP s':>6} {'TBT ms':>7} "
         f"{'a11y':>4} {'BP':>4} {'SEO':>4} {'html KB':>8} {'gzip KB':>8} {'all KB':>8} {'gzip KB':>8}",
     ]

@@ -32,6 +32,8 @@ from browser import ROOT, front, load, new_page
 
 from sitegen.content.pages import discover_pages
 
+pytestmark = pytest.mark.browser  # the whole module is about pages in Chromium
+
 PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
 SCHEMES = ("light", "dark")
 WIDTHS = {"desktop": 1280, "phone": 360}

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import write_book
 
 from sitegen.accuracy.experiments import (
     CHAIN_T,
@@ -239,11 +240,8 @@ def test_numbers_are_written_as_the_captions_write_them(value, text):
 def test_quick_bench_writes_strict_json_with_the_expected_keys(tmp_path):
     """`sitegen bench --quick` on a one-scene book writes strict, sorted JSON with every section."""
     root = tmp_path / "book"
-    (root / "content").mkdir(parents=True)
-    (root / "book.toml").write_text("")
-    (root / "content" / "index.md").write_text(
-        '+++\ntitle = "Try"\n+++\n\n```scene\nmodel: impulse\nid: pulse\nslider m: 1..4 step 1 default 2\n```\n'
-    )
+    page = '+++\ntitle = "Try"\n+++\n\n```scene\nmodel: impulse\nid: pulse\nslider m: 1..4 step 1 default 2\n```\n'
+    write_book(root, {"index": page})
     out = tmp_path / "bench.json"
     assert main(["bench", "--quick", "--root", str(root), "--out", str(out)]) == 0
     text = out.read_text()
@@ -285,11 +283,9 @@ def test_committed_bench_results_cover_every_experiment():
 
 def _book_with(tmp_path: Path, block: str) -> BuildConfig:
     """A home page and an accuracy page holding one report block (no bench.json, no scenes)."""
-    content = tmp_path / "content"
-    content.mkdir(exist_ok=True)
-    (content / "index.md").write_text('+++\ntitle = "Book"\n+++\n\nHome.\n')
-    (content / "accuracy.md").write_text(f'+++\ntitle = "Accuracy"\n+++\n\nText.\n\n```accuracy-report\n{block}\n```\n')
-    return BuildConfig(tmp_path, content, tmp_path / "build", cache=None)
+    return write_book(
+        tmp_path, {"accuracy": f'+++\ntitle = "Accuracy"\n+++\n\nText.\n\n```accuracy-report\n{block}\n```\n'}
+    )
 
 
 def test_unknown_report_part_is_an_author_error_at_its_line(tmp_path):

@@ -8,12 +8,10 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+from helpers import resolved_scene
 
 from sitegen.compute.quantize import SPECIAL, fmt, quantize
-from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
-from sitegen.content.scenes import parse_scene_block
-from sitegen.errors import SourceLoc
 from sitegen.models.acoustic_energy.model import (
     INVALID,
     RHO,
@@ -25,11 +23,8 @@ from sitegen.models.acoustic_energy.model import (
     incident_energy_density,
     standing_factor,
 )
-from sitegen.registry import builtin_registry
 from sitegen.site.assemble import readout_text
 from sitegen.site.payload import scene_payload
-
-MODELS = builtin_registry().models
 
 EPS = np.finfo(float).eps
 ALL = ("reflection", "absorption", "spherical_spreading")
@@ -137,10 +132,7 @@ def _energy_scene(extra: str = ""):
         "readouts: I_avg L_I ek_share",
         extra,
     ]
-    spec, errors = parse_scene_block(lines, SourceLoc("try.md", 1))
-    assert not errors
-    scene, errors = resolve_scene(spec, MODELS)
-    assert not errors
+    scene = resolved_scene(lines)
     return scene, tabulate_scene(scene, [o.name for o in scene.readouts])
 
 

@@ -19,6 +19,8 @@ from sitegen.models.bubble.scipy_path import SOLVERS
 from sitegen.models.bubble.solve import choose_method, integrate, method_for, solve
 from sitegen.models.bubble.terms import EPSILON, make_rhs, rayleigh_radius, rayleigh_tau
 
+pytestmark = pytest.mark.slow  # every test solves the bubble ODE over many stops or with every solver
+
 A_STOPS = list(
     itertools.product((100, 200, 500, 1000, 2000, 5000, 10000), (0.25, 0.5, 1, 2, 5, 10), (0, 1e-4, 1e-3, 1e-2, 1e-1))
 )

@@ -436,6 +436,7 @@ VANISHING = [
 
 
 @pytest.mark.parametrize("preset, base, effects, tiny, removed", VANISHING)
+@pytest.mark.slow
 def test_effect_vanishing_limit_reproduces_the_reduced_model(preset, base, effects, tiny, removed):
     """With the effect's parameter → 0 the run matches the run without the effect to 1e-6 rel (samples and extrema)."""
     point = _point(preset, **base, **tiny)

@@ -15,12 +15,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import resolved_scene, write_book
 
 from sitegen.build import BuildConfig, build, needed_outputs
 from sitegen.compute.cache import scene_key
-from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import plan_scene, tabulate_scene
-from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
 from sitegen.models.bubble import kernel_terms as kernel_terms
 from sitegen.models.bubble import model as bubble
@@ -33,20 +32,14 @@ from sitegen.models.impulse import pulses
 from sitegen.physics import contact
 from sitegen.registry import builtin_registry
 
-HOME_PAGE = '+++\ntitle = "Mechanics, interactively"\n+++\n\nThe home page of a test book.\n'  # links nowhere
-
 MODELS = builtin_registry().models
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def _scene(block: str):
-    """A resolved scene from the lines of a scene block (no errors allowed)."""
-    spec, errors = parse_scene_block(block.strip().splitlines(), SourceLoc("content/effects.md", 1))
-    assert not errors
-    scene, errors = resolve_scene(spec, MODELS)
-    assert not errors, [str(e) for e in errors]
-    return scene
+    """A resolved scene from the lines of a scene block (no errors allowed), at content/effects.md."""
+    return resolved_scene(block.strip(), where=SourceLoc("content/effects.md", 1))
 
 
 class Counter:
@@ -410,11 +403,7 @@ def test_toggling_an_effect_changes_the_key_of_that_scene_only():
 @pytest.fixture
 def book(tmp_path) -> BuildConfig:
     """A small book with the two-scene page and its own cache."""
-    content = tmp_path / "content"
-    content.mkdir()
-    (content / "index.md").write_text(HOME_PAGE)
-    (content / "page.md").write_text(PAGE.format(effects=""))
-    return BuildConfig(tmp_path, content, tmp_path / "build", cache=tmp_path / ".cache")
+    return write_book(tmp_path, {"page": PAGE.format(effects="")}, cache=True)
 
 
 def test_enabling_an_effect_recomputes_only_that_scene(book):

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import tree
 
 from sitegen.build import BuildConfig, build
 from sitegen.compute.executors import Background, BackgroundFailed, Beside
@@ -54,19 +55,16 @@ def _book(tmp_path: Path, name: str, page: str = PAGE, **options) -> BuildConfig
     return _chapters(tmp_path, name, pages, cache=None, **options)
 
 
-def _tree(folder: Path) -> dict[str, bytes]:
-    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
-
-
 def test_process_pool_gives_the_serial_bytes(tmp_path):
     """`--jobs 2` (two local processes) builds the same tree, byte for byte, as a serial build."""
     serial = _book(tmp_path, "serial")
     pooled = _book(tmp_path, "pooled", jobs=2)
     build(serial, progress=None)
     build(pooled, progress=None)
-    assert _tree(serial.out) == _tree(pooled.out)
+    assert tree(serial.out) == tree(pooled.out)
 
 
+@pytest.mark.slow
 def test_dask_cluster_gives_the_serial_bytes(tmp_path):
     """The same build on a Dask LocalCluster on 127.0.0.1, through its executor, gives the same bytes."""
     distributed = pytest.importorskip("distributed", reason="the Dask extra is part of the test install")
@@ -77,7 +75,7 @@ def test_dask_cluster_gives_the_serial_bytes(tmp_path):
     ) as cluster:
         report = build(_book(tmp_path, "dask", scheduler=cluster.scheduler_address), progress=None)
     assert report.computed == report.scenes == 2
-    assert _tree(serial.out) == _tree(tmp_path / "dask")
+    assert tree(serial.out) == tree(tmp_path / "dask")
 
 
 def _every_output_per_stop(monkeypatch) -> None:
@@ -93,7 +91,7 @@ def test_chunked_scene_gives_the_same_tables(tmp_path, monkeypatch):
     monkeypatch.setattr(Collision, "chunk_stops", 1000)
     report = build(_book(tmp_path, "chunked", jobs=2), progress=None)
     assert report.evaluations > 10  # the collision's 60,500 stops went out in many blocks
-    assert _tree(serial.out) == _tree(tmp_path / "chunked")
+    assert tree(serial.out) == tree(tmp_path / "chunked")
 
 
 def test_plan_splits_only_heavy_models(tmp_path, monkeypatch):
@@ -192,7 +190,7 @@ def test_scenes_tabulated_ahead_beside_the_build_give_the_same_bytes(tmp_path, m
     here: list[str] = []
     build(_book(tmp_path, "here", page=BUBBLE_PAGE), progress=here.append)
     assert not any(line.startswith("ahead     bubble") for line in here)
-    assert _tree(tmp_path / "ahead") == _tree(tmp_path / "here")
+    assert tree(tmp_path / "ahead") == tree(tmp_path / "here")
 
 
 def test_a_table_on_two_pages_is_tabulated_ahead_once(tmp_path, bubble_kernels):
@@ -456,7 +454,7 @@ def chapters_here(tmp_path_factory) -> tuple[dict[str, bytes], dict, list[str]]:
     """The two chapters built with nothing forked: the tree, the report and the log."""
     config = _chapters(tmp_path_factory.mktemp("chapters"), "here", _chapters_of())
     report, lines = _built_here(config)
-    return _tree(config.out), _steady_report(report), lines
+    return tree(config.out), _steady_report(report), lines
 
 
 def test_pages_built_beside_the_build_give_the_same_bytes_and_log(tmp_path, chapters_here):
@@ -471,11 +469,11 @@ def test_pages_built_beside_the_build_give_the_same_bytes_and_log(tmp_path, chap
     assert "beside    1 page (two): built in a process beside the build" in lines
     assert any(line.startswith("beside    1 page built beside the build in ") for line in lines)
     assert multiprocessing.active_children() == []
-    tree, facts, here = chapters_here
+    files, facts, here = chapters_here
     assert _steady(lines) == _steady(here) and len(_steady(here)) == 8  # a line per scene, and the work's checks
     assert all(line.endswith("computed: new") for line in _steady(lines) if line.startswith("["))  # with a cache
     assert _steady_report(report) == facts
-    assert _tree(tmp_path / "beside") == tree
+    assert tree(tmp_path / "beside") == files
 
 
 def test_a_table_two_pages_compute_is_not_computed_on_both_sides(tmp_path):
@@ -489,6 +487,7 @@ def test_a_table_two_pages_compute_is_not_computed_on_both_sides(tmp_path):
     assert statuses == ["computed: new"] * 3 + ["cached"] * 3
 
 
+@pytest.mark.slow
 def test_a_table_on_both_sides_is_not_split_even_when_cached(tmp_path):
     """Nor when that table is cached: its entry may be damaged, and a build without the fork then computes it
     once (saying so) and takes it from the cache on the later page; two processes would each compute it, and
@@ -542,6 +541,7 @@ def test_an_author_error_in_a_page_built_beside_is_reported_from_here(tmp_path, 
     assert multiprocessing.active_children() == []
 
 
+@pytest.mark.slow
 def test_after_an_author_error_here_the_pages_beside_are_built_here(tmp_path, register):
     """Once a page of the build's own has an author error, a build no longer draws or writes, which the process
     beside did not know: its pages are built here, and the errors and the scene lines' numbers are those of a
@@ -571,6 +571,7 @@ def _ends_at_once(*args):
     os._exit(3)
 
 
+@pytest.mark.slow
 def test_a_process_beside_that_dies_leaves_its_pages_to_the_build(tmp_path, monkeypatch, chapters_here):
     """If the process beside ends without answering, the build builds the pages it was given: the same bytes,
     report and scene lines."""
@@ -581,8 +582,8 @@ def test_a_process_beside_that_dies_leaves_its_pages_to_the_build(tmp_path, monk
     lines: list[str] = []
     report = build(_chapters(tmp_path, "died", _chapters_of()), progress=lines.append)
     assert "beside    the pages were not built beside the build: building them here" in lines
-    tree, facts, here = chapters_here
-    assert _tree(tmp_path / "died") == tree and _steady_report(report) == facts and _steady(lines) == _steady(here)
+    files, facts, here = chapters_here
+    assert tree(tmp_path / "died") == files and _steady_report(report) == facts and _steady(lines) == _steady(here)
 
 
 _ORPHANED = """import os, sys, time
@@ -733,6 +734,7 @@ _COMPILING_BOOK = {
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+@pytest.mark.slow
 def test_sigterm_stops_a_build_as_ctrl_c_does(tmp_path):
     """SIGTERM (a service manager, `kill`) on a build while its kernels compile beside it: the build stops as after
     Ctrl-C, with exit status 143, no staging folder left, the compiling processes ended and build/ untouched."""

@@ -8,21 +8,16 @@ import math
 
 import numpy as np
 import pytest
+from helpers import resolved_scene
 
 from sitegen.build import needed_outputs
 from sitegen.compute.quantize import quantize
-from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
-from sitegen.content.scenes import parse_scene_block
-from sitegen.errors import SourceLoc
 from sitegen.models.bubble.model import Bubble
 from sitegen.models.bubble.point import compose
 from sitegen.models.bubble.solve import integrate
 from sitegen.models.kinetic.model import Kinetic
 from sitegen.models.kinetic.walls import QUANTILE, RANDOM, molecules
-from sitegen.registry import builtin_registry
-
-MODELS = builtin_registry().models
 
 # --- K4 resonance foldover (physics.md §12, §14 "Branches and non-events") ----------------------------------
 #
@@ -48,6 +43,7 @@ def _steady_r_max(f_khz: float, rtol: float) -> float:
     return max([r for _, r in run.maxima] + [1.0])
 
 
+@pytest.mark.slow
 def test_resonance_response_jumps_between_adjacent_frequencies_so_interpolation_fails():
     """The hazard: across 362.3, 364.9, 367.5 kHz (one 129-point log-f step apart) R_max/R0 = 1.1564, 1.2489,
     1.2711: a jump of 0.092 (> 0.05), and the middle one interpolated from its neighbours misses by 0.035,
@@ -73,13 +69,7 @@ readouts: driven_R_max
 
 
 def _scene():
-    spec, errors = parse_scene_block(
-        FOLD_SCENE.format(effects=" ".join(FOLD_EFFECTS)).splitlines(), SourceLoc("test.md", 1)
-    )
-    assert not errors, errors
-    scene, errors = resolve_scene(spec, MODELS)
-    assert not errors, errors
-    return scene
+    return resolved_scene(FOLD_SCENE.format(effects=" ".join(FOLD_EFFECTS)))
 
 
 def test_resonance_readout_is_tabulated_at_every_stop_never_interpolated():

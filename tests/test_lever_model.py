@@ -8,14 +8,12 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+from helpers import resolved_scene
 from scipy.integrate import quad, solve_ivp
 
 from sitegen.build import needed_outputs
 from sitegen.compute.quantize import SPECIAL, fmt, quantize
-from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
-from sitegen.content.scenes import parse_scene_block
-from sitegen.errors import SourceLoc
 from sitegen.models.lever.mechanics import BALANCED, LENGTH, TIPS_LEFT, TIPS_RIGHT, tipping_integral
 from sitegen.models.lever.model import BLOCK_SIDE_PER_CUBE_ROOT_KG, DRAWN_SLOPE, Lever
 from sitegen.registry import builtin_registry
@@ -24,7 +22,6 @@ from sitegen.site.assemble import readout_text
 from sitegen.site.payload import scene_payload
 from sitegen.site.sizes import gzip_bytes
 
-MODELS = builtin_registry().models
 FIGURES = builtin_registry().figures
 
 EPS = np.finfo(float).eps
@@ -83,18 +80,10 @@ def full_grid():
     return a, b, k, _evaluate(wanted, **_floats(a, b, k))
 
 
-def _resolve(block: str):
-    spec, errors = parse_scene_block(block.splitlines(), SourceLoc("test.md", 1))
-    assert not errors, errors
-    scene, errors = resolve_scene(spec, MODELS)
-    assert not errors, errors
-    return scene
-
-
 @pytest.fixture(scope="module")
 def built_scene():
     """The recommended scene resolved, tabulated and serialised as the page ships it."""
-    scene = _resolve(SCENE)
+    scene = resolved_scene(SCENE)
     tables = tabulate_scene(scene, needed_outputs(scene))
     layers = FIGURES["lever"].layers(scene)
     return scene, tables, layers, scene_payload(scene, tables, tuple(layers))
@@ -328,7 +317,7 @@ def test_scene_layers_read_declared_outputs_and_level_bar_at_defaults(built_scen
 
 def test_bar_mass_scene_layers_follow_the_bar_inclusive_balance():
     """With bar_mass enabled the figure's tilt and balance marker read the outputs that include the bar."""
-    scene = _resolve(BAR_SCENE)
+    scene = resolved_scene(BAR_SCENE)
     reads = set().union(*(layer.outputs() for layer in FIGURES["lever"].layers(scene)))
     assert {"x_star_bar", "y_left_bar", "y_right_bar", "left_block_top0_bar"} <= reads
     assert not reads & {"x_star", "y_left", "y_right", "left_block_top0"}

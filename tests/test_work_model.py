@@ -8,12 +8,10 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+from helpers import resolved_scene
 
 from sitegen.compute.quantize import fmt
-from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
-from sitegen.content.scenes import parse_scene_block
-from sitegen.errors import SourceLoc
 from sitegen.models.work.model import CONSERVATIVE, PATH_DEPENDENT, QUADRATIC, Work
 from sitegen.models.work.paths import (
     ARC,
@@ -30,7 +28,6 @@ from sitegen.models.work.shapes import ARROW_MAX, DRAG_SPACING, GRID_X, GRID_Y, 
 from sitegen.registry import builtin_registry
 from sitegen.site.assemble import readout_text
 
-MODELS = builtin_registry().models
 FIGURES = builtin_registry().figures
 
 EPS = np.finfo(float).eps
@@ -529,10 +526,7 @@ def _scene():
         "slider s: 0.5..1.5 step 0.5 default 1",
         "readouts: W dU W_drag verdict",
     ]
-    spec, errors = parse_scene_block(lines, SourceLoc("try.md", 1))
-    assert not errors
-    scene, errors = resolve_scene(spec, MODELS)
-    assert not errors
+    scene = resolved_scene(lines)
     figure = FIGURES["work"]
     names = sorted({o.name for o in scene.readouts} | {n for layer in figure.layers(scene) for n in layer.outputs()})
     return scene, tabulate_scene(scene, names)

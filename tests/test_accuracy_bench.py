@@ -57,7 +57,7 @@ def test_verlet_error_falls_fourfold_per_halving_of_the_step(n):
 
 
 def test_verlet_steps_hit_the_courant_number():
-    """N = 64 (a = 1/65), ν = 0.5 over T = 2: 260 steps, as in physics.md §11.1."""
+    """N = 64 (a = 1/65), ν = 0.5 over T = 2: 260 steps, as in docs/physics/chain.md."""
     assert verlet_steps(64, 0.5) == 260 and math.isclose(CHAIN_T, 2.0)
 
 
@@ -117,7 +117,7 @@ def test_driven_readout_errors_measure_known_perturbations():
 
 
 def test_driven_bubble_extrema_are_the_reference_readouts():
-    """Case B (one period): R_max/R0 = 6.8115 and R_min/R0 = 0.17624 at t/T = 0.51661 (physics.md K4 preset B)."""
+    """Case B (one period): R_max/R0 = 6.8115 and R_min/R0 = 0.17624 at t/T = 0.51661 (docs/physics/bubble.md preset B)."""
     r_max, r_min, t_min = extrema(solve_case("B", "DOP853", 1e-10), 2 * math.pi / bubble_problem("B").omega)
     assert f"{r_max:.4f}" == "6.8115" and f"{r_min:.5f}" == "0.17624" and f"{t_min:.5f}" == "0.51661"
 
@@ -181,7 +181,7 @@ def test_two_node_line_in_e_misses_the_parabola_by_its_sagitta():
     ids=["v1f-linear-17", "v1f-log-65", "dv-linear-65", "dv-log-65", "MA-linear-65"],
 )
 def test_plain_axes_reproduce_the_measured_table(line, axis, nodes, expected):
-    """The errors of physics.md §12 for linear and log axes (to the two digits it quotes)."""
+    """The errors of docs/physics/README.md for linear and log axes (to the two digits it quotes)."""
     error, _ = interpolation_error(LINES[line], axis, nodes)
     assert error == pytest.approx(expected, rel=0.05)
 

@@ -72,7 +72,7 @@ def _sample_points(seed: int, n: int = 64):
     ids=["P", "wavelength", "e_avg-uJ", "I_avg-mW", "L_I", "transport", "ek_share"],
 )
 def test_defaults_display_the_spec_readouts(output, expected):
-    """At the defaults (94 dB, 1 kHz, R_r = 0, ωt = 0) the page shows physics.md's values."""
+    """At the defaults (94 dB, 1 kHz, R_r = 0, ωt = 0) the page shows docs/physics/acoustic_energy.md's values."""
     value = float(_evaluate([output], **AcousticEnergy.defaults())[output])
     assert fmt(value, AcousticEnergy.output(output).decimals) == expected
 
@@ -198,7 +198,7 @@ def test_sampled_mean_intensity_is_exact_with_three_or_more_samples(samples, R):
 
 @pytest.mark.parametrize("quantity", ["e", "I"])
 def test_two_samples_are_not_enough(quantity):
-    """M = 2 (R_r = 0) gives 2cos²(kx − ωt₀) × the truth: 0.743 × truth where cos² = 0.3715 (physics.md's measurement)."""
+    """M = 2 (R_r = 0) gives 2cos²(kx − ωt₀) × the truth: 0.743 × truth where cos² = 0.3715 (docs/physics/acoustic_energy.md's measurement)."""
     phase = np.arccos(np.sqrt(0.3715))  # kx − ωt₀ in radians
     f = 1000.0
     x = np.array([phase / (2 * np.pi * f / C)])

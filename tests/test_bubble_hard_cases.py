@@ -1,4 +1,4 @@
-"""K4 hard cases (physics.md K4 "Hard cases" and §14), one test each with the stated tolerance, and
+"""K4 hard cases (docs/physics/bubble.md "Hard cases"), one test each with the stated tolerance, and
 the guards: every solve has terminal events and an evaluation cap (no wall-time cap: results never depend on the clock)."""
 
 from __future__ import annotations

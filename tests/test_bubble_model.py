@@ -297,7 +297,7 @@ def test_depth_one_puts_the_far_field_at_the_blake_threshold():
     ],
 )
 def test_preset_B_defaults_show_the_reference_readouts(output, shown):
-    """Preset B (4.5 µm, p_a = 1.30 p0, 26.5 kHz, KM, argon): the reference digits of physics.md (T_g 1.16e4 K, f0 893.5 kHz)."""
+    """Preset B (4.5 µm, p_a = 1.30 p0, 26.5 kHz, KM, argon): the reference digits of docs/physics/bubble.md (T_g 1.16e4 K, f0 893.5 kHz)."""
     assert _shown("B", output) == shown
 
 
@@ -315,7 +315,7 @@ def test_preset_B_defaults_show_the_reference_readouts(output, shown):
     ids=["gas", "gas+sigma", "gas+vapour", "gas+vapour+sigma"],
 )
 def test_equilibrium_gas_pressure_includes_only_enabled_terms(effects, gas):
-    """p_g0 = p0 − p_v + 2σ/R0 with each term present only when its effect is enabled (§0.4 rule 1)."""
+    """p_g0 = p0 − p_v + 2σ/R0 with each term present only when its effect is enabled (docs/physics/README.md, effects, rule 1)."""
     pb, _ = compose(_point("C"), effects)
     sigma, vapour = 0.0728 / (P0 * 1e-6), 2339.0 / P0
     expected = {1.0: 1.0, "1+2S": 1.0 + 2 * sigma, "1-Pv": 1.0 - vapour, "1-Pv+2S": 1.0 - vapour + 2 * sigma}[gas]

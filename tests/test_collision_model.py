@@ -398,7 +398,7 @@ def test_restitution_of_the_contact_is_its_closed_form(zeta):
 
 @pytest.mark.parametrize("zeta", [1e-12, 1e-9, 1e-6, 1e-3, 1e-2], ids=lambda z: f"zeta={z}")
 def test_restitution_tends_to_one_as_damping_vanishes(zeta):
-    """Vanishing limit (§13, ζ → 0 ⇒ e → 1): 0 ≤ 1 − e ≤ πζ/√(1 − ζ²), and the final velocities approach
+    """Vanishing limit (ζ → 0 ⇒ e → 1): 0 ≤ 1 − e ≤ πζ/√(1 − ζ²), and the final velocities approach
     the elastic law's within w·Δ·(1 − e)."""
     mu, k = 2.0 / 3.0, 1e4
     c = zeta * 2 * np.sqrt(k * mu)

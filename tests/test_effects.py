@@ -1,9 +1,9 @@
-"""Effects (physics.md §0.4, §13): a scene names the effects it shows and the model composes only those.
+"""Effects (docs/physics/README.md): a scene names the effects it shows and the model composes only those.
 
 An effect the scene does not name is never evaluated (spies on the bubble's terms, the chain's damping
 and boundary, the collision's contact and the impulse's pulse shapes), effect-dependent dependencies
 are what the tabulation uses, and enabling or disabling an effect changes the cache key of that scene
-only. The vanishing limits of the effects are in test_properties.py (§0.4 rule 2) and in the models'
+only. The vanishing limits of the effects are in test_properties.py (docs/physics/README.md, effects, rule 2) and in the models'
 own test files.
 """
 

@@ -1,5 +1,5 @@
-"""Hard cases of physics.md §14 that no model test covered: K4 resonance foldover, and K2's quantile default
-never touching NumPy's random streams. Tolerances are physics.md's (§12 for the foldover)."""
+"""Hard cases of docs/physics/ that no model test covered: K4 resonance foldover, and K2's quantile default
+never touching NumPy's random streams. Tolerances are those of docs/physics/ (README.md for the foldover)."""
 
 from __future__ import annotations
 
@@ -19,16 +19,16 @@ from sitegen.models.bubble.solve import integrate
 from sitegen.models.kinetic.model import Kinetic
 from sitegen.models.kinetic.walls import QUANTILE, RANDOM, molecules
 
-# --- K4 resonance foldover (physics.md §12, §14 "Branches and non-events") ----------------------------------
+# --- K4 resonance foldover (docs/physics/bubble.md, hard cases) ----------------------------------
 #
 # Near its linear resonance a weakly driven bubble's steady response is not a smooth function of f: R_max/R0
-# jumps between adjacent points of a fine log-f grid (physics.md measured 0.168 at 328 kHz; here, with the
+# jumps between adjacent points of a fine log-f grid (docs/physics/README.md: 0.168 at 328 kHz; here, with the
 # model's argon bubble, vdW core and Keller–Miksis, f0 = 378.9 kHz and the jump is 0.092 at 362–365 kHz).
 # Interpolating across it does not converge, so the rule is: tabulate at slider stops only, never interpolate.
 
 FOLD_EFFECTS = ("gas", "vdw_hard_core", "surface_tension", "viscosity", "drive", "keller_miksis")
 FOLD_POINT = {"R0": 10.0, "p_a": 0.05}  # 10 µm, p_a = 0.05 p0
-CYCLES = 40  # from rest, as physics.md §12 ran it
+CYCLES = 40  # from rest, as docs/physics/README.md ran it
 # Three adjacent points of a 129-point log grid over 200–500 kHz, 200·2.5^(i/128) for i = 83, 84, 85.
 FINE = [200.0 * 2.5 ** (i / 128) for i in (83, 84, 85)]
 DISPLAY_RESOLUTION = 0.5e-4  # R_max/R0 is shown with 4 decimals
@@ -92,7 +92,7 @@ def test_resonance_readout_is_tabulated_at_every_stop_never_interpolated():
 
 
 def test_quantile_default_never_draws_from_numpys_generators(monkeypatch):
-    """physics.md K2: generator streams are not stable across NumPy versions, so the default sampling is the
+    """docs/physics/kinetic.md: generator streams are not stable across NumPy versions, so the default sampling is the
     quantile sample. With np.random.default_rng made to raise, every readout at the defaults still evaluates
     (bitwise as before), while random mode does reach the generator (so the patch is not vacuous)."""
     assert Kinetic.param("sampling").default == QUANTILE

@@ -185,7 +185,7 @@ def test_out_of_domain_input_raises_naming_the_parameter(inputs):
         Impulse().evaluate(inputs)
 
 
-# --- effect `shape`: the four pulses of physics.md I1 -------------------------------------------------------------
+# --- effect `shape`: the four pulses of docs/physics/impulse.md -------------------------------------------------------------
 
 from sitegen.models.collision.model import Collision  # noqa: E402
 from sitegen.models.impulse.pulses import SHAPES, shaped_force  # noqa: E402
@@ -203,7 +203,7 @@ def _shaped(shape: str, wanted, effects=("shape",), **inputs):
 @pytest.mark.parametrize("shape", SHAPES)
 @pytest.mark.parametrize("F_pk, tau, m", POSITIVE)
 def test_quadrature_of_each_shape_agrees_with_its_closed_form_impulse(F_pk, tau, m, shape):
-    """scipy.integrate.quad of the shape's F(t) over [0, τ] equals the model's closed-form J to ≤ 1e−12 rel (§13)."""
+    """scipy.integrate.quad of the shape's F(t) over [0, τ] equals the model's closed-form J to ≤ 1e−12 rel."""
     area, _ = quad(shaped_force, 0.0, tau, args=(F_pk, tau, shape), points=[tau / 2], epsabs=0.0, epsrel=1e-13)
     J = float(_shaped(shape, ["J"], F_pk=F_pk, tau=tau, m=m)["J"])
     assert abs(area - J) <= 1e-12 * J
@@ -276,7 +276,7 @@ def test_velocity_curve_is_the_running_integral_of_the_force(shape, v0):
 
 @pytest.mark.parametrize("F_pk, tau, m", STOPS)
 def test_velocity_curve_of_the_triangle_is_the_piecewise_quadratic(F_pk, tau, m):
-    """For the default triangle the v(t) layer is physics.md's piecewise quadratic (`velocity`) within 4ε of its scale."""
+    """For the default triangle the v(t) layer is docs/physics/impulse.md's piecewise quadratic (`velocity`) within 4ε of its scale."""
     out = Impulse().evaluate(
         {"F_pk": F_pk, "tau": tau, "m": m, "v0": 1.5}, wanted=["pulse_t", "v_curve"], effects=("initial_velocity",)
     )

@@ -77,7 +77,7 @@ DEFAULT_READOUTS = {
 
 @pytest.mark.parametrize("output, expected", DEFAULT_READOUTS.items(), ids=list(DEFAULT_READOUTS))
 def test_defaults_display_the_listed_readouts(output, expected):
-    """At the defaults the page shows the values physics.md lists."""
+    """At the defaults the page shows the values docs/physics/kinetic.md lists."""
     value = float(_evaluate([output])[output])
     assert fmt(value, Kinetic.output(output).decimals) == expected
 

@@ -74,7 +74,7 @@ def _exact_state(a, b, k, c=0):
 
 @pytest.fixture(scope="module")
 def full_grid():
-    """Every stop of physics.md's slider grid (0.1 kg × 0.1 kg × 0.01 m: 2.01 million) with the model's outputs."""
+    """Every stop of docs/physics/lever.md's slider grid (0.1 kg × 0.1 kg × 0.01 m: 2.01 million) with the model's outputs."""
     a, b, k = _integer_grid()
     wanted = ["tau_L", "tau_R", "tau_net", "MA", "state", "x_star"]
     return a, b, k, _evaluate(wanted, **_floats(a, b, k))
@@ -113,7 +113,7 @@ def test_defaults_show_the_seed_readouts(built_scene, output, expected):
 
 
 def test_g_is_the_seed_value_not_standard_gravity():
-    """physics.md §0.1: g = 9.81, so 2 kg on a 1 m arm is 19.62 N·m (9.80665 would show 19.61)."""
+    """docs/physics/README.md: g = 9.81, so 2 kg on a 1 m arm is 19.62 N·m (9.80665 would show 19.61)."""
     assert float(_evaluate(["tau_L"], m_L=2.0, x_p=1.0)["tau_L"]) == 2.0 * 9.81
 
 

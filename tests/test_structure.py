@@ -33,7 +33,7 @@ COLLISION = [
 
 
 def test_full_resolution_collision_ships_a_few_hundred_values():
-    """The collision at physics.md resolution (1.03e10 states) ships expressions of at most a few
+    """The collision at docs/physics/ resolution (1.03e10 states) ships expressions of at most a few
     hundred node values each and one coordinate table of 199 entries along m1 + m2."""
     scene = _scene(COLLISION)
     assert np.prod([a.count for a in scene.axes]) == 100 * 100 * 101 * 101 * 101

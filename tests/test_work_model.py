@@ -1,5 +1,5 @@
 """I3 (work of a spring vs drag, direct vs arc): closed forms against exact rationals and Gauss–Legendre line
-integrals, the hard cases of physics.md I3 and §11.4, the effects' vanishing limits, and the figure's shapes."""
+integrals, the hard cases of docs/physics/work.md, the effects' vanishing limits, and the figure's shapes."""
 
 from __future__ import annotations
 
@@ -126,7 +126,7 @@ def test_potential_drop_beyond_the_endpoints(x_c, ell0):
     assert abs(Fraction(value) - _exact_potential_drop(2.0, x_c, ell0)) <= Fraction(4 * EPS * scale)
 
 
-# --- §11.4: the Gauss–Legendre error table -----------------------------------------------------------------
+# --- docs/physics/work.md: the Gauss–Legendre error table -----------------------------------------------------------------
 
 
 def _quadrature_error(path, ell0, n, split=True) -> float:
@@ -154,7 +154,7 @@ def _quadrature_error(path, ell0, n, split=True) -> float:
     ],
 )
 def test_gauss_legendre_converges_where_physics_md_says(path, ell0, n, split, tolerance):
-    """§11.4 (x_c = 0.5): ℓ0 = 0 exact for n ≥ 2 direct, 3e−15 at n = 8 on the arc; ℓ0 = 0.5 arc 4e−16 at n = 32;
+    """docs/physics/work.md (x_c = 0.5): ℓ0 = 0 exact for n ≥ 2 direct, 3e−15 at n = 8 on the arc; ℓ0 = 0.5 arc 4e−16 at n = 32;
     split at the anchor, the chord is exact at n = 4."""
     assert _quadrature_error(path, ell0, n, split) <= tolerance
 
@@ -182,7 +182,7 @@ CLOSE_IDS = ["h=1-x_c=0.8", "h=2-x_c=0.8", "h=0.05-x_c=-0.35", "h=0.01-x_c=0.5",
 
 @pytest.mark.parametrize("h, x_c", CLOSE_PASSES, ids=CLOSE_IDS)
 def test_fixed_32_nodes_fail_where_the_arc_passes_close_to_the_anchor(h, x_c):
-    """Beyond physics.md's table: with ℓ0 = 0.5 an arc that passes within ~0.2 m of the anchor brings the
+    """Beyond docs/physics/work.md's table: with ℓ0 = 0.5 an arc that passes within ~0.2 m of the anchor brings the
     complex singularity near, and 32 nodes (even split at the nearest point) miss by more than 1e−12."""
     work = line_integral_work(SPRING, ARC, h, k=2.5, x_c=x_c, ell0=0.5)
     assert abs(Fraction(work) - _exact_potential_drop(2.5, x_c, 0.5)) > Fraction(1e-12)

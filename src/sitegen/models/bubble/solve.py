@@ -53,10 +53,10 @@ from .terms import (
 
 COMPILED = {"compiled-DOP853": DOP853_METHOD, "compiled-Radau": RADAU_METHOD}  # the same steppers, compiled
 ANALYTIC = "analytic"
-STIFF = 1e3  # 4µT/(ρR0²) above which explicit methods are stability-limited (physics.md §11.2 C)
+STIFF = 1e3  # 4µT/(ρR0²) above which explicit methods are stability-limited (docs/physics/bubble.md)
 EXPLICIT, IMPLICIT = "compiled-DOP853", "compiled-Radau"  # what `auto` picks off and on stiff terms
 # rtol of `auto`: the loosest at which every readout of the book's bubble scenes shows the digits of a
-# tight reference at every stop (the sweep on the accuracy page; physics.md §11.2 chose 1e-6 for 1e-3 R0).
+# tight reference at every stop (the sweep on the accuracy page; DOP853 at 1e-6 gives 1e-3 R0 on the driven bubble).
 EXPLICIT_RTOL, IMPLICIT_RTOL = 1e-8, 1e-8
 AUTO = "auto"  # the method setting that lets the composed terms choose (analytic, compiled DOP853 or Radau)
 REFERENCE_RTOL, REFERENCE_STIFF = 1e-12, 1e-10  # the check's tight solutions (non-stiff, stiff)
@@ -79,7 +79,7 @@ def stiff_atol(pb: Problem, rtol: float) -> float | None:
 
 
 def choose_method(pb: Problem) -> tuple[str, float]:
-    """The solver and rtol the composed terms call for (physics.md §11.2 verdicts)."""
+    """The solver and rtol the composed terms call for (the verdicts of docs/physics/bubble.md)."""
     if pb.is_rayleigh:
         return ANALYTIC, 0.0
     if pb.stiffness > STIFF:

@@ -13,8 +13,10 @@ SCRIPT_RATIO = 0.7  # a sub- or superscript may be this much smaller than its li
 _WHERE_JS = (
     _COLOUR_JS
     + r"""
-const shown = el => { const b = el.getBoundingClientRect(); return b.width > 0 && b.height > 0 && getComputedStyle(el).visibility !== 'hidden'; };
-const overlap = (a, b) => Math.max(0, Math.min(a.right, b.right) - Math.max(a.left, b.left)) * Math.max(0, Math.min(a.bottom, b.bottom) - Math.max(a.top, b.top));
+const shown = el => { const b = el.getBoundingClientRect(); return b.width > 0 && b.height > 0 &&
+  getComputedStyle(el).visibility !== 'hidden'; };
+const overlap = (a, b) => Math.max(0, Math.min(a.right, b.right) - Math.max(a.left, b.left)) * Math.max(0,
+  Math.min(a.bottom, b.bottom) - Math.max(a.top, b.top));
 """
 )
 
@@ -27,13 +29,16 @@ def overflow_problems(page) -> list[str]:
         + _WHERE_JS
         + r"""
         const problems = [], width = document.documentElement.clientWidth;
-        if (document.documentElement.scrollWidth > width) problems.push(`the page scrolls sideways: ${document.documentElement.scrollWidth} > ${width} px`);
+        if (document.documentElement.scrollWidth > width)
+          problems.push(`the page scrolls sideways: ${document.documentElement.scrollWidth} > ${width} px`);
         for (const el of document.body.querySelectorAll('*')) {
           if (el.closest('svg') || el.clientWidth <= 1 || !shown(el)) continue;
           const x = getComputedStyle(el).overflowX;
           if (el.scrollWidth <= el.clientWidth + 1 || x === 'visible') continue;
-          if (/hidden|clip/.test(x)) problems.push(`${where(el)}: ${el.scrollWidth} px of content cut to ${el.clientWidth} px`);
-          else if (!el.classList.contains('scrolls')) problems.push(`${where(el)}: ${el.scrollWidth} px in ${el.clientWidth} px, scrolling without showing it`);
+          if (/hidden|clip/.test(x))
+            problems.push(`${where(el)}: ${el.scrollWidth} px of content cut to ${el.clientWidth} px`);
+          else if (!el.classList.contains('scrolls'))
+            problems.push(`${where(el)}: ${el.scrollWidth} px in ${el.clientWidth} px, scrolling without showing it`);
         }
         return problems;
       }"""
@@ -53,7 +58,8 @@ def figure_problems(page) -> list[str]:
           if (figures.length !== 1) { problems.push(`${scene.id}: ${figures.length} figures shown`); continue; }
           const r = figures[0].getBoundingClientRect(), s = scene.getBoundingClientRect();
           if (r.left < Math.max(0, s.left) - 0.5 || r.right > Math.min(width, s.right) + 0.5) {
-            problems.push(`${scene.id}: figure spans ${r.left.toFixed(0)}..${r.right.toFixed(0)} px, scene ${s.left.toFixed(0)}..${s.right.toFixed(0)}, screen 0..${width}`);
+            problems.push(`${scene.id}: figure spans ${r.left.toFixed(0)}..${r.right.toFixed(0)} px, scene ` +
+              `${s.left.toFixed(0)}..${s.right.toFixed(0)}, screen 0..${width}`);
           }
           for (let box = figures[0].parentElement; box !== scene; box = box.parentElement) {
             if (box.scrollWidth > box.clientWidth + 1) problems.push(`${scene.id}: ${where(box)} scrolls sideways`);
@@ -79,14 +85,19 @@ def svg_text_problems(page, minimum: float = MIN_FIGURE_TEXT_PX) -> list[str]:
             const r = text.getBoundingClientRect();
             if (!r.width) continue;
             const out = Math.max(box.left - r.left, r.right - box.right, box.top - r.top, r.bottom - box.bottom);
-            if (out > 0.5) problems.push(`${name}: "${text.textContent.trim().slice(0, 30)}" reaches ${out.toFixed(1)} px outside the figure`);
+            if (out > 0.5)
+              problems.push(`${name}: "${text.textContent.trim().slice(0, 30)}" reaches ${out.toFixed(1)} px ` +
+                `outside the figure`);
             const pieces = [text, ...text.querySelectorAll('tspan')]
               .filter(piece => [...piece.childNodes].some(n => n.nodeType === 3 && n.textContent.trim()))
               .map(piece => [piece.textContent.trim(), parseFloat(getComputedStyle(piece).fontSize) * scale]);
             const line = Math.max(...pieces.map(([, size]) => size));
-            if (line < minimum - 0.01) problems.push(`${name}: "${text.textContent.trim().slice(0, 30)}" drawn at ${line.toFixed(1)} px`);
+            if (line < minimum - 0.01)
+              problems.push(`${name}: "${text.textContent.trim().slice(0, 30)}" drawn at ${line.toFixed(1)} px`);
             for (const [words, size] of pieces) {
-              if (size < ratio * minimum - 0.01) problems.push(`${name}: "${words.slice(0, 30)}" (in "${text.textContent.trim().slice(0, 30)}") drawn at ${size.toFixed(1)} px`);
+              if (size < ratio * minimum - 0.01)
+                problems.push(`${name}: "${words.slice(0, 30)}" (in "${text.textContent.trim().slice(0, 30)}") ` +
+                  `drawn at ${size.toFixed(1)} px`);
             }
           }
         }
@@ -118,11 +129,14 @@ def text_collision_problems(page) -> list[str]:
         };
         for (const svg of [...document.querySelectorAll('svg.scene-svg')].filter(shown)) {
           const name = (svg.closest('[id]') || svg).id + (svg.classList.contains('narrow') ? ' (narrow)' : '');
-          const texts = [...svg.querySelectorAll('text')].filter(t => t.textContent.trim() && t.getBoundingClientRect().width)
+          const texts = [...svg.querySelectorAll('text')].filter(t => t.textContent.trim() &&
+            t.getBoundingClientRect().width)
             .map(t => [t.textContent.trim(), glyphs(t)]);
           for (let i = 0; i < texts.length; i++) for (let j = i + 1; j < texts.length; j++) {
             const covered = overlap(texts[i][1], texts[j][1]);
-            if (covered > 2) problems.push(`${name}: "${texts[i][0].slice(0, 20)}" and "${texts[j][0].slice(0, 20)}" overlap by ${covered.toFixed(0)} px²`);
+            if (covered > 2)
+              problems.push(`${name}: "${texts[i][0].slice(0, 20)}" and "${texts[j][0].slice(0, 20)}" overlap by ` +
+                `${covered.toFixed(0)} px²`);
           }
         }
         return problems;
@@ -144,7 +158,9 @@ def legend_problems(page) -> list[str]:
             const r = legend.getBoundingClientRect();
             for (const panel of panels) {
               const covered = overlap(r, panel.getBoundingClientRect());
-              if (covered > 2) problems.push(`${name}: a legend ("${legend.textContent.trim().slice(0, 30)}") covers ${covered.toFixed(0)} px² of a panel`);
+              if (covered > 2)
+                problems.push(`${name}: a legend ("${legend.textContent.trim().slice(0, 30)}") covers ` +
+                  `${covered.toFixed(0)} px² of a panel`);
             }
           }
         }
@@ -168,10 +184,13 @@ def control_label_problems(page) -> list[str]:
           return range.getBoundingClientRect();
         };
         for (const control of document.querySelectorAll('[data-scene] .control')) {
-          const parts = [...control.querySelectorAll(':scope > label, :scope > input, :scope > output, :scope > legend, :scope > .options')].filter(shown);
+          const parts = [...control.querySelectorAll(':scope > label, :scope > input, :scope > output, ' +
+            ':scope > legend, :scope > .options')].filter(shown);
           for (let i = 0; i < parts.length; i++) for (let j = i + 1; j < parts.length; j++) {
             const covered = overlap(extent(parts[i]), extent(parts[j]));
-            if (covered > 1) problems.push(`${where(control)}: ${parts[i].localName} "${parts[i].textContent.trim()}" overlaps ${parts[j].localName} by ${covered.toFixed(0)} px²`);
+            if (covered > 1)
+              problems.push(`${where(control)}: ${parts[i].localName} "${parts[i].textContent.trim()}" overlaps ` +
+                `${parts[j].localName} by ${covered.toFixed(0)} px²`);
           }
         }
         return problems;

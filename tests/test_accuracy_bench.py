@@ -117,7 +117,8 @@ def test_driven_readout_errors_measure_known_perturbations():
 
 
 def test_driven_bubble_extrema_are_the_reference_readouts():
-    """Case B (one period): R_max/R0 = 6.8115 and R_min/R0 = 0.17624 at t/T = 0.51661 (docs/physics/bubble.md preset B)."""
+    """Case B (one period): R_max/R0 = 6.8115 and R_min/R0 = 0.17624 at t/T = 0.51661 (docs/physics/bubble.md preset
+    B)."""
     r_max, r_min, t_min = extrema(solve_case("B", "DOP853", 1e-10), 2 * math.pi / bubble_problem("B").omega)
     assert f"{r_max:.4f}" == "6.8115" and f"{r_min:.5f}" == "0.17624" and f"{t_min:.5f}" == "0.51661"
 
@@ -164,7 +165,8 @@ def test_exactly_structured_axes_interpolate_to_round_off(line, axis, nodes):
 
 
 def test_two_node_line_in_e_misses_the_parabola_by_its_sagitta():
-    """K_after(e) = K_before − ½µΔ²(1 − e²) with µ = 2/3, Δ = 4: a chord through e = 0, 1 misses by 16/3 · ¼ = 4/3 at e = ½."""
+    """K_after(e) = K_before − ½µΔ²(1 − e²) with µ = 2/3, Δ = 4: a chord through e = 0, 1 misses by 16/3 · ¼ = 4/3 at e
+    = ½."""
     error, _ = interpolation_error(LINES["K_after"], "linear", 2)
     assert error == pytest.approx(4 / 3, abs=1e-12)
 
@@ -327,7 +329,8 @@ def test_accuracy_page_has_each_diagram_with_its_numbers(built_site, figure):
     """Each diagram: an inline SVG with a label, a caption and a table of the numbers behind it."""
     html = (built_site / "accuracy.html").read_text()
     found = re.search(
-        rf'<figure class="report-figure" id="fig-{figure}">(.*?)</figure>\s*<details class="report-data">(.*?)</details>',
+        rf'<figure class="report-figure" id="fig-{figure}">(.*?)</figure>\s*<details '
+        r'class="report-data">(.*?)</details>',
         html,
         re.S,
     )

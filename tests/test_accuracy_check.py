@@ -133,7 +133,8 @@ def test_no_op_rebuild_runs_no_check_solves(tmp_path):
 def test_sample_is_deterministic_and_holds_defaults_and_corners():
     """The sampled stops are the same on every call and include the defaults and both extreme corners."""
     scene = _scene(
-        "model: chain\nslider N: 1, 2, 4, 8, 16 default 8\nslider t: 0..2 step 0.1 default 0.5\nchoice launch: right-moving | split default split"
+        "model: chain\nslider N: 1, 2, 4, 8, 16 default 8\nslider t: 0..2 step "
+        "0.1 default 0.5\nchoice launch: right-moving | split default split"
     )
     stops = sample_stops(scene)
     assert stops == sample_stops(scene) and len(stops) == len(set(stops)) == 16
@@ -180,7 +181,8 @@ def test_automatic_method_switches_to_implicit_for_stiff_terms(preset, rtol, lab
     [
         (
             {"method": "Euler"},
-            "unknown method 'Euler'; this model offers auto, RK45, DOP853, Radau, BDF, LSODA, compiled-DOP853, compiled-Radau",
+            "unknown method 'Euler'; this model offers auto, RK45, "
+            "DOP853, Radau, BDF, LSODA, compiled-DOP853, compiled-Radau",
         ),
         ({"steps": "10"}, "unknown setting 'steps'; numerics take method, rtol, atol, nodes, tolerance"),
         ({"nodes": "32"}, "method auto has no setting 'nodes'; it takes rtol, atol and tolerance"),

@@ -81,7 +81,8 @@ def test_unknown_effect_lists_what_the_model_offers(tmp_path):
     """An effect the model does not offer is an error that names the effects it does offer."""
     page = '+++\ntitle = "Effects"\n+++\n\n```scene\nmodel: collision\neffects: restitution_law drag\n```\n'
     assert build_errors(write_book(tmp_path, {"effects": page})) == [
-        "content/effects.md:7: scene 'collision': model 'collision' has no effect 'drag'. It offers: restitution_law, contact_spring_dashpot, explosive"
+        "content/effects.md:7: scene 'collision': model 'collision' has no effect "
+        "'drag'. It offers: restitution_law, contact_spring_dashpot, explosive"
     ]
 
 
@@ -108,7 +109,8 @@ def test_parameter_replaced_by_an_enabled_effect_is_an_error_at_its_control(tmp_
 
 
 def test_restitution_above_one_names_the_effect_that_allows_it(tmp_path):
-    """e > 1 is outside the domain unless the scene enables `explosive`; the error says so, and with the effect it builds."""
+    """e > 1 is outside the domain unless the scene enables `explosive`; the error says so, and with the effect it
+    builds."""
     block = "```scene\nmodel: collision\n{effects}slider e: 0..1.5 step 0.5 default 1\n```\n"
     page = '+++\ntitle = "Explosive"\n+++\n\n' + block.format(effects="")
     (tmp_path / "without").mkdir()
@@ -162,8 +164,8 @@ def test_non_finite_output_fails_the_build_naming_the_stop(tmp_path, register):
     register({"singular": _Singular}, {"singular": _BareFigure()})
     page = '+++\ntitle = "Pole"\n+++\n\n```scene\nmodel: singular\nslider x: -1..1 step 0.5 default 1\n```\n'
     assert build_errors(write_book(tmp_path, {"pole": page})) == [
-        "content/pole.md:5: scene 'singular': output 'inverse' is not finite (inf) at x=0.0; the model must return finite numbers"
-        + FINITE_HINT
+        "content/pole.md:5: scene 'singular': output 'inverse' is not "
+        "finite (inf) at x=0.0; the model must return finite numbers" + FINITE_HINT
     ]
 
 

@@ -337,7 +337,8 @@ def test_heavily_overdamped_chain_stays_finite_at_long_times():
     ],
 )
 def test_effects_vanish_in_their_limit(terms, bound):
-    """γ → 0 and ω0 → 0 recover the bare chain: N = 64, t = 2, |Δu| ≤ bound × max|u0| (the change is O(γt), O(ω0²t²))."""
+    """γ → 0 and ω0 → 0 recover the bare chain: N = 64, t = 2, |Δu| ≤ bound × max|u0| (the change is O(γt),
+    O(ω0²t²))."""
     bare, _ = chain_motion(64, 0.05, 2.0, RIGHT_MOVING, amplitude=1.0)
     with_term, _ = chain_motion(64, 0.05, 2.0, RIGHT_MOVING, terms, amplitude=1.0)
     assert np.max(np.abs(with_term - bare)) <= bound

@@ -48,7 +48,10 @@ class Lamp(Model):
         return {name: values[name]() for name in wanted}
 
 
-PAGE = '+++\ntitle = "Lamp"\n+++\n\n```scene\nmodel: lamp\n{effects}slider a: 0..2 step 1 default 1\n{more}readouts: {readouts}\n```\n'
+PAGE = (
+    '+++\ntitle = "Lamp"\n+++\n\n```scene\nmodel: lamp\n{effects}slider '
+    "a: 0..2 step 1 default 1\n{more}readouts: {readouts}\n```\n"
+)
 LINES = {o.name: o.where[1] for o in Lamp.outputs}
 
 

@@ -3,8 +3,8 @@
 An effect the scene does not name is never evaluated (spies on the bubble's terms, the chain's damping
 and boundary, the collision's contact and the impulse's pulse shapes), effect-dependent dependencies
 are what the tabulation uses, and enabling or disabling an effect changes the cache key of that scene
-only. The vanishing limits of the effects are in test_properties.py (docs/physics/README.md, effects, rule 2) and in the models'
-own test files.
+only. The vanishing limits of the effects are in test_properties.py (docs/physics/README.md, effects, rule 2) and in
+the models' own test files.
 """
 
 from __future__ import annotations
@@ -76,7 +76,8 @@ def shape_spy(monkeypatch) -> Counter:
 
 
 def test_pulse_shapes_are_never_evaluated_without_the_shape_effect(shape_spy):
-    """Asked for hann through its parameter but without `shape`, the model draws the triangle and never calls another shape."""
+    """Asked for hann through its parameter but without `shape`, the model draws the triangle and never calls another
+    shape."""
     model = MODELS["impulse"]()
     out = model.evaluate({"shape": 1.0, "v0": 0.5}, wanted=["J", "pulse_F", "v_curve"], effects=("initial_velocity",))
     assert all(shape_spy.calls[f"{name}-{kind}"] == 0 for name in OTHER_SHAPES for kind in ("force", "rise"))
@@ -183,7 +184,8 @@ def test_chain_scene_evaluates_an_effect_only_when_it_names_it(chain_spy, effect
     assert chain_spy.calls[counted] > 0
 
 
-# --- the bubble's terms ------------------------------------------------------------------------------------------------
+# --- the bubble's terms
+# ------------------------------------------------------------------------------------------------
 
 # The statements that evaluate each term (the start of each, as written there), in scipy's right-hand
 # side (make_rhs) and in the compiled one (kernel_terms.rhs).
@@ -315,7 +317,8 @@ def test_bubble_initial_state_never_reads_a_parameter_of_an_effect_left_out(monk
     assert param in reads  # the spy sees the parameter once the effect is named
 
 
-# --- effect-dependent dependencies -------------------------------------------------------------------------------------
+# --- effect-dependent dependencies
+# -------------------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize(

@@ -153,7 +153,8 @@ def test_chromium_shows_every_piece(seen):
     text = page.evaluate("document.querySelector('article').innerText")
     assert not RAW.findall(text.replace("$ and an at sign @", "").replace("@ ", "")), RAW.findall(text)
     colours = page.evaluate(
-        "['.highlight .k', '.highlight .n', '.highlight .sd'].map(s => getComputedStyle(document.querySelector(s)).color)"
+        "['.highlight .k', '.highlight .n', '.highlight .sd'].map(s "
+        "=> getComputedStyle(document.querySelector(s)).color)"
     )
     assert len(set(colours)) == 3, colours
 

@@ -57,7 +57,8 @@ def test_the_browser_build_run_by_node_gives_the_packages_mathml():
     ours, _ = tex.convert_math([MathItem(t, d, SourceLoc("x.md", 1)) for t, d in FORMULAS])
     script = (
         "const t = require('temml'); const f = JSON.parse(require('fs').readFileSync(0, 'utf8'));"
-        "process.stdout.write(JSON.stringify(f.map(([x, d]) => t.renderToString(x, {displayMode: d, throwOnError: true, annotate: false}))));"
+        "process.stdout.write(JSON.stringify(f.map(([x, d]) => t.renderToString(x, "
+        "{displayMode: d, throwOnError: true, annotate: false}))));"
     )
     done = subprocess.run(
         ["node", "-e", script],

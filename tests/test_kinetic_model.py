@@ -344,7 +344,8 @@ def test_same_inputs_give_bitwise_the_same_outputs():
         assert np.array_equal(first[name], second[name], equal_nan=True), name
 
 
-# --- effects -----------------------------------------------------------------------------------------------------------
+# --- effects
+# -----------------------------------------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize("dim, factor", [(0, 1), (1, 2), (2, 3)], ids=["1D", "2D", "3D"])
@@ -438,7 +439,8 @@ def test_maxwell_wall_path_does_not_depend_on_the_windows_asked_for():
     assert alone.hits == together.hits and np.array_equal(alone.impulse, together.impulse)
 
 
-# --- invalid input -------------------------------------------------------------------------------------------------------
+# --- invalid input
+# -------------------------------------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize(

@@ -74,7 +74,8 @@ def _exact_state(a, b, k, c=0):
 
 @pytest.fixture(scope="module")
 def full_grid():
-    """Every stop of docs/physics/lever.md's slider grid (0.1 kg × 0.1 kg × 0.01 m: 2.01 million) with the model's outputs."""
+    """Every stop of docs/physics/lever.md's slider grid (0.1 kg × 0.1 kg × 0.01 m: 2.01 million) with the model's
+    outputs."""
     a, b, k = _integer_grid()
     wanted = ["tau_L", "tau_R", "tau_net", "MA", "state", "x_star"]
     return a, b, k, _evaluate(wanted, **_floats(a, b, k))
@@ -171,7 +172,8 @@ PIVOT_AT_THE_END = {
 
 @pytest.mark.parametrize("check", PIVOT_AT_THE_END, ids=list(PIVOT_AT_THE_END))
 def test_pivot_at_the_end(built_scene, check):
-    """x_p = ℓ: MA = ∞ as a sentinel (null in strict JSON, shown as a phrase), τR = 0; and MA(0) = 0 (shown to significant digits: "0×")."""
+    """x_p = ℓ: MA = ∞ as a sentinel (null in strict JSON, shown as a phrase), τR = 0; and MA(0) = 0 (shown to
+    significant digits: "0×")."""
     scene, tables, _, payload = built_scene
     assert PIVOT_AT_THE_END[check](scene, tables, payload)
 
@@ -217,7 +219,8 @@ def test_off_grid_balance_marker_is_shown(built_scene):
 
 
 def test_state_matches_the_exact_rule_at_every_stop(full_grid):
-    """balanced iff |x_p − x*| ≤ Δx_p/2, else tips towards the centre of mass: equal to integer arithmetic at all stops."""
+    """balanced iff |x_p − x*| ≤ Δx_p/2, else tips towards the centre of mass: equal to integer arithmetic at all
+    stops."""
     a, b, k, out = full_grid
     wrong = out["state"] != _exact_state(a, b, k)
     assert not np.any(wrong), f"{np.count_nonzero(wrong)} stops wrong, first at (a, b, k) = {np.argwhere(wrong)[0]}"
@@ -306,7 +309,8 @@ def test_block_volume_grows_in_proportion_to_mass():
 
 
 def test_scene_layers_read_declared_outputs_and_level_bar_at_defaults(built_scene):
-    """Every layer reads outputs of the model; at the defaults the bar is drawn level and the fulcrum's apex is at x_p."""
+    """Every layer reads outputs of the model; at the defaults the bar is drawn level and the fulcrum's apex is at
+    x_p."""
     scene, tables, layers, _ = built_scene
     declared = {o.name for o in Lever.outputs}
     assert set().union(*(layer.outputs() for layer in layers)) <= declared
@@ -337,7 +341,8 @@ def test_scene_data_fits_the_budget(built_scene):
 
 @pytest.mark.parametrize("x_p", [0.0, 0.37, 1.0, 1.5, 2.0], ids=["x_p=0", "x_p=0.37", "x_p=1", "x_p=1.5", "x_p=2"])
 def test_bar_torque_sign_and_value(x_p):
-    """τ_b = m_b g (x_p − ℓ/2) within 2ε of the exact value; positive (left end down) when the middle is left of the pivot."""
+    """τ_b = m_b g (x_p − ℓ/2) within 2ε of the exact value; positive (left end down) when the middle is left of the
+    pivot."""
     value = float(_evaluate(["tau_b"], effects=["bar_mass"], m_b=3.7, x_p=x_p)["tau_b"])
     exact = Fraction(3.7) * G * (Fraction(x_p) - 1)
     assert abs(Fraction(value) - exact) <= Fraction(2 * EPS) * abs(exact)
@@ -465,7 +470,8 @@ def test_integrated_motion_conserves_energy(m_L, m_R, x_p, theta_s):
     "theta", [1e-3, 0.01, 0.2618, 1.0, math.pi / 2], ids=["1e-3", "0.01", "15deg", "1rad", "90deg"]
 )
 def test_tipping_integral_closed_form_matches_quadrature(theta):
-    """∫₀^θ dφ/√(sin φ) in elliptic closed form equals adaptive quadrature with the √φ singularity as a weight, 1e−13 rel."""
+    """∫₀^θ dφ/√(sin φ) in elliptic closed form equals adaptive quadrature with the √φ singularity as a weight, 1e−13
+    rel."""
     reference = quad(
         lambda p: math.sqrt(p / math.sin(p)) if p else 1.0,
         0.0,
@@ -489,7 +495,8 @@ def test_small_stop_angle_is_uniform_angular_acceleration():
 
 
 def test_bar_never_moves_exactly_where_there_is_no_net_torque(full_grid):
-    """t_stop = ∞ (shown as a phrase) and ω = 0 exactly at the stops where m_L x_p = m_R (ℓ − x_p) in exact arithmetic."""
+    """t_stop = ∞ (shown as a phrase) and ω = 0 exactly at the stops where m_L x_p = m_R (ℓ − x_p) in exact
+    arithmetic."""
     a, b, k, _ = full_grid
     out = _evaluate(["t_stop", "omega_stop"], effects=["rotation_dynamics"], theta_s=15.0, **_floats(a, b, k))
     still = a * k == b * (200 - k)

@@ -55,8 +55,8 @@ def test_new_refuses_a_folder_that_is_not_empty(tmp_path, existing):
     done = subprocess.run([*NEW, str(folder)], capture_output=True, text=True, timeout=60)
     assert done.returncode == 2 and "Traceback" not in done.stderr
     assert (
-        f"{folder} is not empty (it holds {existing.split('/')[0]}); sitegen new writes a book into a new or empty folder"
-        in done.stderr
+        f"{folder} is not empty (it holds {existing.split('/')[0]}); "
+        "sitegen new writes a book into a new or empty folder" in done.stderr
     )
     assert names(folder) == [existing] and (folder / existing).read_text() == "mine\n"
 

@@ -146,7 +146,8 @@ def test_no_output_adds_the_pressure_gain_to_a_power_transmission(A_TM, A_FP, el
 
 
 def test_the_transformer_lifts_water_transmission_from_minus_29_5_to_minus_15_dB():
-    """Water load at the defaults: 10 log T goes −29.52 → −14.96 dB, a 14.56 dB power gain — not the 26.98 dB of G_dB."""
+    """Water load at the defaults: 10 log T goes −29.52 → −14.96 dB, a 14.56 dB power gain — not the 26.98 dB of
+    G_dB."""
     out = _evaluate(["T0_dB", "T1_dB", "G_dB"], load=WATER)
     lift = float(out["T1_dB"] - out["T0_dB"])
     assert fmt(lift, 2) == "14.56" and abs(lift - float(out["G_dB"])) > 12

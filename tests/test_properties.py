@@ -1,7 +1,8 @@
 """Property-based tests (hypothesis) of the invariants of docs/physics/ over the whole parameter domain,
 far beyond the sliders: conservation in every collision at mass ratios 1e−15…1e15, the chain's exact
 energy, the path independence of a conservative force, the shape independence of an impulse, the
-lever's mirror antisymmetry, and the vanishing limit of every effect of every model (docs/physics/README.md, effects, rule 2).
+lever's mirror antisymmetry, and the vanishing limit of every effect of every model (docs/physics/README.md, effects,
+rule 2).
 
 Every property runs with fixed settings (`derandomize=True`, no example database, no deadline), so a
 run is reproducible; a failure prints the falsifying example. The models are driven through their
@@ -789,7 +790,8 @@ _COLLISION_LIMITS = [
         "k_c",
         "k_c",
         skip="the stiffness alone sets the contact's duration, not "
-        "its outcome: at c_d = 0 every k_c gives the elastic law bitwise (test_collision_model); the contact vanishes with c_d->0",
+        "its outcome: at c_d = 0 every k_c gives the elastic law bitwise "
+        "(test_collision_model); the contact vanishes with c_d->0",
     ),
 ]
 
@@ -1382,7 +1384,8 @@ def _check_limit(limit: Limit, x: dict, delta: float, others) -> None:
     "limit", [pytest.param(x, id=x.id, marks=pytest.mark.slow if x.model == "bubble" else ()) for x in LIMITS]
 )
 def test_effect_vanishes_in_its_limit(limit):
-    """Effects rule 2 (docs/physics/README.md): as an effect's parameter goes to its neutral value the outputs go to those of the model
+    """Effects rule 2 (docs/physics/README.md): as an effect's parameter goes to its neutral value the outputs go to
+    those of the model
     without the effect, within the bound docs/physics/ gives (or one derived from the physics), at random
     points of the whole domain; every output the effect cannot touch is bitwise unchanged."""
     if limit.skip:

@@ -147,7 +147,8 @@ def json_gzip_bytes(values: np.ndarray, decimals: int) -> int:
 
 
 def resolution_experiment() -> list[dict]:
-    """Every row of the resolution table (docs/physics/README.md), then one 'every stop' row per output (what the page ships, no interpolation)."""
+    """Every row of the resolution table (docs/physics/README.md), then one 'every stop' row per output (what the page
+    ships, no interpolation)."""
     rows = []
     for key, axis, counts in CASES:
         line = LINES[key]

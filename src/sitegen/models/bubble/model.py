@@ -286,7 +286,8 @@ class Bubble(Model):
     check_stops = 16  # each costs a solve and a tight reference solve (compiled: 1–50 ms)
     checks_digits = True
     # An ODE solve per stop: blocks spread a scene over workers and pace its progress lines; a block's stops are
-    # solved on THREADS threads, so it holds enough of them (64, not 16) that one slow stop does not leave a thread idle.
+    # solved on THREADS threads, so it holds enough of them (64, not 16) that one slow stop does not leave a thread
+    # idle.
     chunk_stops = 64
     reports = {
         **{f"bubble-{case}": f"the work–precision diagram of bubble case {case}" for case in "ABC"},

@@ -62,7 +62,8 @@ AUTO = "auto"  # the method setting that lets the composed terms choose (analyti
 REFERENCE_RTOL, REFERENCE_STIFF = 1e-12, 1e-10  # the check's tight solutions (non-stiff, stiff)
 ATOL_PER_RTOL = 1e-3  # nondimensional: atol = 1e-3 rtol on r ~ 1 and ṙ ~ 1
 # ... but on stiff terms, for `auto` and the references, never below 1e-11: in a quasi-static stretch of
-# a stiff run ṙ ≈ 0, its round-off exceeds a smaller atol and the step size collapses (Radau at rtol 1e-10 ran into 3e6 evaluations on a 0.1 µm
+# a stiff run ṙ ≈ 0, its round-off exceeds a smaller atol and the step size collapses (Radau at rtol 1e-10 ran into 3e6
+# evaluations on a 0.1 µm
 # nucleus with atol 1e-13, scipy's and the compiled one alike, and at 2 stops of the Blake scene with
 # 1e-12; with 1e-11 every stop of R0 ≤ 1 µm takes at most 1.3e4).
 ATOL_FLOOR = 1e-11

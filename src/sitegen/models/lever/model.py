@@ -147,7 +147,8 @@ class Lever(Model):
             0.005,
             lo=0.0,
             hi=0.25 * LENGTH,
-            description="how far the pivot may sit from the balance point and still count as balanced: half the pivot slider's step",
+            description="how far the pivot may sit from the balance point and "
+            "still count as balanced: half the pivot slider's step",
         ),
         Param("m_b", "m<sub>b</sub>", "kg", 1.0, lo=0.0, description="mass of the bar (uniform)").with_effect(
             "bar_mass"

@@ -20,8 +20,6 @@ from typing import TYPE_CHECKING
 
 import pytest
 
-from sitegen.physics.compiled import CACHE_ENV
-
 if TYPE_CHECKING:
     from sitegen.build import BuildConfig
 
@@ -32,9 +30,10 @@ ROOT = Path(__file__).resolve().parents[1]
 BOOK = Path(__file__).resolve().parent / "book"  # the tiny book: a few pages, one scene per model family
 # Compiled code is keyed by content (kernels' sources, numba, target), so every book the tests build, in
 # this process or another, shares the project's: the kernels compile once per checkout, not once per book.
+# (Set before sitegen.physics.compiled is first imported, which reads it.)
 COMPILED = ROOT / ".cache" / "compiled"
+os.environ.setdefault("SITEGEN_COMPILED_CACHE", str(COMPILED))  # the tests' builds, solvers and subprocesses
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-os.environ.setdefault(CACHE_ENV, str(COMPILED))  # the tests that call the solvers directly, and their subprocesses
 
 
 COLLECTED = pytest.StashKey[list]()  # the node ids of every test collected, before -m or -k leave any out
@@ -123,12 +122,11 @@ def made_once(tmp_path_factory, name: str, make: Callable[[Path], object]) -> Pa
 
 @pytest.fixture(scope="session")
 def bubble_kernels() -> Path:
-    """The project's compiled code (.cache/compiled/) with the bubble's kernels complete, loaded in this process:
-    compiled here, or (another test process compiling them) loaded once it is done. A build sharing it then
-    loads them, and tabulates its bubble scenes ahead, whatever ran before; with them missing it would compile."""
-    from sitegen.models.bubble.model import Bubble
+    """The project's compiled code (.cache/compiled/) with the bubble's kernels in it, loaded in this process
+    (compiled here if they were missing): a build or a worker process then loads them."""
+    from sitegen.models.bubble.solve import warm_up
 
-    Bubble().prepare_kernels(COMPILED)
+    warm_up()
     return COMPILED
 
 

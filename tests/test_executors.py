@@ -178,7 +178,10 @@ class _Explodes(Model):
 def test_worker_failure_comes_back_as_an_author_error(tmp_path, register):
     """An error inside a worker process reaches the author as `file:line: scene '...': ...`."""
     register({"explodes": _Explodes}, {"explodes": type(builtin_registry().figures["impulse"])(), "bare": _Bare()})
-    page = '+++\ntitle = "Boom"\n+++\n\n```scene\nmodel: explodes\nslider x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n'
+    page = (
+        '+++\ntitle = "Boom"\n+++\n\n```scene\nmodel: explodes\nslider '
+        "x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n"
+    )
 
     with pytest.raises(BuildFailed) as failure:
         build(_book(tmp_path, "out", page=page, jobs=2), progress=None)

@@ -1,6 +1,6 @@
 """K4: Rayleigh–Plesset bubble dynamics, composed from the effects a scene names.
 
-Three presets (presets.py) are three scenes of this one model (physics.md K4), one per pressure history:
+Three presets (presets.py) are three scenes of this one model (docs/physics/bubble.md), one per pressure history:
 A `step`, the Rayleigh collapse (analytic when only inertia and vapour act); B `drive`, a driven
 bubble with Keller–Miksis compressibility; C `ramp`, a nucleus under a ramped tension (Blake
 threshold). The dynamic outputs of each history carry its prefix (collapse_, driven_, ramp_) and

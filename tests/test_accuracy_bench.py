@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import write_book
 
 from sitegen.accuracy.experiments import (
     CHAIN_T,
@@ -56,7 +57,7 @@ def test_verlet_error_falls_fourfold_per_halving_of_the_step(n):
 
 
 def test_verlet_steps_hit_the_courant_number():
-    """N = 64 (a = 1/65), ν = 0.5 over T = 2: 260 steps, as in physics.md §11.1."""
+    """N = 64 (a = 1/65), ν = 0.5 over T = 2: 260 steps, as in docs/physics/chain.md."""
     assert verlet_steps(64, 0.5) == 260 and math.isclose(CHAIN_T, 2.0)
 
 
@@ -116,7 +117,8 @@ def test_driven_readout_errors_measure_known_perturbations():
 
 
 def test_driven_bubble_extrema_are_the_reference_readouts():
-    """Case B (one period): R_max/R0 = 6.8115 and R_min/R0 = 0.17624 at t/T = 0.51661 (physics.md K4 preset B)."""
+    """Case B (one period): R_max/R0 = 6.8115 and R_min/R0 = 0.17624 at t/T = 0.51661 (docs/physics/bubble.md preset
+    B)."""
     r_max, r_min, t_min = extrema(solve_case("B", "DOP853", 1e-10), 2 * math.pi / bubble_problem("B").omega)
     assert f"{r_max:.4f}" == "6.8115" and f"{r_min:.5f}" == "0.17624" and f"{t_min:.5f}" == "0.51661"
 
@@ -163,7 +165,8 @@ def test_exactly_structured_axes_interpolate_to_round_off(line, axis, nodes):
 
 
 def test_two_node_line_in_e_misses_the_parabola_by_its_sagitta():
-    """K_after(e) = K_before − ½µΔ²(1 − e²) with µ = 2/3, Δ = 4: a chord through e = 0, 1 misses by 16/3 · ¼ = 4/3 at e = ½."""
+    """K_after(e) = K_before − ½µΔ²(1 − e²) with µ = 2/3, Δ = 4: a chord through e = 0, 1 misses by 16/3 · ¼ = 4/3 at e
+    = ½."""
     error, _ = interpolation_error(LINES["K_after"], "linear", 2)
     assert error == pytest.approx(4 / 3, abs=1e-12)
 
@@ -180,7 +183,7 @@ def test_two_node_line_in_e_misses_the_parabola_by_its_sagitta():
     ids=["v1f-linear-17", "v1f-log-65", "dv-linear-65", "dv-log-65", "MA-linear-65"],
 )
 def test_plain_axes_reproduce_the_measured_table(line, axis, nodes, expected):
-    """The errors of physics.md §12 for linear and log axes (to the two digits it quotes)."""
+    """The errors of docs/physics/README.md for linear and log axes (to the two digits it quotes)."""
     error, _ = interpolation_error(LINES[line], axis, nodes)
     assert error == pytest.approx(expected, rel=0.05)
 
@@ -239,11 +242,8 @@ def test_numbers_are_written_as_the_captions_write_them(value, text):
 def test_quick_bench_writes_strict_json_with_the_expected_keys(tmp_path):
     """`sitegen bench --quick` on a one-scene book writes strict, sorted JSON with every section."""
     root = tmp_path / "book"
-    (root / "content").mkdir(parents=True)
-    (root / "book.toml").write_text("")
-    (root / "content" / "index.md").write_text(
-        '+++\ntitle = "Try"\n+++\n\n```scene\nmodel: impulse\nid: pulse\nslider m: 1..4 step 1 default 2\n```\n'
-    )
+    page = '+++\ntitle = "Try"\n+++\n\n```scene\nmodel: impulse\nid: pulse\nslider m: 1..4 step 1 default 2\n```\n'
+    write_book(root, {"index": page})
     out = tmp_path / "bench.json"
     assert main(["bench", "--quick", "--root", str(root), "--out", str(out)]) == 0
     text = out.read_text()
@@ -285,11 +285,9 @@ def test_committed_bench_results_cover_every_experiment():
 
 def _book_with(tmp_path: Path, block: str) -> BuildConfig:
     """A home page and an accuracy page holding one report block (no bench.json, no scenes)."""
-    content = tmp_path / "content"
-    content.mkdir(exist_ok=True)
-    (content / "index.md").write_text('+++\ntitle = "Book"\n+++\n\nHome.\n')
-    (content / "accuracy.md").write_text(f'+++\ntitle = "Accuracy"\n+++\n\nText.\n\n```accuracy-report\n{block}\n```\n')
-    return BuildConfig(tmp_path, content, tmp_path / "build", cache=None)
+    return write_book(
+        tmp_path, {"accuracy": f'+++\ntitle = "Accuracy"\n+++\n\nText.\n\n```accuracy-report\n{block}\n```\n'}
+    )
 
 
 def test_unknown_report_part_is_an_author_error_at_its_line(tmp_path):
@@ -331,7 +329,8 @@ def test_accuracy_page_has_each_diagram_with_its_numbers(built_site, figure):
     """Each diagram: an inline SVG with a label, a caption and a table of the numbers behind it."""
     html = (built_site / "accuracy.html").read_text()
     found = re.search(
-        rf'<figure class="report-figure" id="fig-{figure}">(.*?)</figure>\s*<details class="report-data">(.*?)</details>',
+        rf'<figure class="report-figure" id="fig-{figure}">(.*?)</figure>\s*<details '
+        r'class="report-data">(.*?)</details>',
         html,
         re.S,
     )

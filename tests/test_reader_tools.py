@@ -64,7 +64,8 @@ def shared(chromium, built_site):
 
 def _in_view(page, dom_id: str) -> bool:
     return page.evaluate(
-        "id => { const r = document.getElementById(id).getBoundingClientRect(); return r.top >= -2 && r.top < innerHeight; }",
+        "id => { const r = document.getElementById(id).getBoundingClientRect(); "
+        "return r.top >= -2 && r.top < innerHeight; }",
         dom_id,
     )
 
@@ -202,7 +203,8 @@ def test_every_page_links_to_its_neighbours_and_the_whole_book(shared, name):
     assert headings and all(href == f"#{anchor}" for anchor, href in headings), headings
     sections = {h for h, _ in links if h.startswith("#")}
     prose = page.evaluate(
-        "() => [...document.querySelectorAll('article h2[id], article h3[id]')].filter(h => !h.closest('nav')).map(h => h.id)"
+        "() => [...document.querySelectorAll('article h2[id], article "
+        "h3[id]')].filter(h => !h.closest('nav')).map(h => h.id)"
     )
     assert sections == {f"#{anchor}" for anchor in prose}, "the current page's sections in the contents"
 
@@ -280,6 +282,41 @@ def test_search_says_when_nothing_is_found(fresh):
     assert "zyzzyva" in page.text_content("#search-results") and page.text_content("#search-status") == "nothing found"
     page.keyboard.press("Escape")
     assert page.is_hidden("#search-results") and not errors
+
+
+def test_escape_from_a_result_closes_the_list_for_good(fresh):
+    """Escape in a result closes the list and puts the focus back in the box, which does not open it again;
+    typing in the box opens it again."""
+    page, errors = fresh("index.html", width=390)
+    _search(page, "restitution")
+    page.keyboard.press("ArrowDown")
+    assert page.evaluate("document.activeElement.closest('#search-results') !== null")
+    page.keyboard.press("Escape")
+    assert page.evaluate("document.activeElement.id") == "search-box"
+    assert page.is_hidden("#search-results")
+    page.keyboard.type(" ")
+    page.wait_for_selector("#search-results:not([hidden]) li")
+    assert not errors
+
+
+def test_a_result_on_the_page_moves_there_and_keeps_the_scenes(fresh):
+    """On Newton's laws, a result on the page itself links to its place ("#section", the page's own to the
+    start of its text), never to "" (which would load the page again and lose the scenes' state)."""
+    scene = next(s for s in SCENES if s.id == "collision")
+    page, errors = fresh(scene.page.output_name)
+    moved = move(page, scene, _elsewhere(scene))
+    found = _search(page, "newton")
+    here = [href for href in found if not href.split("#")[0]]
+    assert "#main-content" in here and len(here) > 1, found
+    assert all(href.startswith("#") and len(href) > 1 for href in here), found
+    assert all(re.fullmatch(r"[a-z-]+\.html(#[\w-]+)?", href) for href in found if href not in here), found
+    page.evaluate("window.sameDocument = true")
+    page.click(f'#search-results a[href="{here[-1]}"]')
+    page.wait_for_function("h => location.hash === h", arg=here[-1])
+    assert page.evaluate("window.sameDocument === true"), "the page was loaded again"
+    assert read_state(page, scene).stops == moved.stops and page.is_hidden("#search-results")
+    assert _in_view(page, here[-1][1:])
+    assert not errors
 
 
 # --- without JavaScript ---------------------------------------------------------------------------------

@@ -1,4 +1,4 @@
-"""The work–precision experiments of physics.md §11: the chain and the Rayleigh–Plesset presets.
+"""The work–precision experiments of docs/physics/ (chain.md, bubble.md): the chain and the Rayleigh–Plesset presets.
 
 Each experiment returns plain data (dicts of numbers and strings, ready for JSON): for every
 method and setting its error against a reference, its evaluation count and the median wall
@@ -67,7 +67,7 @@ def finite(value) -> float | None:
     return value if math.isfinite(value) else None
 
 
-# --- the chain (physics.md §11.1) -------------------------------------------------------------------------
+# --- the chain (docs/physics/chain.md) --------------------------------------------------------------------
 
 
 def chain_start(n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -162,10 +162,10 @@ def _chain_row(key: tuple, timed, exact: np.ndarray) -> dict:
     return row if result.status == 0 else {**row, "status": result.message}
 
 
-# --- Rayleigh–Plesset (physics.md §11.2) -------------------------------------------------------------------
+# --- Rayleigh–Plesset (docs/physics/bubble.md) -------------------------------------------------------------
 
-# §11.2's case C is the model's "stiff" preset (the viscous micro-bubble); B and C run one
-# acoustic period, as in physics.md (the page's scenes run two).
+# Case C is the viscous micro-bubble of docs/physics/bubble.md (the model's "stiff" preset); B and C run one
+# acoustic period, as there (the page's scenes run two).
 CASES = {
     "A": {
         "preset": "A",
@@ -196,7 +196,7 @@ REFERENCE = {"B": (("DOP853", 1e-13), ("Radau", 1e-12)), "C": (("Radau", 1e-13),
 
 
 def bubble_problem(case: str) -> Problem:
-    """The nondimensional problem of a §11.2 case (B and C cut to one acoustic period)."""
+    """The nondimensional problem of a bench case (B and C cut to one acoustic period)."""
     pb, _ = preset_problem(CASES[case]["preset"])
     periods = CASES[case]["periods"]
     return replace(pb, tau_end=periods * 2.0 * math.pi / pb.omega) if periods else pb
@@ -210,7 +210,7 @@ def solve_case(case: str, method: str, rtol: float) -> Run:
 
 
 def skip_reason(case: str, method: str, rtol: float) -> str | None:
-    """Why a combination is not run (hopeless or minutes long, physics.md §11.2), or None."""
+    """Why a combination is not run (hopeless or minutes long, docs/physics/bubble.md), or None."""
     if case == "C" and method in EXPLICIT and rtol not in (1e-3, 1e-6):
         return (
             "stability-limited: 3e5–4e5 evaluations and 3–10 s per solve at every rtol (measured at 1e-3 "
@@ -299,7 +299,7 @@ def case_reference(case: str, cross_check: bool) -> tuple[Run | None, dict]:
 
 
 def bubble_experiment(case: str, plan: Plan = FULL) -> dict:
-    """Every method × rtol on one §11.2 case (some skipped, with the reason), against its reference."""
+    """Every method × rtol on one bench case (some skipped, with the reason), against its reference."""
     reference, check = case_reference(case, plan.cross_check)
     combos = [(ANALYTIC, 0.0)] if case == "A" else []
     combos += [(method, rtol) for method in plan.bubble_methods for rtol in plan.bubble_rtols]

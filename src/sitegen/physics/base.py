@@ -8,7 +8,6 @@ import inspect
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
-from pathlib import Path
 from typing import ClassVar
 
 import numpy as np
@@ -165,7 +164,7 @@ class Model:
     # Models that are costly per point (an ODE solve each) set this: their grids are split into
     # blocks of at most this many points, so that parallel builds can spread one scene's work.
     chunk_stops: ClassVar[int | None] = None
-    # A model that computes by a numerical method declares its default settings (physics.md §11),
+    # A model that computes by a numerical method declares its default settings (docs/physics/),
     # the methods a scene may choose with the settings each takes, and the error its check measures.
     numerics: ClassVar[Numerics | None] = None
     methods: ClassVar[dict[str, dict[str, object]]] = {}  # method: the settings it takes, at their defaults
@@ -239,18 +238,6 @@ class Model:
         self, x: Mapping[str, np.ndarray], wanted: tuple[str, ...], effects: frozenset[str]
     ) -> dict[str, np.ndarray]:
         raise NotImplementedError
-
-    kernel_parts: tuple[str, ...] = ()  # parts of its compiled code that processes may compile side by side
-
-    def prepare_kernels(self, cache: Path, part: str | None = None) -> tuple[float, bool] | None:
-        """Compile the model's compiled code, or load it from the folder `cache`: (seconds, whether it
-        compiled), or None for a model without compiled code. `part` (one of `kernel_parts`): only that part,
-        into `cache`, for a process compiling it beside others."""
-        return None
-
-    def kernels_cached(self, cache: Path) -> bool:
-        """Whether `prepare_kernels(cache)` would only load (True for a model without compiled code)."""
-        return True
 
     def is_numerical(self, effects: Iterable[str]) -> bool:
         """Whether, with these effects, some output comes from a numerical method (and is checked)."""

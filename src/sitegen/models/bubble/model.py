@@ -1,6 +1,6 @@
 """K4: Rayleigh–Plesset bubble dynamics, composed from the effects a scene names.
 
-Three presets (presets.py) are three scenes of this one model (physics.md K4), one per pressure history:
+Three presets (presets.py) are three scenes of this one model (docs/physics/bubble.md), one per pressure history:
 A `step`, the Rayleigh collapse (analytic when only inertia and vapour act); B `drive`, a driven
 bubble with Keller–Miksis compressibility; C `ramp`, a nucleus under a ramped tension (Blake
 threshold). The dynamic outputs of each history carry its prefix (collapse_, driven_, ramp_) and
@@ -11,13 +11,9 @@ terminal events and caps (solve.py; what a run is: run.py); points that are one 
 from __future__ import annotations
 
 import math
-import os
-from concurrent.futures import ThreadPoolExecutor
-from pathlib import Path
 
 import numpy as np
 
-from ...physics import compiled
 from ...physics.base import Model, Output, Param
 from ...physics.numerics import Measurement, Numerics
 from . import terms
@@ -37,7 +33,7 @@ from .point import (
 )
 from .run import CURVE_POINTS, REFERENCE_CAPS
 from .scipy_path import SOLVERS
-from .solve import AUTO, COMPILED, KERNEL_PARTS, STIFF, ensure_compiled, method_for, reference_for, solve
+from .solve import AUTO, COMPILED, STIFF, method_for, reference_for, solve
 from .terms import P0, WATER
 
 EFFECTS = (
@@ -54,7 +50,6 @@ EFFECTS = (
     "radiation",
     "keller_miksis",
 )
-THREADS = min(2, os.cpu_count() or 1)  # the solves of a block of points run on this many threads
 LIQUID_AND_GAS = ("R0", "rho", "c", "kappa", "h_frac", "p_v", "sigma", "mu", "D_g")
 HISTORY_PARAMS = {"step": ("p_inf", "gas_content"), "drive": ("p_a", "f"), "ramp": ("depth", "t_ramp", "t_hold")}
 PREFIX = {"step": "collapse", "drive": "driven", "ramp": "ramp"}
@@ -285,8 +280,8 @@ class Bubble(Model):
     error_metric = "max |ΔR|/R₀ over R(t) and its extrema"
     check_stops = 16  # each costs a solve and a tight reference solve (compiled: 1–50 ms)
     checks_digits = True
-    # An ODE solve per stop: blocks spread a scene over workers and pace its progress lines; a block's stops are
-    # solved on THREADS threads, so it holds enough of them (64, not 16) that one slow stop does not leave a thread idle.
+    # An ODE solve per stop (1–50 ms compiled): blocks spread a scene over the executor's workers and pace its
+    # progress lines, and hold enough stops to pay for their trip to a worker.
     chunk_stops = 64
     reports = {
         **{f"bubble-{case}": f"the work–precision diagram of bubble case {case}" for case in "ABC"},
@@ -303,17 +298,6 @@ class Bubble(Model):
         if dynamic:
             results.update(_solve_points(x, dynamic, effects, self.settings))
         return results
-
-    kernel_parts = KERNEL_PARTS
-
-    def prepare_kernels(self, cache: Path, part: str | None = None) -> tuple[float, bool]:
-        """The compiled solver, compiled or loaded from `cache` once per process (or one part of it, into `cache`)."""
-        compiled.use_cache(cache)
-        return ensure_compiled(part)
-
-    def kernels_cached(self, cache: Path) -> bool:
-        """Whether the compiled solver is complete in `cache` (so preparing it loads, not compiles)."""
-        return compiled.is_cached(cache)
 
     def is_numerical(self, effects) -> bool:
         """Only a pressure history is solved: the closed forms alone need no check."""
@@ -403,8 +387,7 @@ CLOSED_FORMS = {
 def _solve_points(x, names, effects, settings: Numerics) -> dict[str, np.ndarray]:
     """Solve every point (each distinct nondimensional problem once) and read the named outputs.
 
-    The compiled solver and reading release the GIL, so THREADS threads solve points side by side; each
-    point's result depends on that point alone, so the tables do not depend on the number of threads.
+    Each point's result depends on that point alone, so the tables do not depend on how the grid is split.
     """
     shape = np.shape(x["R0"])
     flat = {name: np.ravel(x[name]).astype(float).tolist() for name in ALL}  # Python floats, read faster
@@ -415,9 +398,7 @@ def _solve_points(x, names, effects, settings: Numerics) -> dict[str, np.ndarray
         method, rtol, atol = method_for(pb, settings)
         return read_row(solve(pb, method, rtol, atol=atol), pb, scales, effects)
 
-    ensure_compiled()  # before the threads start: compiling or loading is done once
-    with ThreadPoolExecutor(max_workers=THREADS) as pool:
-        rows = np.array(list(pool.map(one, range(count))))
+    rows = np.array([one(i) for i in range(count)])
     sizes = {name: (Bubble.output(name).size,) if Bubble.output(name).size else () for name in names}
     return {name: rows[:, ROW_OF[name.split("_", 1)[1]]].reshape(shape + sizes[name]) for name in names}
 

@@ -1,4 +1,4 @@
-"""The bubble's presets (physics.md K4 and §11.2), for the tests and the accuracy report."""
+"""The bubble's presets (docs/physics/bubble.md), for the tests and the accuracy report."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from .run import Run
 from .solve import solve
 from .terms import Problem
 
-PRESETS = {  # name: (effects, parameters that differ from the defaults), physics.md K4 and §11.2
+PRESETS = {  # name: (effects, parameters that differ from the defaults), docs/physics/bubble.md
     "A": (("inertia", "vapour", "step"), {"R0": 1000.0, "p_inf": 1.0}),
     "B": (
         ("gas", "vdw_hard_core", "surface_tension", "viscosity", "drive", "keller_miksis"),

@@ -37,7 +37,10 @@ def bubble_part(case: str):
         if not context.bench or case not in context.bench.get("bubble", {}):
             return MISSING
         data = context.bench["bubble"][case]
-        label = f"Work–precision diagram of bubble case {case}: error against time for five solvers over rtol 10⁻³ to 10⁻¹²."
+        label = (
+            f"Work–precision diagram of bubble case {case}: error "
+            "against time for five solvers over rtol 10⁻³ to 10⁻¹²."
+        )
 
         def draw(narrow):
             return work_precision_figure(
@@ -179,7 +182,8 @@ def settings_part(context) -> str:
         text=(0,),
     )
     caption = (
-        f"{label} Reference: {escape(next(iter(sweep.values()))['reference'])}. The number beside a point is n in rtol = 10⁻ⁿ; "
+        f"{label} Reference: {escape(next(iter(sweep.values()))['reference'])}. "
+        "The number beside a point is n in rtol = 10⁻ⁿ; "
         "the ringed point is the setting the scenes use."
     )
     return figure_html(

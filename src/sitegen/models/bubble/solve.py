@@ -20,7 +20,6 @@ from functools import lru_cache
 
 import numpy as np
 
-from ...physics import compiled
 from ...physics.numerics import Numerics
 from . import kernel_read
 from .kernel_march import DOP853_METHOD, ENDED, RADAU_METHOD, march, split_hits
@@ -53,16 +52,17 @@ from .terms import (
 
 COMPILED = {"compiled-DOP853": DOP853_METHOD, "compiled-Radau": RADAU_METHOD}  # the same steppers, compiled
 ANALYTIC = "analytic"
-STIFF = 1e3  # 4µT/(ρR0²) above which explicit methods are stability-limited (physics.md §11.2 C)
+STIFF = 1e3  # 4µT/(ρR0²) above which explicit methods are stability-limited (docs/physics/bubble.md)
 EXPLICIT, IMPLICIT = "compiled-DOP853", "compiled-Radau"  # what `auto` picks off and on stiff terms
 # rtol of `auto`: the loosest at which every readout of the book's bubble scenes shows the digits of a
-# tight reference at every stop (the sweep on the accuracy page; physics.md §11.2 chose 1e-6 for 1e-3 R0).
+# tight reference at every stop (the sweep on the accuracy page; DOP853 at 1e-6 gives 1e-3 R0 on the driven bubble).
 EXPLICIT_RTOL, IMPLICIT_RTOL = 1e-8, 1e-8
 AUTO = "auto"  # the method setting that lets the composed terms choose (analytic, compiled DOP853 or Radau)
 REFERENCE_RTOL, REFERENCE_STIFF = 1e-12, 1e-10  # the check's tight solutions (non-stiff, stiff)
 ATOL_PER_RTOL = 1e-3  # nondimensional: atol = 1e-3 rtol on r ~ 1 and ṙ ~ 1
 # ... but on stiff terms, for `auto` and the references, never below 1e-11: in a quasi-static stretch of
-# a stiff run ṙ ≈ 0, its round-off exceeds a smaller atol and the step size collapses (Radau at rtol 1e-10 ran into 3e6 evaluations on a 0.1 µm
+# a stiff run ṙ ≈ 0, its round-off exceeds a smaller atol and the step size collapses (Radau at rtol 1e-10 ran into 3e6
+# evaluations on a 0.1 µm
 # nucleus with atol 1e-13, scipy's and the compiled one alike, and at 2 stops of the Blake scene with
 # 1e-12; with 1e-11 every stop of R0 ≤ 1 µm takes at most 1.3e4).
 ATOL_FLOOR = 1e-11
@@ -79,7 +79,7 @@ def stiff_atol(pb: Problem, rtol: float) -> float | None:
 
 
 def choose_method(pb: Problem) -> tuple[str, float]:
-    """The solver and rtol the composed terms call for (physics.md §11.2 verdicts)."""
+    """The solver and rtol the composed terms call for (the verdicts of docs/physics/bubble.md)."""
     if pb.is_rayleigh:
         return ANALYTIC, 0.0
     if pb.stiffness > STIFF:
@@ -132,12 +132,6 @@ def integrate_compiled(
     pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), atol: float | None = None
 ) -> Run:
     """The compiled path of `integrate`: the same events, samples and statuses, no Python per step."""
-    ensure_compiled()
-    return _marched(pb, y0, method, rtol, caps, atol)
-
-
-def _marched(pb: Problem, y0, method: str, rtol: float, caps: Caps, atol: float | None) -> Run:
-    """integrate_compiled once the kernels are ready (the warm-up calls it to compile them)."""
     start = time.perf_counter()
     grid = sample_grid(pb.tau_end)
     atol = default_atol(rtol) if atol is None else atol
@@ -177,32 +171,18 @@ def _run_of(marched, method: str, rtol: float, grid: np.ndarray, start: float) -
     )
 
 
-# The kernels in two parts of about 15 and 5 s of compiling, which processes can compile side by side:
-# the stepping (`march`) and the reading of a run (`read`).
-KERNEL_PARTS = ("march", "read")
-
-
-def ensure_compiled(part: str | None = None) -> tuple[float, bool]:
-    """Compile the bubble's kernels, or load them from the cache (once per process): (seconds, compiled).
-
-    `part` (one of KERNEL_PARTS): only those kernels, into the cache, for a process compiling beside others."""
+def warm_up() -> None:
+    """Call every compiled entry point once, with the types of the build's calls: each is compiled, or loaded
+    from the cache, now (for timings that should leave that out)."""
     pb = Problem(gas=1.0, kappa=1.4, visc=0.01, drive=0.5, omega=1.0, tau_end=0.5)
-
-    def warm_up():  # each entry point once, with the types of the build's calls
-        if part in (None, "march"):
-            for method in COMPILED:
-                _marched(pb, (1.0, 0.0), method, 1e-6, Caps(10_000), 1e-9)
-        if part in (None, "read"):
-            grid = sample_grid(pb.tau_end)  # a run as `march` returns one, made up: reading it compiles no stepping
-            made_up = (ENDED, (pb.tau_end, 1.0, 0.0), np.ones((grid.shape[0], 2)), np.zeros((0, 4)), 0)
-            run = _run_of(made_up, EXPLICIT, 1e-6, grid, 0.0)
-            q = np.ones(kernel_read.READING_SIZE)  # a reading of any point whose window is the run's
-            q[kernel_read.Q_TAU_END] = q[kernel_read.Q_PART] = pb.tau_end
-            kernel_read.read(
-                q, run.tau, run.r, run.v, run.end, STATUS_CODES[run.status], run.maxima, run.minima, run.speeds
-            )
-
-    return compiled.prepare(warm_up, part, KERNEL_PARTS)
+    for method in COMPILED:
+        integrate_compiled(pb, (1.0, 0.0), method, 1e-6, Caps(10_000), 1e-9)
+    grid = sample_grid(pb.tau_end)  # a run as `march` returns one, made up: reading it compiles no stepping
+    made_up = (ENDED, (pb.tau_end, 1.0, 0.0), np.ones((grid.shape[0], 2)), np.zeros((0, 4)), 0)
+    run = _run_of(made_up, EXPLICIT, 1e-6, grid, 0.0)
+    q = np.ones(kernel_read.READING_SIZE)  # a reading of any point whose window is the run's
+    q[kernel_read.Q_TAU_END] = q[kernel_read.Q_PART] = pb.tau_end
+    kernel_read.read(q, run.tau, run.r, run.v, run.end, STATUS_CODES[run.status], run.maxima, run.minima, run.speeds)
 
 
 def integrate(

@@ -62,7 +62,7 @@ def bench_figures(bench: dict, parts: list[str], models: Mapping, reports: Mappi
     """Every diagram that the report `parts` draw from bench.json alone, by the key `figure` remembers it by
     (but those `cache`, a TableCache, holds already).
 
-    Drawn before (or beside) the build's own work: a part is rendered as if the build had no scenes, and only
+    Drawn before the build's own work: a part is rendered as if the build had no scenes, and only
     its diagrams are kept. A diagram drawn from the build's data has another key then (or its part fails), and
     is drawn with the part, later."""
     drawn: dict[str, bytes] = {}
@@ -104,7 +104,8 @@ def _parts_from_bench(bench: dict, parts: list[str], models: Mapping, reports: M
 
 
 def resolution_part(context: ReportContext) -> str:
-    """Interpolation error against bytes for the §12 outputs, and what the page ships instead."""
+    """Interpolation error against bytes for the outputs of the resolution table (docs/physics/README.md), and what the
+    page ships instead."""
     if not context.bench:
         return MISSING
     rows = context.bench["resolution"]

@@ -132,7 +132,8 @@ def cheapest_within(runs: list[dict], target: float) -> dict | None:
 
 
 def bubble_headlines(case: dict) -> dict:
-    """For one bubble case: costs per digit per method, the Pareto front, the cheapest run per error level, the chosen run."""
+    """For one bubble case: costs per digit per method, the Pareto front, the cheapest run per error level, the chosen
+    run."""
     runs = case["runs"]
     chosen = case["chosen"]
     picked = find(runs, chosen["method"], **({"rtol": chosen["rtol"]} if chosen.get("rtol") else {}))

@@ -25,7 +25,7 @@
     return flat;
   }
 
-  /* Rounded to a count of 10^-d units by the build's rule, in its steps (compute/quantize.py _half_away):
+  /* Rounded to a count of 10^-d units by the build's rule, in its steps (compute/quantize.py half_away):
    * to the nearest, a value half-way to 12 significant digits away from zero. */
   function toQuantum(v, d) {
     var x = v * Math.pow(10, d), a = Math.abs(x), w = Math.floor(a);
@@ -317,12 +317,13 @@
         }).join("");
         return;
       }
-      var vertices = self.vertices(layer, stops), dots = layer.kind === "dots";
-      var text = vertices.map(function (p) {
-        var xy = short(p[0]) + "," + short(p[1]);
-        return dots ? "M" + xy + "h0" : xy;
-      }).join(" ");
-      for (var j = 0; j < elements.length; j++) elements[j].setAttribute(dots ? "d" : "points", text);
+      var pairs = self.vertices(layer, stops).map(function (p) { return short(p[0]) + "," + short(p[1]); });
+      var points = layer.kind === "dots" ? null : pairs.join(" ");
+      for (var j = 0; j < elements.length; j++) {
+        if (points !== null) { elements[j].setAttribute("points", points); continue; }
+        var step = "h" + elements[j].getAttribute("data-dot"); // a dot: a stroke too short to see (render/svg.py)
+        elements[j].setAttribute("d", pairs.map(function (xy) { return "M" + xy + step; }).join(" "));
+      }
     });
   };
 
@@ -412,6 +413,18 @@
     }, { once: true });
   }
 
+  /* Paper shows what a closed <details> holds (a derivation): opened for printing, closed again after. */
+  function openDetailsToPrint() {
+    var opened = [];
+    window.addEventListener("beforeprint", function () {
+      var closed = document.querySelectorAll("details:not([open])");
+      for (var i = 0; i < closed.length; i++) { closed[i].open = true; opened.push(closed[i]); }
+    });
+    window.addEventListener("afterprint", function () {
+      opened.splice(0).forEach(function (details) { details.open = false; });
+    });
+  }
+
   function start() {
     var boxes = [].slice.call(document.querySelectorAll(".equation, .report-scroll"));
     var measure = function () { markScrollers(boxes); };
@@ -438,6 +451,7 @@
     openLink(live);
     window.addEventListener("hashchange", function () { openLink(live); });
     searchOnDemand();
+    openDetailsToPrint();
     var contents = document.getElementById("book-contents"); // the phone's panel closes on a link
     if (contents) contents.addEventListener("click", function (e) { if (e.target.closest("a") && contents.matches(":popover-open")) contents.hidePopover(); });
   }

@@ -18,6 +18,7 @@ from sitegen.models.lever.mechanics import BALANCED, LENGTH, TIPS_LEFT, TIPS_RIG
 from sitegen.models.lever.model import BLOCK_SIDE_PER_CUBE_ROOT_KG, DRAWN_SLOPE, Lever
 from sitegen.registry import builtin_registry
 from sitegen.render.layers import layer_points
+from sitegen.review.decode import listed
 from sitegen.site.assemble import readout_text
 from sitegen.site.payload import scene_payload
 from sitegen.site.sizes import gzip_bytes
@@ -157,7 +158,7 @@ PIVOT_AT_THE_END = {
     "MA-is-+inf-never-nan": lambda scene, tables, payload: float(_evaluate(["MA"], x_p=LENGTH)["MA"]) == math.inf,
     "scene-data-is-strict-json": lambda scene, tables, payload: (
         json.dumps(json.loads(payload), allow_nan=False) is not None
-        and json.loads(payload)["tables"]["MA"]["q"][-1] is None
+        and listed(json.loads(payload)["tables"]["MA"])[-1] is None
     ),
     "readout-renders-infinity-phrase": lambda scene, tables, payload: (
         readout_text(tables["MA"], "×", _stops(scene, x_p=2.0)) == "∞ (pivot at the end)"

@@ -15,21 +15,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from sitegen.accuracy.experiments import (
-    CHAIN_T,
-    bubble_problem,
-    case_errors,
-    chain_by_eigh,
-    chain_error,
-    chain_exact,
-    collapse_errors,
-    extrema,
-    run_chain_ivp,
-    run_verlet,
-    skip_reason,
-    solve_case,
-    verlet_steps,
-)
+from sitegen.models.bubble.bench import bubble_problem, case_errors, collapse_errors, extrema, skip_reason, solve_case
+from sitegen.models.chain.bench import ROUND_TRIP as CHAIN_T
+from sitegen.models.chain.bench import by_eigh as chain_by_eigh
+from sitegen.models.chain.bench import exact_after_round_trip as chain_exact
+from sitegen.models.chain.bench import pulse_error as chain_error
+from sitegen.models.chain.bench import run_ivp as run_chain_ivp
+from sitegen.models.chain.bench import run_verlet, verlet_steps
 from sitegen.accuracy.resolution import LINES, interpolation_error, resolution_experiment
 from sitegen.build import BuildConfig, build
 from sitegen.cli import main
@@ -297,7 +289,7 @@ def test_unknown_report_part_is_an_author_error_at_its_line(tmp_path):
     with pytest.raises(BuildFailed) as failure:
         build(_book_with(tmp_path, "show: nope"), progress=None)
     parts = ", ".join(report_parts(MODELS))
-    assert "chain, bubble-A, bubble-B, bubble-C" in parts  # declared by the chain and bubble models
+    assert "chain, bubble, chain-round-trip, bubble-A, bubble-B, bubble-C, settings" in parts  # models, their own
     assert [str(e) for e in failure.value.errors] == [
         f"content/accuracy.md:8: accuracy-report: unknown part 'nope'; parts: {parts}"
     ]

@@ -21,6 +21,7 @@ from ...physics import compiled
 from ...physics.base import Model, Output, Param
 from ...physics.numerics import Measurement, Numerics
 from . import terms
+from .bench import Regime
 from .compare import run_difference, shown_difference
 from .point import (
     BLAKE_LABELS,
@@ -38,6 +39,7 @@ from .point import (
 from .run import CURVE_POINTS, REFERENCE_CAPS
 from .scipy_path import SOLVERS
 from .solve import AUTO, COMPILED, KERNEL_PARTS, STIFF, ensure_compiled, method_for, reference_for, solve
+from .sweep import DigitSweep
 from .terms import P0, WATER
 
 EFFECTS = (
@@ -288,10 +290,11 @@ class Bubble(Model):
     # An ODE solve per stop: blocks spread a scene over workers and pace its progress lines; a block's stops are
     # solved on THREADS threads, so it holds enough of them (64, not 16) that one slow stop does not leave a thread idle.
     chunk_stops = 64
-    reports = {
-        **{f"bubble-{case}": f"the work–precision diagram of bubble case {case}" for case in "ABC"},
-        "settings": "the bubble scenes' settings: every stop's shown digits against time",
-    }
+    # The bench at the scenes' stops: `auto` at its own rule, the compiled solvers over rtol 1e-6 … 1e-10 (a scipy
+    # solver costs 20–200 times as much, and an explicit one seconds a stop where the terms are stiff: those are
+    # compared on the three regimes of physics.md §11.2 instead, and the sweep puts every stop's digits against time).
+    ladders = {"rtol": (1e-6, 1e-7, 1e-8, 1e-9, 1e-10), AUTO: {"rtol": ()}, **{name: {"rtol": ()} for name in SOLVERS}}
+    experiments = {**{f"bubble-{case}": Regime(case) for case in "ABC"}, "settings": DigitSweep()}
 
     def _evaluate(self, x, wanted, effects):
         check_effects(effects)

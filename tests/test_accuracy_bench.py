@@ -15,6 +15,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from sitegen.accuracy.resolution import LINES, interpolation_error, resolution_experiment
+from sitegen.build import BuildConfig, build
+from sitegen.cli import main
+from sitegen.content.bench_results import BENCH_NAME, load_results
+from sitegen.errors import BuildFailed
 from sitegen.models.bubble.bench import bubble_problem, case_errors, collapse_errors, extrema, skip_reason, solve_case
 from sitegen.models.chain.bench import ROUND_TRIP as CHAIN_T
 from sitegen.models.chain.bench import by_eigh as chain_by_eigh
@@ -22,11 +27,6 @@ from sitegen.models.chain.bench import exact_after_round_trip as chain_exact
 from sitegen.models.chain.bench import pulse_error as chain_error
 from sitegen.models.chain.bench import run_ivp as run_chain_ivp
 from sitegen.models.chain.bench import run_verlet, verlet_steps
-from sitegen.accuracy.resolution import LINES, interpolation_error, resolution_experiment
-from sitegen.build import BuildConfig, build
-from sitegen.cli import main
-from sitegen.content.bench_results import BENCH_NAME, load_results
-from sitegen.errors import BuildFailed
 from sitegen.registry import builtin_registry
 from sitegen.site.report import report_parts, summary
 from sitegen.site.report.html import sci
@@ -229,7 +229,8 @@ def test_numbers_are_written_as_the_captions_write_them(value, text):
 
 
 def test_quick_bench_writes_strict_json_with_the_expected_keys(tmp_path):
-    """`sitegen bench --quick` on a one-scene book writes strict, sorted JSON with every section."""
+    """`sitegen bench --quick` on a one-scene book writes strict, sorted JSON with every section; a book without
+    numerical scenes measures no model (the impulse is a closed form)."""
     root = tmp_path / "book"
     (root / "content").mkdir(parents=True)
     (root / "book.toml").write_text("")
@@ -241,12 +242,10 @@ def test_quick_bench_writes_strict_json_with_the_expected_keys(tmp_path):
     text = out.read_text()
     data = json.loads(text, parse_constant=lambda name: pytest.fail(f"non-finite {name}"))
     assert text == json.dumps(data, indent=1, sort_keys=True, allow_nan=False, ensure_ascii=False) + "\n"
-    assert {"schema", "machine", "plan", "chain", "bubble", "resolution", "build", "seconds"} <= set(data)
+    assert {"schema", "machine", "plan", "models", "resolution", "build", "seconds"} <= set(data)
     assert {"cpu", "cores", "python", "numpy", "scipy", "date"} <= set(data["machine"])
-    assert {r["method"] for r in data["chain"]["runs"]} == {"exact DST", "velocity Verlet", "RK45", "DOP853"}
-    assert data["bubble"]["A"]["chosen"]["method"] == "analytic" and data["bubble"]["A"]["runs"]
+    assert data["models"] == {} and data["resolution"] == []
     assert set(data["build"]["scenes"]) == {"index#pulse"} and "index.html" in data["build"]["pages"]
-    assert all(run["error"] >= 0 and run["time_s"] > 0 for run in data["chain"]["runs"])
 
 
 def test_committed_bench_results_cover_every_experiment():
@@ -254,8 +253,13 @@ def test_committed_bench_results_cover_every_experiment():
     compiled solvers beside scipy's, and the settings sweep of every bubble scene."""
     data = load_results(ROOT / "content" / BENCH_NAME)
     assert data is not None, "run `make bench` to write content/accuracy/bench.json"
-    assert {r["N"] for r in data["chain"]["runs"]} == {64, 256} and set(data["bubble"]) == {"A", "B", "C"}
-    assert {r["method"] for r in data["bubble"]["B"]["runs"]} == {
+    chain, bubble = (data["models"][name]["experiments"] for name in ("chain", "bubble"))
+    assert [p["title"] for p in chain["chain-round-trip"]["panels"]] == [
+        "chain of N = 64 masses",
+        "chain of N = 256 masses",
+    ]
+    assert {f"bubble-{case}" for case in "ABC"} <= set(bubble)
+    assert {r["method"] for r in bubble["bubble-B"]["panels"][0]["runs"]} == {
         "RK45",
         "DOP853",
         "Radau",
@@ -267,8 +271,9 @@ def test_committed_bench_results_cover_every_experiment():
     bubble_scenes = {
         f"newtons-laws-examples#{s}" for s in ("rayleigh-collapse", "driven-bubble", "driven-map", "blake-threshold")
     }
-    assert set(data["digits"]) == bubble_scenes
-    for sweep in data["digits"].values():  # at the chosen setting no shown value is wrong at any stop
+    sweeps = bubble["settings"]["scenes"]
+    assert set(sweeps) == bubble_scenes
+    for sweep in sweeps.values():  # at the chosen setting no shown value is wrong at any stop
         assert next(r for r in sweep["runs"] if r["rtol"] == sweep["chosen"])["wrong"] == 0
 
 
@@ -297,8 +302,12 @@ def test_unknown_report_part_is_an_author_error_at_its_line(tmp_path):
 
 @pytest.mark.parametrize(
     "part, text",
-    [("chain", "No benchmark results yet"), ("scenes", "No numerical scenes were checked")],
-    ids=["chain-without-bench", "scenes-without-records"],
+    [
+        ("chain-round-trip", "No benchmark results yet"),
+        ("chain", "No benchmark results yet"),
+        ("scenes", "No numerical scenes were checked"),
+    ],
+    ids=["experiment-without-bench", "model-without-bench", "scenes-without-records"],
 )
 def test_report_blocks_say_clearly_when_there_is_nothing_to_show(tmp_path, part, text):
     """Without bench.json a bench part says how to get one; with no records the scene table says so."""
@@ -318,7 +327,9 @@ def test_accuracy_page_is_built_and_linked_from_the_home_page(built_site):
     assert not any("data-report-slot" in p.read_text() for p in built_site.glob("*.html"))
 
 
-@pytest.mark.parametrize("figure", ["chain", "bubble-A", "bubble-B", "bubble-C", "settings", "resolution"])
+@pytest.mark.parametrize(
+    "figure", ["chain-round-trip", "bubble-A", "bubble-B", "bubble-C", "settings", "bubble", "resolution"]
+)
 def test_accuracy_page_has_each_diagram_with_its_numbers(built_site, figure):
     """Each diagram: an inline SVG with a label, a caption and a table of the numbers behind it."""
     html = (built_site / "accuracy.html").read_text()
@@ -335,7 +346,7 @@ def test_accuracy_page_has_each_diagram_with_its_numbers(built_site, figure):
         and "<table" in found[2]
     )
     if figure != "resolution":
-        assert "chosen:" in found[1], "the chosen setting is marked"
+        assert "chosen:" in found[1] or "scene's setting:" in found[1], "the chosen setting is marked"
 
 
 def test_every_checked_scene_has_its_row_and_its_caption_links_to_it(built_site):
@@ -380,9 +391,9 @@ def test_the_reports_diagrams_from_bench_alone_are_drawn_once_and_not_again_when
 
     bench = load_results(ROOT / "tests" / "book" / "content" / BENCH_NAME)
     registry = builtin_registry()
-    parts = ["machine", "chain", "bubble-B", "digits"]  # one diagram (bubble-B has no results in this quick run)
+    parts = ["machine", "chain-round-trip", "bubble-B", "digits", "scenes"]  # two diagrams; the scenes need the build
     drawn = bench_figures(bench, parts, registry.models, registry.reports)
-    assert len(drawn) == 1
+    assert len(drawn) == 2
     assert all(svg.count(b"<svg") == 2 for svg in drawn.values())  # each wide and narrow
 
     asked = {}

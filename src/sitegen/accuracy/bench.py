@@ -115,9 +115,6 @@ def summary_lines(results: dict) -> list[str]:
         for part, data in results_of["experiments"].items():
             if data["kind"] == "digit-sweep":
                 lines += _sweep_lines(part, data)
-    dominated = summary.dominated_lines(results)
-    lines.append("dominated settings: " + ("none" if not dominated else f"{len(dominated)}"))
-    lines += [f"  {line}" for line in dominated]
     lines.append("resolution (max interpolation error / display resolution, float32 bytes):")
     for row in results["resolution"]:
         lines.append(
@@ -135,7 +132,9 @@ def summary_lines(results: dict) -> list[str]:
         lines.append(
             f"  {name:<28} {page['html_gzip'] / 1024:7.1f} KiB gzip, with assets {page['total_gzip'] / 1024:7.1f} KiB"
         )
-    return lines
+    dominated = summary.dominated_lines(results)  # last, where an author sees it
+    lines.append(f"scenes whose settings another setting beats: {len(dominated) or 'none'}")
+    return lines + [f"  {line}" for line in dominated]
 
 
 def _panel_lines(panel: dict) -> list[str]:

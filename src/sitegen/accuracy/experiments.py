@@ -86,7 +86,10 @@ def trials(item: BenchScene, plan: Plan) -> dict[tuple[str, object], Numerics]:
     model, own = type(item.scene.model), item.scene.model.settings
     own_key = laddered_setting(model.methods.get(own.method, {}))
     found = {(own.method, getattr(own, own_key) if own_key else None): own}
-    for method in model.methods:
+    for method, taken in model.methods.items():
+        if laddered_setting(taken) is None:  # a method without settings: measured once, as it is
+            found.setdefault((method, None), settings_at(own, model, method, None))
+            continue
         values = ladder(model, method, own)
         if plan.ladder_length is not None:
             values = values[: plan.ladder_length]

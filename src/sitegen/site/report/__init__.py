@@ -58,7 +58,7 @@ def report_part(part: str, context: ReportContext) -> str:
         return model_part(part, context)
     model = next(model for model in context.models.values() if part in model.experiments)
     found = ((context.bench or {}).get("models") or {}).get(model.name, {}).get("experiments", {}).get(part)
-    return DRAWN_BY_KIND[model.experiments[part].kind](part, found, context)
+    return DRAWN_BY_KIND.get(model.experiments[part].kind, experiment_part)(part, found, context)
 
 
 def bench_figures(bench: dict, parts: list[str], models: Mapping, reports: Mapping, cache=None) -> dict[str, bytes]:
@@ -111,6 +111,8 @@ def resolution_part(context: ReportContext) -> str:
     if not context.bench:
         return MISSING
     rows = context.bench["resolution"]
+    if not rows:
+        return '<p class="report-missing">No scene of this book shows an output of the interpolation experiment.</p>\n'
     label = "Interpolation error against stored bytes for four outputs, by choice of axis and number of nodes."
 
     def draw(narrow):

@@ -152,7 +152,8 @@ def experiments(bench: dict) -> list[tuple[str, str, dict]]:
     stops, then the experiments it declares of its own."""
     found = []
     for name, results in (bench or {}).get("models", {}).items():
-        found.append((name, results["title"], results["methods"]))
+        if results.get("methods"):
+            found.append((name, results["title"], results["methods"]))
         found += [
             (part, data.get("title", part), data)
             for part, data in results.get("experiments", {}).items()
@@ -170,7 +171,7 @@ def dominated_lines(bench: dict) -> list[str]:
     """One line per scene whose own settings another setting beats: which, by how much (plain text)."""
     lines = []
     for results in (bench or {}).get("models", {}).values():
-        for panel in results["methods"]["panels"]:
+        for panel in (results.get("methods") or {}).get("panels", ()):
             better, own = dominating(panel), chosen(panel)
             if better:
                 lines.append(

@@ -32,6 +32,7 @@ from sitegen.site.report import report_parts, summary
 from sitegen.site.report.html import sci
 
 MODELS = builtin_registry().models
+DEFAULTS = MODELS["bubble"].defaults()
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -78,38 +79,41 @@ def test_chain_error_measures_a_known_offset():
 
 def test_dop853_preset_A_at_rtol_1e_9_is_within_1e_7_of_the_analytic_collapse():
     """Case A, DOP853 rtol 1e-9: max |ΔR|/R0 ≤ 1e-7 against betaincinv (measured 3.5e-10), stop time ≤ 1e-8 rel."""
-    run = solve_case("A", "DOP853", 1e-9)
-    errors = collapse_errors(run, bubble_problem("A"))
+    run = solve_case(bubble_problem("A", DEFAULTS), "DOP853", 1e-9)
+    errors = collapse_errors(run, bubble_problem("A", DEFAULTS))
     assert errors["curve"] <= 1e-7 and errors["t_stop"] <= 1e-8
 
 
 def test_analytic_collapse_has_no_error_against_itself():
     """The closed-form run measured against the closed form: 0 up to rounding (≤ 1e-14)."""
-    errors = collapse_errors(solve_case("A", "analytic", 0.0), bubble_problem("A"))
+    pb = bubble_problem("A", DEFAULTS)
+    errors = collapse_errors(solve_case(pb, "analytic", 0.0), pb)
     assert errors["curve"] <= 1e-14 and errors["t_stop"] <= 1e-14
 
 
 def test_collapse_error_measures_a_known_offset():
     """Negative control: the analytic curve raised by 2e-4 R0 measures 2e-4."""
-    run = solve_case("A", "analytic", 0.0)
+    run = solve_case(bubble_problem("A", DEFAULTS), "analytic", 0.0)
     raised = dataclasses.replace(run, r=run.r + 2e-4)
-    assert collapse_errors(raised, bubble_problem("A"))["curve"] == pytest.approx(2e-4, rel=1e-6)
+    assert collapse_errors(raised, bubble_problem("A", DEFAULTS))["curve"] == pytest.approx(2e-4, rel=1e-6)
 
 
 def test_driven_readout_errors_measure_known_perturbations():
     """Case B readouts: a run whose R_max is 1e-5 larger (relative) than the reference measures exactly that."""
-    reference = solve_case("B", "DOP853", 1e-8)
-    period = 2 * math.pi / bubble_problem("B").omega
+    pb = bubble_problem("B", DEFAULTS)
+    reference = solve_case(pb, "DOP853", 1e-8)
+    period = 2 * math.pi / pb.omega
     r_max = extrema(reference, period)[0]
     maxima = reference.maxima.copy()
     maxima[np.argmax(maxima[:, 1]), 1] = r_max * (1 + 1e-5)
-    errors = case_errors("B", dataclasses.replace(reference, maxima=maxima), reference)
+    errors = case_errors("B", pb, dataclasses.replace(reference, maxima=maxima), reference)
     assert errors["R_max"] == pytest.approx(1e-5, rel=1e-6) and errors["R_min"] == 0 and errors["curve"] == 0
 
 
 def test_driven_bubble_extrema_are_the_reference_readouts():
     """Case B (one period): R_max/R0 = 6.8115 and R_min/R0 = 0.17624 at t/T = 0.51661 (physics.md K4 preset B)."""
-    r_max, r_min, t_min = extrema(solve_case("B", "DOP853", 1e-10), 2 * math.pi / bubble_problem("B").omega)
+    pb = bubble_problem("B", DEFAULTS)
+    r_max, r_min, t_min = extrema(solve_case(pb, "DOP853", 1e-10), 2 * math.pi / pb.omega)
     assert f"{r_max:.4f}" == "6.8115" and f"{r_min:.5f}" == "0.17624" and f"{t_min:.5f}" == "0.51661"
 
 

@@ -13,6 +13,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...physics.numerics import BenchExperiment
+from .point import compose
 from .run import MACH, OK, Caps, Run
 from .solve import ANALYTIC, choose_method, integrate, rayleigh_run
 from .terms import EPSILON, Problem, mach_one_radius, rayleigh_fraction, rayleigh_radius, rayleigh_tau
@@ -22,6 +23,19 @@ METHODS = ("RK45", "DOP853", "Radau", "BDF", "LSODA", "compiled-DOP853", "compil
 QUICK_METHODS = ("DOP853", "LSODA", "compiled-DOP853")
 EXPLICIT = ("RK45", "DOP853")
 BENCH_CAPS = Caps(max_nfev=3_000_000)  # generous: the bench measures, the build guards
+
+PRESETS = {  # name: (effects, parameters that differ from the defaults), physics.md K4 and §11.2
+    "A": (("inertia", "vapour", "step"), {"R0": 1000.0, "p_inf": 1.0}),
+    "B": (
+        ("gas", "vdw_hard_core", "surface_tension", "viscosity", "drive", "keller_miksis"),
+        {"R0": 4.5, "p_a": 1.3, "f": 26.5},
+    ),
+    "C": (("gas", "vapour", "surface_tension", "viscosity", "ramp"), {"R0": 1.0, "kappa": 1.0, "depth": 0.99}),
+    "stiff": (
+        ("gas", "surface_tension", "viscosity", "drive"),
+        {"R0": 1.0, "mu": 1.0, "rho": 1260.0, "p_a": 0.5, "f": 20.0, "kappa": 1.4},
+    ),
+}
 
 
 # §11.2's case C is the model's "stiff" preset (the viscous micro-bubble); B and C run one
@@ -55,20 +69,24 @@ CASES = {
 REFERENCE = {"B": (("DOP853", 1e-13), ("Radau", 1e-12)), "C": (("Radau", 1e-13), ("LSODA", 1e-12))}
 
 
-def bubble_problem(case: str) -> Problem:
-    """The nondimensional problem of a §11.2 case (B and C cut to one acoustic period)."""
-    from .presets import preset_problem  # here: presets imports the model, which declares this experiment
+def preset_of(case: str, defaults: dict) -> Problem:
+    """The nondimensional problem of a case's preset, the model's `defaults` filled in."""
+    effects, values = PRESETS[CASES[case]["preset"]]
+    return compose({**defaults, **values}, effects)[0]
 
-    pb, _ = preset_problem(CASES[case]["preset"])
+
+def bubble_problem(case: str, defaults: dict) -> Problem:
+    """The nondimensional problem of a §11.2 case (B and C cut to one acoustic period)."""
+    pb = preset_of(case, defaults)
     periods = CASES[case]["periods"]
     return replace(pb, tau_end=periods * 2.0 * math.pi / pb.omega) if periods else pb
 
 
-def solve_case(case: str, method: str, rtol: float) -> Run:
+def solve_case(pb: Problem, method: str, rtol: float) -> Run:
     """One case solved with `method` at `rtol` (atol = 1e-3 rtol, nondimensional), uncached."""
     if method == ANALYTIC:
-        return rayleigh_run(bubble_problem(case))
-    return integrate(bubble_problem(case), (1.0, 0.0), method, rtol, BENCH_CAPS)
+        return rayleigh_run(pb)
+    return integrate(pb, (1.0, 0.0), method, rtol, BENCH_CAPS)
 
 
 def skip_reason(case: str, method: str, rtol: float) -> str | None:
@@ -128,9 +146,8 @@ def _curve_gap(run: Run, reference: Run) -> float:
     return float(np.max(np.abs(run.r[both] - reference.r[both])))
 
 
-def case_errors(case: str, run: Run, reference: Run | None) -> dict:
+def case_errors(case: str, pb: Problem, run: Run, reference: Run | None) -> dict:
     """The error metrics of one run of a case; `curve` is the one the diagram plots."""
-    pb = bubble_problem(case)
     if case == "A":
         return collapse_errors(run, pb)
     if case == "B":
@@ -138,19 +155,19 @@ def case_errors(case: str, run: Run, reference: Run | None) -> dict:
     return stiff_errors(run, reference)
 
 
-def case_reference(case: str, cross_check: bool) -> tuple[Run | None, dict]:
+def case_reference(case: str, pb: Problem, cross_check: bool) -> tuple[Run | None, dict]:
     """The reference run of a case (None for A: the closed form) and how well a second method agrees."""
     if case == "A":
         r = np.linspace(0.011, 1.0, 2001)
         trip = float(np.max(np.abs(rayleigh_radius(rayleigh_fraction(r)) - r)))
         return None, {"check": "betainc ∘ betaincinv round trip over r ∈ [0.011, 1]", "agreement": trip}
     (method, rtol), (second, second_rtol) = REFERENCE[case]
-    reference = solve_case(case, method, rtol)
+    reference = solve_case(pb, method, rtol)
     note = {"status": reference.status, "nfev": reference.nfev}
     if not cross_check:
         return reference, {**note, "check": "skipped (quick run)", "agreement": None}
-    other = solve_case(case, second, second_rtol)
-    agreement = case_errors(case, other, reference)
+    other = solve_case(pb, second, second_rtol)
+    agreement = case_errors(case, pb, other, reference)
     measured = [v for v in agreement.values() if v is not None]
     return reference, {
         **note,
@@ -174,18 +191,18 @@ class Regime(BenchExperiment):
 
     def measure(self, scenes, quick: bool, timer) -> dict:
         """The case's runs, timed by `timer`, with its reference's cross-check and the setting `auto` picks."""
-        from .presets import preset_problem  # here: presets imports the model, which declares this experiment
-
         case, info = self.case, CASES[self.case]
         methods, rtols = (QUICK_METHODS, (1e-3, 1e-6)) if quick else (METHODS, RTOLS)
-        reference, check = case_reference(case, cross_check=not quick)
+        defaults = type(scenes[0].scene.model).defaults()  # the bench runs this only for a book's bubble scenes
+        pb = bubble_problem(case, defaults)
+        reference, check = case_reference(case, pb, cross_check=not quick)
         combos = ([(ANALYTIC, None)] if case == "A" else []) + [(m, r) for m in methods for r in rtols]
         jobs = {
-            (m, r): (lambda m=m, r=r: solve_case(case, m, r or 0.0)) for m, r in combos if not skip_reason(case, m, r)
+            (m, r): (lambda m=m, r=r: solve_case(pb, m, r or 0.0)) for m, r in combos if not skip_reason(case, m, r)
         }
         timed = timer(jobs)
-        runs = [self._row(m, r, timed.get((m, r)), reference) for m, r in combos]
-        method, rtol = choose_method(preset_problem(info["preset"])[0])
+        runs = [self._row(m, r, timed.get((m, r)), pb, reference) for m, r in combos]
+        method, rtol = choose_method(preset_of(case, defaults))
         expected = MACH if case == "A" else OK
         return {
             "title": info["title"],
@@ -210,12 +227,12 @@ class Regime(BenchExperiment):
             "findings": _findings(case, runs),
         }
 
-    def _row(self, method: str, rtol: float | None, timed, reference: Run | None) -> dict:
+    def _row(self, method: str, rtol: float | None, timed, pb: Problem, reference: Run | None) -> dict:
         row = {"method": method, "setting": "rtol" if rtol else None, "value": rtol}
         if timed is None:
             return {**row, "status": "skipped", "skipped": skip_reason(self.case, method, rtol)}
         run = timed.result
-        errors = case_errors(self.case, run, reference)
+        errors = case_errors(self.case, pb, run, reference)
         row.update(
             evaluations=int(run.nfev),
             ended=run.status,

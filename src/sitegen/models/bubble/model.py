@@ -24,11 +24,15 @@ from . import terms
 from .bench import Regime
 from .compare import run_difference, shown_difference
 from .point import (
+    ALL,
     BLAKE_LABELS,
     CURVE_SIZE,
     DRIVE_PERIODS,
     FLAGS,
+    HISTORY_PARAMS,
+    LIQUID_AND_GAS,
     MISSING,
+    PREFIX,
     ROW_OF,
     SOLVER_LABELS,
     check_effects,
@@ -57,10 +61,6 @@ EFFECTS = (
     "keller_miksis",
 )
 THREADS = min(2, os.cpu_count() or 1)  # the solves of a block of points run on this many threads
-LIQUID_AND_GAS = ("R0", "rho", "c", "kappa", "h_frac", "p_v", "sigma", "mu", "D_g")
-HISTORY_PARAMS = {"step": ("p_inf", "gas_content"), "drive": ("p_a", "f"), "ramp": ("depth", "t_ramp", "t_hold")}
-PREFIX = {"step": "collapse", "drive": "driven", "ramp": "ramp"}
-ALL = LIQUID_AND_GAS + tuple(p for names in HISTORY_PARAMS.values() for p in names)
 
 # The dynamic outputs of each pressure history: (key of read_run, label, unit, decimals or labels).
 _T = "t/T at "

@@ -17,7 +17,7 @@ import numpy as np
 from ...compute.grid import CHOICE
 from ...physics.numerics import BenchExperiment, Numerics
 from .compare import run_difference, shown_difference
-from .point import compose, read_run
+from .point import ALL, PREFIX, compose, read_run
 from .run import REFERENCE_CAPS
 from .solve import AUTO, EXPLICIT_RTOL, ensure_compiled, method_for, reference_for, solve
 
@@ -48,15 +48,17 @@ class DigitSweep(BenchExperiment):
 
 
 def _scene_sweep(item, rtols, timer) -> dict:
-    from .model import ALL, CLOSED_FORMS, PREFIX  # here: the model declares this experiment
-
-    scene, model = item.scene, type(item.scene.model)
+    scene = item.scene
     history = next(h for h in PREFIX if h in scene.effects)
-    solved_outputs = {o.name for o in model.outputs if o.name not in CLOSED_FORMS and not o.name.endswith("_solver")}
-    shown = [n for n in item.shown if n.startswith(PREFIX[history] + "_") and n in solved_outputs]
     points = [(stop, _point(scene, stop)) for stop in np.ndindex(*[a.count for a in scene.axes])]
     problems = [compose({n: point[n] for n in ALL}, scene.effects) for _, point in points]
     references = [_reference(pb) for pb, _ in problems]
+    read = read_run(references[0], *problems[0], scene.effects)  # what a solve gives: the outputs to compare
+    shown = [
+        n
+        for n in item.shown
+        if n.startswith(PREFIX[history] + "_") and n.split("_", 1)[1] in read and not n.endswith("_solver")
+    ]
 
     def solve_all(rtol: float) -> list:
         settings = Numerics(AUTO, tolerance=1.0, rtol=rtol)
@@ -106,7 +108,7 @@ def _compare(scene, points, problems, solved, references, shown) -> dict:
         bad, close = shown_difference(mine, theirs, prefix, error, type(scene.model).outputs)
         wrong += [f"{_stop_text(scene, stop)}: {n}" for n in bad if n in shown]
         near += [f"{_stop_text(scene, stop)}: {n}" for n in close if n in shown]
-        worst = max([worst] + [_units(mine, theirs, n) for n in shown])
+        worst = max([worst] + [_units(type(scene.model), mine, theirs, n) for n in shown])
     return {
         "wrong": len(wrong),
         "near": len(near),
@@ -116,11 +118,9 @@ def _compare(scene, points, problems, solved, references, shown) -> dict:
     }
 
 
-def _units(mine: dict, theirs: dict, name: str) -> float:
+def _units(model, mine: dict, theirs: dict, name: str) -> float:
     """The largest difference of one shown output in units of its last displayed digit (0 for labels)."""
-    from .model import Bubble  # here: the model declares this experiment
-
-    output = Bubble.output(name)
+    output = model.output(name)
     if output.labels:
         return 0.0 if np.array_equal(mine[name.split("_", 1)[1]], theirs[name.split("_", 1)[1]]) else math.inf
     a, b = (

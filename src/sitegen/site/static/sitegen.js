@@ -25,7 +25,7 @@
     return flat;
   }
 
-  /* Rounded to a count of 10^-d units by the build's rule, in its steps (compute/quantize.py _half_away):
+  /* Rounded to a count of 10^-d units by the build's rule, in its steps (compute/quantize.py half_away):
    * to the nearest, a value half-way to 12 significant digits away from zero. */
   function toQuantum(v, d) {
     var x = v * Math.pow(10, d), a = Math.abs(x), w = Math.floor(a);

@@ -52,6 +52,7 @@ bench: tools-chromium $(VENV)/.test-installed node_modules/.installed
 	$(BIN)/python bench/shelf.py
 	$(BIN)/python bench/preview.py
 	$(BIN)/sitegen bench
+	$(BIN)/python bench/lighthouse.py
 
 # Build revision BASE (default HEAD) in a temporary git worktree, build the working tree, and write
 # build-review/index.html and build-review/summary.md. Exits 1 when anything changed (for CI).

@@ -2,7 +2,7 @@
 "Newton's laws" (content/newtons-laws.md: six scenes, no bubble), each copy's scenes with a slider
 range shortened by a different number of steps so that every scene must be computed, and prints per
 shelf: the cold build (empty cache), its peak memory (and that of the largest process it started: node converting
-the math, or the process that builds pages beside it), and a rebuild with nothing changed.
+the math, or a worker process), and a rebuild with nothing changed.
 
 Each build runs in a fresh process (`sitegen build`), which reports its own peak resident memory. Python's
 compiled bytecode is kept, and an untimed build makes it first, as every run after a user's first finds it;
@@ -93,7 +93,7 @@ def compile_bytecode() -> None:
 
 def timed_build(root: Path) -> tuple[float, float, float]:
     """Seconds and peak resident MiB of `sitegen build --root ROOT` in a fresh process, and of the largest
-    process it started (node converting the math, or the process that builds pages beside it)."""
+    process it started (node converting the math, or a worker process)."""
     start = time.perf_counter()
     done = subprocess.run(
         [sys.executable, "-c", _PEAK, "build", "--root", str(root)], capture_output=True, text=True, env=_build_env()

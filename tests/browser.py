@@ -212,9 +212,10 @@ class BookScene:
 
 
 @functools.cache  # read once per process, by every module that parametrizes over the book
-def book() -> tuple[list[Page], list[BookScene]]:
-    """Every page of the book and every scene on it, read and resolved as the build does (do not change them)."""
-    resolved = resolve_book(BuildConfig.at(ROOT))
+def book(root: Path = ROOT) -> tuple[list[Page], list[BookScene]]:
+    """Every page of the book at `root` (the project's, or tests/book) and every scene on it, read and resolved
+    as the build does (do not change them)."""
+    resolved = resolve_book(BuildConfig.at(root))
     pages = list(resolved.pages)
     scenes = [BookScene(item.page, item.scene) for item in resolved.scenes]
     declared = sum(len(p.found.scenes) for p in pages)
@@ -616,11 +617,11 @@ def describe_stop(scene: BookScene, param: str, k: int | None) -> str:
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:e[-+]?\d+)?"
 _PAIR = re.compile(rf"^({_NUMBER}),({_NUMBER})$", re.I)
-_DOT = re.compile(rf"^M({_NUMBER}),({_NUMBER})h0$", re.I)
+_DOT = re.compile(rf"^M({_NUMBER}),({_NUMBER})h(?:0\.0*1|10*)$", re.I)  # a dot: a stroke 10^k long
 
 
 def parse_layer(attr: str, text: str | None) -> list[tuple[float, float]]:
-    """A layer's vertices: SVG `points` ("x,y x,y") or, for dots, a path `d` ("Mx,yh0 Mx,yh0");
+    """A layer's vertices: SVG `points` ("x,y x,y") or, for dots, a path `d` ("Mx,yh0.01 Mx,yh0.01");
     fails on anything that is not a finite number. An empty attribute is a layer with no vertices
     at this stop (a ragged vector output of length 0, e.g. the arc when the chord is chosen)."""
     assert text is not None, f"layer without its {attr} attribute"

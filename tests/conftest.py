@@ -20,8 +20,6 @@ from typing import TYPE_CHECKING
 
 import pytest
 
-from sitegen.physics.compiled import CACHE_ENV
-
 if TYPE_CHECKING:
     from sitegen.build import BuildConfig
 
@@ -32,7 +30,9 @@ ROOT = Path(__file__).resolve().parents[1]
 BOOK = Path(__file__).resolve().parent / "book"  # the tiny book: a few pages, one scene per model family
 # Compiled code is keyed by content (kernels' sources, numba, target), so every book the tests build, in
 # this process or another, shares the project's: the kernels compile once per checkout, not once per book.
+# (Set before sitegen.physics.compiled is first imported, which reads it.)
 COMPILED = ROOT / ".cache" / "compiled"
+os.environ.setdefault("SITEGEN_COMPILED_CACHE", str(COMPILED))  # the tests' builds, solvers and subprocesses
 BROWSER_MODULES = {"test_browser", "test_accessibility"}
 SLOW_FIXTURES = {"built_site", "two_builds"}  # the real book; the tiny book built again in another process
 # Tests that take seconds each on their own (node-id prefixes), left to `make test`:
@@ -51,15 +51,12 @@ SLOW_TESTS = (
     "tests/test_fuzz.py::test_build_of_fuzzed_books_succeeds_or_reports_author_errors",
     "tests/test_interrupted_build.py::test_kill",
     "tests/test_build.py::test_computing_from_nothing_is_deterministic_across_hash_seeds",
-    "tests/test_build.py::test_the_work_ahead_gives_the_bytes_of_work_done_here",
     "tests/test_review.py::test_review_against_a_revision_builds_it_in_a_temporary_worktree",
     "tests/test_build.py::test_builds_are_byte_identical_across_folders_and_hash_seeds",
     "tests/test_collect.py::test_a_watcher_keeps_nothing_of_its_earlier_builds",  # five rebuilds
     "tests/test_executors.py::test_dask_cluster_gives_the_serial_bytes",
-    "tests/test_executors.py::test_a_process_beside_that_dies_leaves_its_pages_to_the_build",  # a book built twice
-    "tests/test_executors.py::test_after_an_author_error_here_the_pages_beside_are_built_here",
-    "tests/test_executors.py::test_sigterm_stops_a_build_as_ctrl_c_does",  # a book built in another process
-    "tests/test_executors.py::test_a_table_on_both_sides_is_not_split_even_when_cached",  # a book built twice
+    "tests/test_executors.py::test_sigterm_stops_a_build_and_its_workers",  # a book built in another process
+    "tests/test_executors.py::test_the_command_with_jobs_gives_the_bytes_of_the_build_in_process",  # three builds
     "tests/test_determinism_load.py::",  # bubble books built in other processes, beside spinning CPUs
     # pip building and installing the wheel (and a fresh venv that builds a book with it)
     "tests/test_install.py::test_installing_writes_nothing_into_build",
@@ -68,7 +65,6 @@ SLOW_TESTS = (
     "tests/test_install.py::test_a_new_book_builds_and_previews_with_the_installed_tool",
 )
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-os.environ.setdefault(CACHE_ENV, str(COMPILED))  # the tests that call the solvers directly, and their subprocesses
 
 
 # The test files that take longest in `make test`, longest first. pytest-xdist hands a process one whole file at a
@@ -186,12 +182,11 @@ def made_once(tmp_path_factory, name: str, make: Callable[[Path], object]) -> Pa
 
 @pytest.fixture(scope="session")
 def bubble_kernels() -> Path:
-    """The project's compiled code (.cache/compiled/) with the bubble's kernels complete, loaded in this process:
-    compiled here, or (another test process compiling them) loaded once it is done. A build sharing it then
-    loads them, and tabulates its bubble scenes ahead, whatever ran before; with them missing it would compile."""
-    from sitegen.models.bubble.model import Bubble
+    """The project's compiled code (.cache/compiled/) with the bubble's kernels in it, loaded in this process
+    (compiled here if they were missing): a build or a worker process then loads them."""
+    from sitegen.models.bubble.solve import warm_up
 
-    Bubble().prepare_kernels(COMPILED)
+    warm_up()
     return COMPILED
 
 

@@ -19,25 +19,56 @@ const overlap = (a, b) => Math.max(0, Math.min(a.right, b.right) - Math.max(a.le
 )
 
 
+# The checks that every engine runs (test_engines.py): function bodies that return their problems.
+OVERFLOW_JS = (
+    _WHERE_JS
+    + r"""
+    const problems = [], width = document.documentElement.clientWidth;
+    if (document.documentElement.scrollWidth > width) problems.push(`the page scrolls sideways: ${document.documentElement.scrollWidth} > ${width} px`);
+    for (const el of document.body.querySelectorAll('*')) {
+      if (el.closest('svg') || el.clientWidth <= 1 || !shown(el)) continue;
+      const x = getComputedStyle(el).overflowX;
+      if (el.scrollWidth <= el.clientWidth + 1 || x === 'visible') continue;
+      if (/hidden|clip/.test(x)) problems.push(`${where(el)}: ${el.scrollWidth} px of content cut to ${el.clientWidth} px`);
+      else if (!el.classList.contains('scrolls')) problems.push(`${where(el)}: ${el.scrollWidth} px in ${el.clientWidth} px, scrolling without showing it`);
+    }
+    return problems;
+"""
+)
+# A numbered display (one equation or a list) has its number beside its last line, flush with the right edge
+# of its box, clear of the formula. (A display too wide for its box scrolls, its number at the end of the line.)
+EQUATION_NUMBERS_JS = (
+    _WHERE_JS
+    + r"""
+    const problems = [];
+    for (const box of [...document.querySelectorAll('.equation[id^="eq-"], .equation.numbered')].filter(shown)) {
+      const number = box.querySelector(':scope > .eqno');
+      if (!number) { problems.push(`${where(box)}: no number of its own beside the formula`); continue; }
+      if (box.scrollWidth > box.clientWidth + 1) continue;
+      const text = document.createRange();  // the number as drawn (its box grows to fill the margin)
+      text.selectNodeContents(number);
+      const b = box.getBoundingClientRect(), n = text.getBoundingClientRect();
+      const margin = b.right - parseFloat(getComputedStyle(box).paddingRight) - box.clientLeft;
+      if (Math.abs(n.right - margin) > 1) problems.push(`${where(box)}: its number ends at ${n.right.toFixed(1)} px, the right margin is at ${margin.toFixed(1)}`);
+      const maths = [...box.querySelectorAll('math')].map(m => m.getBoundingClientRect()), last = maths[maths.length - 1];
+      if (n.bottom <= last.top || n.top >= last.bottom) problems.push(`${where(box)}: its number (${n.top.toFixed(0)}..${n.bottom.toFixed(0)} px) is not beside the last line (${last.top.toFixed(0)}..${last.bottom.toFixed(0)})`);
+      const beside = maths.filter(m => m.bottom > n.top && m.top < n.bottom);
+      if (beside.some(m => m.right > n.left - 4)) problems.push(`${where(box)}: its number runs into the formula`);
+    }
+    return problems;
+"""
+)
+
+
 def overflow_problems(page) -> list[str]:
     """The page scrolling sideways, and any box whose content is wider than it without showing that it
     scrolls (the `scrolls` class the script sets draws a shadow at each edge that hides more)."""
-    return page.evaluate(
-        "() => {"
-        + _WHERE_JS
-        + r"""
-        const problems = [], width = document.documentElement.clientWidth;
-        if (document.documentElement.scrollWidth > width) problems.push(`the page scrolls sideways: ${document.documentElement.scrollWidth} > ${width} px`);
-        for (const el of document.body.querySelectorAll('*')) {
-          if (el.closest('svg') || el.clientWidth <= 1 || !shown(el)) continue;
-          const x = getComputedStyle(el).overflowX;
-          if (el.scrollWidth <= el.clientWidth + 1 || x === 'visible') continue;
-          if (/hidden|clip/.test(x)) problems.push(`${where(el)}: ${el.scrollWidth} px of content cut to ${el.clientWidth} px`);
-          else if (!el.classList.contains('scrolls')) problems.push(`${where(el)}: ${el.scrollWidth} px in ${el.clientWidth} px, scrolling without showing it`);
-        }
-        return problems;
-      }"""
-    )
+    return page.evaluate("() => {" + OVERFLOW_JS + "}")
+
+
+def equation_number_problems(page) -> list[str]:
+    """Numbered equations whose number is missing, off the right margin, off the last line or on the formula."""
+    return page.evaluate("() => {" + EQUATION_NUMBERS_JS + "}")
 
 
 def figure_problems(page) -> list[str]:

@@ -272,6 +272,27 @@ def test_print_shows_scenes_as_they_are_without_controls(open_page, name):
     assert page.pdf(format="A4")[:5] == b"%PDF-"
 
 
+def test_print_opens_the_derivations_and_lets_a_scene_start_a_page(open_page):
+    """Printed, a closed <details> (a derivation) shows what it holds: by the stylesheet, and opened by the
+    script before printing (closed again after); only a scene's figure is kept whole on a page, so that a
+    scene may start a page rather than leave half of one empty."""
+    page = open_page("newtons-laws.html", viewport={"width": A4_TEXT_WIDTH, "height": 1000})
+    closed = page.evaluate("() => [...document.querySelectorAll('details:not([open])')].map(d => d.textContent.length)")
+    assert closed, "no closed <details> on the page"
+    page.emulate_media(media="print")
+    laid_out = """() => [...document.querySelectorAll('details')].map(d =>
+        [...d.children].filter(c => c.localName !== 'summary').reduce((h, c) => h + c.getBoundingClientRect().height, 0))"""
+    assert all(height > 0 for height in page.evaluate(laid_out)), page.evaluate(laid_out)
+    breaks = page.evaluate("""() => [...document.querySelectorAll('figure.scene')].map(s =>
+        [getComputedStyle(s).breakInside, getComputedStyle(s.querySelector('.scene-figure')).breakInside])""")
+    assert set(map(tuple, breaks)) == {("auto", "avoid")}, breaks
+    page.evaluate("dispatchEvent(new Event('beforeprint'))")
+    assert page.evaluate("document.querySelectorAll('details:not([open])').length") == 0
+    page.evaluate("dispatchEvent(new Event('afterprint'))")
+    after = page.evaluate("() => [...document.querySelectorAll('details:not([open])')].map(d => d.textContent.length)")
+    assert after == closed
+
+
 def _luminance(css: str) -> float:
     r, g, b = (int(v) / 255 for v in css[css.index("(") + 1 : css.index(")")].split(",")[:3])
     lin = [v / 12.92 if v <= 0.03928 else ((v + 0.055) / 1.055) ** 2.4 for v in (r, g, b)]

@@ -3,6 +3,7 @@ or through --root, and the theme folder that overrides templates and adds CSS.""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -134,6 +135,23 @@ def test_the_default_theme_reads_language_author_footer_and_base_url(tiny_book):
     assert '<html lang="fr">' in html and '<meta name="author" content="Émilie">' in html
     assert '<link rel="canonical" href="https://ex.org/livre/mechanics.html">' in html
     assert '<footer class="site-footer">Émilie. Fin.</footer>' in html
+
+
+def test_a_page_is_described_by_its_summary(tiny_site):
+    """The meta description search engines show: the page's summary from its front matter."""
+    html = (tiny_site / "mechanics.html").read_text()
+    summary = "Impulse, collisions, a contact in time, work along two paths and a lever."
+    assert f'<meta name="description" content="{summary}">' in html
+
+
+def test_a_page_without_summary_is_described_by_its_first_paragraph(tiny_site):
+    """No summary: the start of the first paragraph, cut at a word within 160 characters, math as its text."""
+    html = (tiny_site / "index.html").read_text()
+    found = re.search(r'<meta name="description" content="([^"]*)">', html)
+    assert found, "index.html has no meta description"
+    text = found[1]
+    assert text.startswith("The test suite&#39;s own book: one scene for each family of models") and text.endswith("…")
+    assert len(text.replace("&#39;", "'")) <= 161 and "<" not in text
 
 
 def test_models_prints_a_models_declarations(capsys):

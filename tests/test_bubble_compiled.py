@@ -126,17 +126,35 @@ def test_compiled_path_agrees_with_scipy_at_sampled_stops_of_every_bubble_scene(
 
 
 def _kernel_modules() -> list[str]:
-    """The bubble's kernel modules (importing the model imports them all)."""
-    import sitegen.models.bubble.model  # noqa: F401
+    """The modules of the files the compiled code's key digests (the kernel_*.py files of the models)."""
+    package = Path(compiled.__file__).parents[1]
+    return [
+        "sitegen." + ".".join(f.relative_to(package).with_suffix("").parts)
+        for f in compiled.KERNEL_FILES
+        if "models" in f.parts
+    ]
 
-    return sorted({k.py_func.__module__ for k in compiled._KERNELS if ".bubble." in k.py_func.__module__})
+
+def test_every_kernel_of_the_bubble_is_in_a_file_the_compiled_key_digests():
+    """A kernel defined outside the digested files could change without a fresh cache folder."""
+    import sitegen.models.bubble.model  # noqa: F401  (imports every module of the bubble's solver)
+
+    digested = {str(f) for f in compiled.KERNEL_FILES}
+    found = {
+        value.py_func.__code__.co_filename
+        for name, module in sys.modules.items()
+        if name.startswith("sitegen.models.bubble")
+        for value in vars(module).values()
+        if hasattr(value, "py_func")
+    }
+    assert found and found <= digested, sorted(found - digested)
 
 
 @pytest.mark.parametrize("module_name", _kernel_modules())
 def test_every_constant_a_kernel_reads_is_in_a_file_the_compiled_key_digests(module_name):
     """A kernel bakes the module constants it reads into its compiled code, which is cached under a digest of
     the kernel files: a constant imported from another file (terms.py, say) could change without a recompile."""
-    module, files = importlib.import_module(module_name), {k.py_func.__code__.co_filename for k in compiled._KERNELS}
+    module, files = importlib.import_module(module_name), {str(f) for f in compiled.KERNEL_FILES}
     imported = {}  # name -> the module it is imported from
     for node in ast.walk(ast.parse(Path(module.__file__).read_text())):
         if isinstance(node, ast.ImportFrom):
@@ -149,3 +167,16 @@ def test_every_constant_a_kernel_reads_is_in_a_file_the_compiled_key_digests(mod
             source = imported.get(name)
             if source and isinstance(value.py_func.__globals__.get(name), (int, float, np.ndarray)):
                 assert sys.modules[source].__file__ in files, f"{value.py_func.__name__} reads {name} from {source}"
+
+
+def test_the_dop853_tableau_meets_its_order_conditions():
+    """The coefficients as published: each node is its row's sum, the weights sum to one and meet the conditions
+    of order up to four on their own, and the error estimators are differences of weights (they sum to zero)."""
+    from sitegen.models.bubble import kernel_dop853 as t
+
+    steps = range(t.STAGES)
+    assert np.allclose(t.A.sum(axis=1), t.C, atol=1e-15)
+    for k in range(1, 5):  # Σ b_i c_i^(k-1) = 1/k
+        assert sum(t.B[i] * t.C[i] ** (k - 1) for i in steps) == pytest.approx(1 / k, abs=1e-15)
+    assert sum(t.B[i] * t.C[i] * t.A[i, j] * t.C[j] for i in steps for j in steps) == pytest.approx(1 / 8, abs=1e-15)
+    assert t.E5.sum() == pytest.approx(0.0, abs=1e-15) and t.E3.sum() == pytest.approx(0.0, abs=1e-15)

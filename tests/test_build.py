@@ -46,41 +46,11 @@ def test_builds_are_byte_identical_across_folders_and_hash_seeds(tiny_book, tiny
 
 def test_computing_from_nothing_is_deterministic_across_hash_seeds(tiny_book, tiny_site, tmp_path):
     """The tiny book (a scene of every model family, an ODE among them) computed from nothing under
-    another hash seed, in another process, gives the bytes of the session's build."""
-    done = _cli_build(tmp_path / "cold", "3", tiny_book.root, "--no-cache")
+    another hash seed, in another process whose work runs in two worker processes, gives the bytes of the
+    session's build (in one process)."""
+    done = _cli_build(tmp_path / "cold", "3", tiny_book.root, "--no-cache", "--jobs", "2")
     assert done.returncode == 0, done.stderr
     assert _tree(tmp_path / "cold") == _tree(tiny_site)
-    # Its bubble scene was tabulated, and the report's diagrams drawn, in a process beside the build.
-    assert "ahead     bubble: 1 scene tabulating in a process beside the build" in done.stdout
-    assert "ahead     the accuracy report's diagrams that the cache lacks: drawing in the same process" in done.stdout
-
-
-def test_the_work_ahead_gives_the_bytes_of_work_done_here(tmp_path, tiny_site, monkeypatch):
-    """The tiny book computed from nothing with nothing forked (as where forking is unsafe: its bubble scene
-    tabulated and the report's diagrams drawn in this process, as their pages need them) gives the bytes of
-    the session's build."""
-    from conftest import copy_book
-
-    from sitegen.build import build
-    from sitegen.compute.executors import Beside
-
-    monkeypatch.setattr(Beside, "start", classmethod(lambda cls: None))
-    config = copy_book(tmp_path / "here")
-    lines: list[str] = []
-    build(config, progress=lines.append)
-    assert not [line for line in lines if line.startswith("ahead     ") and ":" in line]
-    assert _tree(config.out) == _tree(tiny_site)
-
-
-def test_nothing_goes_ahead_when_the_cache_has_it(tiny_book, tiny_site):
-    """With every table and every report diagram cached, nothing is forked to work ahead (a process with
-    nothing to do would keep the pages from being built beside the build), and the bytes are the same."""
-    from sitegen.build import build
-
-    lines: list[str] = []
-    build(tiny_book, progress=lines.append)
-    assert not [line for line in lines if line.startswith("ahead     ") and ":" in line]
-    assert _tree(tiny_book.out) == _tree(tiny_site)
 
 
 def test_output_holds_no_absolute_paths_or_dates(built_site):

@@ -14,6 +14,7 @@ import pytest
 from browser import ROOT, front, new_page
 from layout import (
     control_label_problems,
+    equation_number_problems,
     figure_problems,
     legend_problems,
     overflow_problems,
@@ -88,6 +89,12 @@ def test_nothing_wider_than_its_box_without_a_scroller(page):
     assert not problems, "\n".join(problems[:15])
 
 
+def test_equation_numbers_keep_to_the_right_margin(page):
+    """Every numbered equation, alone or a list, has its number flush right, beside its last line, clear of it."""
+    problems = equation_number_problems(page)
+    assert not problems, "\n".join(problems[:15])
+
+
 def test_every_scene_shows_its_whole_figure(page, case):
     """One figure per scene (the phone's below 480 px), inside the scene and the screen, never scrolled."""
     problems = figure_problems(page)
@@ -124,8 +131,8 @@ def test_no_label_runs_into_a_control(page):
 
 def test_the_checks_find_what_they_look_for(page_at):
     """The checks are not blind: text pushed outside a figure or onto other text, a legend moved onto a
-    panel, a label widened over its slider and an equation made to overflow without its shadow are
-    all reported."""
+    panel, a label widened over its slider, an equation made to overflow without its shadow, and an
+    equation number moved off the margin or taken away are all reported."""
     page = page_at("newtons-laws.html", 1280, "light")
     try:
         page.evaluate("""() => {
@@ -136,7 +143,11 @@ def test_the_checks_find_what_they_look_for(page_at):
             const label = document.querySelector('#scene-collision .control label');
             label.style.whiteSpace = 'nowrap'; label.textContent = 'a very long name that runs on and on';
             const eq = document.querySelector('.equation'); eq.style.width = '40px'; eq.classList.remove('scrolls');
+            const numbers = document.querySelectorAll('.equation.numbered:not(:first-of-type) > .eqno');
+            numbers[1].style.marginRight = '2em'; numbers[2].remove();
         }""")
+        numbers = equation_number_problems(page)
+        assert any("the right margin" in p for p in numbers) and any("no number" in p for p in numbers), numbers
         assert (
             svg_text_problems(page)
             and legend_problems(page)

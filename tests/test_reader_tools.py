@@ -282,6 +282,41 @@ def test_search_says_when_nothing_is_found(fresh):
     assert page.is_hidden("#search-results") and not errors
 
 
+def test_escape_from_a_result_closes_the_list_for_good(fresh):
+    """Escape in a result closes the list and puts the focus back in the box, which does not open it again;
+    typing in the box opens it again."""
+    page, errors = fresh("index.html", width=390)
+    _search(page, "restitution")
+    page.keyboard.press("ArrowDown")
+    assert page.evaluate("document.activeElement.closest('#search-results') !== null")
+    page.keyboard.press("Escape")
+    assert page.evaluate("document.activeElement.id") == "search-box"
+    assert page.is_hidden("#search-results")
+    page.keyboard.type(" ")
+    page.wait_for_selector("#search-results:not([hidden]) li")
+    assert not errors
+
+
+def test_a_result_on_the_page_moves_there_and_keeps_the_scenes(fresh):
+    """On Newton's laws, a result on the page itself links to its place ("#section", the page's own to the
+    start of its text), never to "" (which would load the page again and lose the scenes' state)."""
+    scene = next(s for s in SCENES if s.id == "collision")
+    page, errors = fresh(scene.page.output_name)
+    moved = move(page, scene, _elsewhere(scene))
+    found = _search(page, "newton")
+    here = [href for href in found if not href.split("#")[0]]
+    assert "#main-content" in here and len(here) > 1, found
+    assert all(href.startswith("#") and len(href) > 1 for href in here), found
+    assert all(re.fullmatch(r"[a-z-]+\.html(#[\w-]+)?", href) for href in found if href not in here), found
+    page.evaluate("window.sameDocument = true")
+    page.click(f'#search-results a[href="{here[-1]}"]')
+    page.wait_for_function("h => location.hash === h", arg=here[-1])
+    assert page.evaluate("window.sameDocument === true"), "the page was loaded again"
+    assert read_state(page, scene).stops == moved.stops and page.is_hidden("#search-results")
+    assert _in_view(page, here[-1][1:])
+    assert not errors
+
+
 # --- without JavaScript ---------------------------------------------------------------------------------
 
 

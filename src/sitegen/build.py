@@ -1,20 +1,18 @@
 """The build, as a short script of named phases over one record per scene.
 
 read, resolve and math run over the whole book, and every author error they find is reported
-before anything is computed. Then, a page at a time, its scenes are tabulated, checked and drawn,
-the page is assembled and written into a staging folder, and the garbage its work left is collected.
-The staging folder replaces build/ only when every page is written: the build holds one page's tables
-at a time, and the previous build/ stays intact on any failure. Pages that show accuracy-report parts
-come last, as those list every scene. Work that needs no earlier page may run in a process forked beside
-the build (phases/ahead.py: compiled scenes and the report's diagrams; else phases/beside.py: the last
-pages), taken back where a build without it would have done it.
+before anything is computed. Then the work of every table the cache lacks is sent to the executor (in this
+process, local processes or a Dask cluster: compute.executors), and, a page at a time, its scenes' tables
+are taken from the cache or folded from that work in plan order, checked and drawn, the page is assembled
+and written into a staging folder, and the garbage its work left is collected. The staging folder replaces
+build/ only when every page is written: the previous build/ stays intact on any failure. Pages that show
+accuracy-report parts come last, as those list every scene.
 """
 
 from __future__ import annotations
 
+from .compute.executors import executor_for
 from .compute.sources import forget_sources
-from .phases.ahead import work_ahead
-from .phases.beside import hand_over_pages, take_pages
 from .phases.collect import collect_garbage, collecting_per_page
 from .phases.link import link_book
 from .phases.pages import assemble_scenes, write_assets, write_page
@@ -22,8 +20,8 @@ from .phases.read import convert_math, figure_name, read_pages, resolve_scenes
 from .phases.read import needed_outputs as _needed_outputs
 from .phases.record import Book
 from .phases.run import BuildConfig, BuildReport, BuildRun
-from .phases.scenes import check_scenes, compile_kernels, render_figures, tabulate_scenes
-from .registry import Registry, builtin_registry, load_registry
+from .phases.scenes import check_scenes, compile_first_stops, render_figures, send_work, tabulate_scenes
+from .registry import BookModels, Registry, builtin_registry, load_registry
 from .site.weight import page_weights, weight_lines, weight_warnings
 from .site.writer import staged_tree
 
@@ -34,8 +32,8 @@ BOOK_PHASES = (
     ("link", link_book),
     ("resolve", resolve_scenes),
     ("math", convert_math),
-    ("compile", compile_kernels),
-    ("ahead", work_ahead),
+    ("compile", compile_first_stops),
+    ("send", send_work),
 )
 PAGE_PHASES = (
     ("tabulate", tabulate_scenes),
@@ -52,30 +50,21 @@ def build(config: BuildConfig, progress=print, registry: Registry | None = None)
 
     `registry`: the models and figures to use (default: the book's, found by `load_registry`)."""
     forget_sources()  # a long-lived process (tests, a watcher) must see edited model code
-    run = BuildRun(config, progress, registry or load_registry(config.book))
-    book = Book()
-    with collecting_per_page():
-        try:
-            for name, phase in BOOK_PHASES:
-                book = _timed(run, name, phase, book)
+    registry = registry or load_registry(config.book)
+    setup = BookModels.of(config.book)  # the book's own models, for workers to import
+    with executor_for(config.jobs, config.scheduler, setup) as executor, collecting_per_page():
+        run = BuildRun(config, progress, registry, executor)
+        book = Book()
+        for name, phase in BOOK_PHASES:
+            book = _timed(run, name, phase, book)
+        run.log.raise_if_any()
+        run.report.pages, run.report.scenes = len(book.pages), len(book.scenes)
+        with staged_tree(config.out) as run.tree:
+            for page in book.writing_order():
+                for name, phase in PAGE_PHASES:
+                    book = run.phase(name, phase, book.at(page))
+            book = run.phase("write", write_assets, book.at(None))
             run.log.raise_if_any()
-            run.report.pages, run.report.scenes = len(book.pages), len(book.scenes)
-            with staged_tree(config.out) as run.tree:
-                try:
-                    order = book.writing_order(late=run.late_models())
-                    hand_over_pages(book, run, order, PAGE_PHASES)
-                    for page in order:
-                        if run.pages_beside and page.slug == run.pages_beside.slugs[0]:
-                            book = run.phase("beside", take_pages, book)
-                        if page.slug not in run.built_beside:
-                            for name, phase in PAGE_PHASES:
-                                book = run.phase(name, phase, book.at(page))
-                    book = run.phase("write", write_assets, book.at(None))
-                    run.log.raise_if_any()
-                finally:
-                    run.stop_background()  # before the staging folder goes: nothing may write into it then
-        finally:
-            run.stop_background()  # a build that stopped early leaves nothing running
     for name in (n for n, _ in PAGE_PHASES):
         run.say(f"{name:<9} {run.report.phases[name]:6.2f} s")
     return _finish(run, book)

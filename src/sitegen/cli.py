@@ -29,6 +29,9 @@ def main(argv: list[str] | None = None) -> int:
     except ConfigError as problem:
         print(f"sitegen: {problem}", file=sys.stderr)
         return 2
+    # The book's compiled code: read once, when the kernels are first imported (physics/compiled.py).
+    if not os.environ.get("SITEGEN_COMPILED_CACHE"):
+        os.environ["SITEGEN_COMPILED_CACHE"] = str(book.root / ".cache" / "compiled")
     return COMMANDS[args.command](args, book)
 
 
@@ -86,6 +89,7 @@ def command_parser() -> argparse.ArgumentParser:
         help="build the book, then rebuild it when its pages, book.toml, theme or models change; "
         "open pages reload by themselves and show a failed build's errors",
     )
+    _executor_options(serve_cmd)
     review_cmd = _command(commands, "review", "compare two builds: the figures, tables and text that changed")
     review_cmd.add_argument("trees", nargs="*", type=Path, metavar="BUILD", help="OLD NEW, or with --base only NEW")
     review_cmd.add_argument(
@@ -134,13 +138,31 @@ def command_parser() -> argparse.ArgumentParser:
 def _build_options(command) -> None:
     """The options of a command that builds the site: where its work runs, the cache, tracebacks."""
     command.add_argument("--debug", action="store_true", help="show Python tracebacks")
-    command.add_argument("--jobs", type=int, default=1, help="tabulate in N local processes (default 1: serial)")
-    command.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT", help="tabulate on a Dask cluster")
+    _executor_options(command)
     command.add_argument(
         "--no-cache",
         action="store_true",
         help="compute every scene; neither read nor write tables in .cache/ (compiled code is still kept in .cache/compiled/)",
     )
+
+
+def _executor_options(command) -> None:
+    """Where a command's work runs: here, in local processes, or on a Dask cluster."""
+    command.add_argument(
+        "--jobs",
+        type=_jobs,
+        default=1,
+        metavar="N|auto",
+        help="run the work in N local processes, or one per core with 'auto' (default 1: in this process)",
+    )
+    command.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT", help="run the work on a Dask cluster")
+
+
+def _jobs(text: str) -> int | str:
+    """--jobs: a positive number, or auto (compute.executors.AUTO)."""
+    if text == "auto" or (text.isdigit() and int(text) > 0):
+        return text if text == "auto" else int(text)
+    raise argparse.ArgumentTypeError(f"must be a positive number or 'auto', not {text!r}")
 
 
 def _needs_book(args) -> bool:
@@ -372,7 +394,7 @@ def _serve(args, book: BookConfig) -> int:
         os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
         from .preview.watch import serve_watching
 
-        return serve_watching(book, directory, server, live)
+        return serve_watching(book, directory, server, live, jobs=args.jobs, scheduler=args.scheduler)
     with server:
         host, port = server.server_address[:2]
         print(f"serving {directory} at http://{host}:{port}/index.html (Ctrl-C stops)", flush=True)

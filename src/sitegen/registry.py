@@ -15,13 +15,17 @@ declares something wrongly, is an author error at its own file and line; the oth
 from __future__ import annotations
 
 import difflib
+import hashlib
 import importlib
 import importlib.abc
 import importlib.machinery
 import importlib.util
 import inspect
+import os
 import re
+import shutil
 import sys
+import tempfile
 import traceback
 import types
 from collections.abc import Mapping
@@ -134,7 +138,7 @@ def _entry_point_plugins(book: BookConfig | None):
 def _book_plugins(book: BookConfig | None):
     if book is None or not book.models.is_dir():
         return
-    _fresh_book_package(book.models)
+    use_book_models(book.models)
     for path in sorted(book.models.iterdir()):
         name = path.stem
         if name.startswith(("_", ".")) or not ((path / "__init__.py").is_file() or path.suffix == ".py"):
@@ -357,8 +361,9 @@ class _BookFinder(importlib.abc.MetaPathFinder):
         return None
 
 
-def _fresh_book_package(folder: Path) -> None:
-    """Forget any book models imported before (an edited one is read again) and look in `folder`."""
+def use_book_models(folder: Path) -> None:
+    """Import BOOK_PACKAGE from `folder`: any book models imported before are forgotten (an edited one is read
+    again)."""
     for name in [n for n in sys.modules if n == BOOK_PACKAGE or n.startswith(BOOK_PACKAGE + ".")]:
         del sys.modules[name]
     sys.meta_path[:] = [f for f in sys.meta_path if not isinstance(f, _BookFinder)]
@@ -366,3 +371,43 @@ def _fresh_book_package(folder: Path) -> None:
     package = types.ModuleType(BOOK_PACKAGE, "The book's models (imported by sitegen's registry).")
     package.__path__ = [str(folder.resolve())]
     sys.modules[BOOK_PACKAGE] = package
+
+
+@dataclass(frozen=True)
+class BookModels:
+    """A book's models folder as its files, to make its models importable in a worker process, one of a cluster
+    that does not have the book included: called there, it writes them into a temporary folder named by their
+    digest and imports BOOK_PACKAGE from it."""
+
+    files: tuple[tuple[str, bytes], ...]  # (path in the folder, bytes), in path order
+
+    @classmethod
+    def of(cls, book: BookConfig | None) -> BookModels | None:
+        """The book's models folder (None if it has none)."""
+        if book is None or book.models is None or not book.models.is_dir():
+            return None
+        paths = sorted(p for p in book.models.rglob("*") if p.is_file() and "__pycache__" not in p.parts)
+        return cls(tuple((p.relative_to(book.models).as_posix(), p.read_bytes()) for p in paths))
+
+    @property
+    def digest(self) -> str:
+        """What the files say, as a short digest."""
+        hashed = hashlib.sha256()
+        for name, data in self.files:
+            hashed.update(f"{name}\x00{len(data)}\x00".encode() + data)
+        return hashed.hexdigest()[:16]
+
+    def __call__(self) -> None:
+        """Write the files (once per digest on this machine) and import the book's models from them."""
+        folder = Path(tempfile.gettempdir()) / f"sitegen-book-models-{os.getuid()}" / self.digest
+        if not folder.is_dir():
+            folder.parent.mkdir(parents=True, exist_ok=True)
+            staging = Path(tempfile.mkdtemp(dir=folder.parent))
+            for name, data in self.files:
+                (staging / name).parent.mkdir(parents=True, exist_ok=True)
+                (staging / name).write_bytes(data)
+            try:
+                staging.rename(folder)
+            except OSError:  # another worker of this machine wrote them first
+                shutil.rmtree(staging, ignore_errors=True)
+        use_book_models(folder)

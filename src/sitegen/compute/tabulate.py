@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import time
 from collections import defaultdict
 from dataclasses import dataclass
 
@@ -83,6 +84,12 @@ def evaluate_unit(unit: WorkUnit) -> dict[str, np.ndarray]:
         size = scene.model.output(name).size
         out[name] = np.array(np.broadcast_to(np.asarray(results[name], dtype=float), shape + ((size,) if size else ())))
     return out
+
+
+def evaluate_timed(unit: WorkUnit) -> tuple[dict[str, np.ndarray], float]:
+    """`evaluate_unit(unit)` and the seconds it took, wherever it ran."""
+    start = time.perf_counter()
+    return evaluate_unit(unit), time.perf_counter() - start
 
 
 def per_stop_outputs(scene: ResolvedScene, names) -> list[str]:

@@ -19,6 +19,7 @@ from markdown.preprocessors import Preprocessor
 from ..errors import AuthorError, SourceLoc
 from . import furniture, prose
 from .furniture import Figure
+from .mathml import breakable
 from .prose import Citation, Link
 from .reports import ReportBlock, parse_report_block
 from .scenes import SceneSpec, parse_scene_block
@@ -30,6 +31,7 @@ _FENCE_RUN = re.compile(r"^(`{3,}|~{3,})")
 _INLINE_MATH = re.compile(r"(?<![\\$\w])\$(?=[^\s$])(?P<tex>[^$\n]*?[^\s\\$])\$(?![\w$])")
 _SLOT = re.compile(r'<(div|span) data-(math|scene|report|cite)-slot="(\d+)(?:-(\d+))?"></\1>')
 _LIST_BREAK = re.compile(r"\\(qquad|begin|end)\b|[{}]")
+_HAND_TAG = re.compile(r"\\tag(\*?)\{([^{}]*)\}")  # \tag{2a} (shown "(2a)") or \tag*{A} (shown "A")
 _DISPLAY_END = re.compile(r"^(?P<tex>.*)\$\$\s*(?:\{#(?P<label>eq-[a-z0-9-]+)\})?\s*$")
 _REF_SLOT = re.compile(r'<a data-ref="([a-z0-9-]+)"></a>')
 _HEADING_LABEL = re.compile(r"^#{1,6}\s.*\{#(?P<label>sec-[^}\s]*)[^}]*\}\s*$")
@@ -44,6 +46,7 @@ class MathItem:
     display: bool
     loc: SourceLoc
     label: str | None = None  # "eq-name" for a numbered display equation
+    tag: str | None = None  # the number a display's own \tag gives it, as shown: "(2a)"
 
 
 @dataclass(frozen=True)
@@ -260,17 +263,18 @@ class _SlotPreprocessor(Preprocessor):
             closing = _DISPLAY_END.match(lines[end])
             tex = "\n".join([first, *lines[i + 1 : end], closing["tex"]])
         label = closing["label"]
-        pieces = split_display(tex.strip())
+        # a number written by hand is shown as a label's is (see `_display`)
+        hand = _HAND_TAG.search(tex)
+        tag = None if hand is None else hand[2] if hand[1] else f"({hand[2]})"
+        pieces = split_display(_HAND_TAG.sub("", tex).strip())
         if label:
             if label not in self.found.numbers:  # a label used twice is reported by the book-wide check
                 self.found.numbers[label] = len(self.found.numbers) + 1
                 self._label(label, "equation", self.found.numbers[label], loc)
             else:
                 self.found.labels.append(Label(label, "equation", self.found.numbers[label], loc, label))
-            if len(pieces) == 1:  # a list's number is set after its last item by fill_slots
-                pieces[0] = f"{pieces[0]} \\tag{{{self.found.numbers[label]}}}"
         first = len(self.found.maths)
-        self.found.maths += [MathItem(piece, True, loc, label) for piece in pieces]
+        self.found.maths += [MathItem(piece, True, loc, label, tag) for piece in pieces]
         span = f"{first}-{len(self.found.maths) - 1}" if len(pieces) > 1 else f"{first}"
         out.extend(["", f'<div data-math-slot="{span}"></div>', ""])
         return end + 1
@@ -351,6 +355,23 @@ def markdown_to_html(text: str, path: str, first_line: int, found: Extracted, in
     return html
 
 
+def _display(found: Extracted, mathml, first: int, last: int | None) -> str:
+    """A displayed formula, or (`last` given) a list of them, with its number if it has one: a label's, or the
+    display's own \\tag. The number sits outside the math, at the right margin on the last line's baseline,
+    the same in every browser (Temml's \\tag is a table cell that each engine places elsewhere)."""
+    item = found.maths[first]
+    # a list of equations: its items wrap onto lines of their own where the line is too short for all
+    items = "".join(mathml[first : (first if last is None else last) + 1])
+    kind = "equation" if last is None else "equation list"
+    number = f"({found.numbers[item.label]})" if item.label else None if item.tag is None else escape(item.tag)
+    if number is None:
+        return f'<div class="{kind}">{items}</div>'
+    if last is not None:
+        items = f'<span class="items">{items}</span>'
+    anchor = f' id="{item.label}"' if item.label else ""
+    return f'<div class="{kind} numbered"{anchor}>{items}<span class="eqno">{number}</span></div>'
+
+
 def fill_slots(html: str, found: Extracted, mathml, scenes, reports=(), citations=(), reference=None) -> str:
     """Replace every placeholder with its MathML, scene HTML, report part, citation or reference
     (`reference(label)`: the link to a label, with its number)."""
@@ -364,16 +385,8 @@ def fill_slots(html: str, found: Extracted, mathml, scenes, reports=(), citation
         if kind == "cite":
             return citations[index]
         if tag == "span":
-            return mathml[index]
-        label = found.maths[index].label
-        anchor = f' id="{label}"' if label else ""
-        if match[4] is None:
-            return f'<div class="equation"{anchor}>{mathml[index]}</div>'
-        # a list of equations: its items wrap onto lines of their own where the line is too short for all,
-        # and its number (if any) keeps to the right margin of the last line
-        items = "".join(mathml[index : int(match[4]) + 1])
-        number = f'<span class="eqno">({found.numbers[label]})</span>' if label else ""
-        return f'<div class="equation list"{anchor}>{items}{number}</div>'
+            return breakable(mathml[index])
+        return _display(found, mathml, index, None if match[4] is None else int(match[4]))
 
     html = _SLOT.sub(substitute, html)
     return _REF_SLOT.sub(lambda m: reference(m[1]), html) if reference else html

@@ -14,7 +14,6 @@ from ..site import assets, search
 from ..site.assemble import page_html, scene_html
 from ..site.payload import scene_payload
 from ..site.report import ReportContext, report_part
-from ..site.report.html import FIGURES_KIND
 from ..site.sizes import gzip_bytes
 from .record import Book, SceneRecord
 from .run import BuildRun
@@ -85,20 +84,7 @@ def _report_context(book: Book, run: BuildRun) -> ReportContext:
     records = tuple(r.accuracy for r in book.scenes if r.accuracy is not None)
     sizes = {r.name: r.data_bytes for r in book.scenes}
     bench = load_results(run.config.content / BENCH_NAME)
-    return ReportContext(
-        bench, records, book.pages, book.scenes, sizes, _remember_drawn(run), run.models, run.registry.reports
-    )
-
-
-def _remember_drawn(run: BuildRun):
-    """The build's `remember`, given the report's diagrams drawn ahead (beside the build) where there are some."""
-    drawn = run.figures_drawn_ahead()
-
-    def remember(kind: str, key: str, compute) -> bytes:
-        found = drawn.get(key) if kind == FIGURES_KIND else None
-        return run.remember(kind, key, compute if found is None else lambda: found)
-
-    return remember
+    return ReportContext(bench, records, book.pages, book.scenes, sizes, run.remember, run.models, run.registry.reports)
 
 
 def write_assets(book: Book, run: BuildRun) -> Book:

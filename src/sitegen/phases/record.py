@@ -6,7 +6,7 @@ goes through its build the same way); nothing travels in dicts keyed by "page#sc
 
 from __future__ import annotations
 
-from collections.abc import Collection, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 
 from ..compute.accuracy import SceneAccuracy
@@ -89,15 +89,9 @@ class Book:
         """The book with the scene phases pointed at `page`."""
         return replace(self, page=page)
 
-    def writing_order(self, late: Collection[str] = ()) -> list[Page]:
-        """Pages in the order they are finished: pages with accuracy reports last, as they read every scene,
-        and before them the pages with scenes of the models named in `late` (their kernels still compiling)."""
-        waiting = self.pages_with(late)
-        return sorted(self.pages, key=lambda p: (bool(p.found.reports), p.slug in waiting))
-
-    def pages_with(self, models: Collection[str]) -> set[str]:
-        """The slugs of the pages with a scene of one of `models` (by name)."""
-        return {r.page.slug for r in self.scenes if r.scene.model.name in models}
+    def writing_order(self) -> list[Page]:
+        """Pages in the order they are finished: pages with accuracy reports last, as they read every scene."""
+        return sorted(self.pages, key=lambda p: bool(p.found.reports))
 
     def reference(self, page: Page):
         """How a reference on `page` is written: label -> the link to it, with its number."""

@@ -3,16 +3,14 @@ check the numerics against each model's reference, and render each figure."""
 
 from __future__ import annotations
 
-import pickle
 import time
 from dataclasses import replace
-from functools import partial
 
 from ..compute.check import check_scenes as check_accuracy
 from ..compute.deps import inert_deps_note, verify_scene_deps
-from ..compute.executors import Background, executor_for, results_in_order
 from ..compute.sources import digest, library_version, source_digest
-from ..compute.tabulate import assemble_tables, evaluate_unit, per_stop_outputs, plan_scene
+from ..compute.tabulate import assemble_tables, evaluate_timed, per_stop_outputs, plan_scene
+from ..errors import AuthorError
 from ..render.figures.base import scene_figures
 from ..render.layers import layer_points
 from ..render.style import laid_out
@@ -21,64 +19,59 @@ from ..site.assemble import RenderedScene, dom_id
 from .record import Book, SceneRecord
 from .run import PROGRESS_EVERY, BuildRun
 
+SAID_FROM = 0.1  # seconds: a model whose first stop takes this long (compiled code, mostly) gets a line
 # The code that turns a view's drawing into the page's SVG (followed through its imports, with the view's module).
 DRAWING = frozenset(f.__module__ for f in (figure_svg, laid_out, layer_points, scene_figures))
 
 
-def compile_kernels(book: Book, run: BuildRun) -> Book:
-    """Compile the kernels of the models that have scenes to tabulate, or load them from .cache/compiled/
-    (kept even without a table cache); a build with every table cached loads none."""
+def compile_first_stops(book: Book, run: BuildRun) -> Book:
+    """Evaluate the first scene of each model that has work to send out at its default stop, here: a model's
+    compiled code is compiled (or loaded from its cache) once, in this process, before workers load it."""
     if run.failed:  # an author error stops the build before anything is computed
         return book
-    pending = {r.scene.model.name: r.scene.model for r in book.scenes if not run.cache or not run.cache.has(r.key)}
-    for name, model in sorted(pending.items()):
-        if not model.kernels_cached(run.compiled_cache) and _other_pages(book, name) and _compiling_beside(model, run):
-            run.say(
-                f"compile   {name}: compiling in {len(run.compiling[name])} processes beside the build; "
-                f"pages with its scenes are built last"
-            )
+    first = {}
+    for record in book.scenes:
+        if not (run.cache and run.cache.has(record.key)):
+            first.setdefault(record.scene.model.name, record)
+    for name, record in sorted(first.items()):
+        start = time.perf_counter()
+        try:
+            scene = record.scene
+            scene.model.evaluate(scene.base_values(), per_stop_outputs(scene, list(record.outputs)), scene.effects)
+        except Exception:  # reported where the scene is tabulated, with its place
             continue
-        prepared = model.prepare_kernels(run.compiled_cache)
-        if prepared:
-            run.kernels_loaded.add(name)
-            seconds, fresh = prepared
-            run.say(f"compile   {name}: {'compiled' if fresh else 'loaded from the cache'} in {seconds:.2f} s")
+        seconds = time.perf_counter() - start
+        if seconds >= SAID_FROM:
+            run.say(f"compile   {name}: its first stop in {seconds:.2f} s (compiled code compiled or loaded)")
     return book
 
 
-def _compiling_beside(model, run: BuildRun) -> bool:
-    """Start compiling `model`'s kernels beside the build, a process per part; False (nothing started) for a
-    model that cannot be handed to another process, which compiles here instead.
-
-    Compiling takes many seconds of one core: it runs beside the pages that need no compiled code, which
-    are built first (the machine's other core does the compiling)."""
-    parts = []
-    try:  # every part hands over the same call, so one that cannot be pickled fails at the first, before any starts
-        for part in model.kernel_parts or (None,):
-            parts.append(Background(model.prepare_kernels, run.compiled_cache, part))
-    except (pickle.PicklingError, TypeError, AttributeError, OSError):  # OSError: no process could start
-        for started in parts:
-            started.stop()
-        return False
-    run.compiling[model.name] = parts
-    return True
+def send_work(book: Book, run: BuildRun) -> Book:
+    """Send the work of every table the cache lacks to the executor, each table once, in plan order."""
+    if run.failed:
+        return book
+    for record in book.scenes:
+        digest = record.key.digest
+        if digest in run.work or (run.cache and run.cache.has(record.key)):
+            continue
+        try:
+            run.work[digest] = _submitted(planned(record), run.executor)
+        except AuthorError:  # reported when the scene is tabulated
+            continue
+    return book
 
 
-def _other_pages(book: Book, model: str) -> bool:
-    """Whether some page has no scene of `model` (and so could be built while its kernels compile)."""
-    return len(book.pages_with({model})) < len(book.pages)
+def _submitted(units: list, executor) -> tuple[list, list]:
+    """The units and the futures of their results (with their seconds)."""
+    return units, [executor.submit(evaluate_timed, unit) for unit in units]
 
 
 def tabulate_scenes(book: Book, run: BuildRun) -> Book:
-    """Each scene's tables: from the cache when its key matches, else computed by the executor."""
-    if run.config.jobs > 1 or run.config.scheduler:  # worker processes start with the kernels this one has loaded
-        for record in book.current():
-            run.await_kernels(record.scene.model)
+    """Each scene's tables: from the cache when its key matches, else from the work sent out for it."""
     records = []
-    with executor_for(run.config.jobs, run.config.scheduler) as executor:
-        for record in book.current():
-            with run.scene(record, "tabulating"):
-                records.append(_checked_deps(_tabulated(record, run, executor), run))
+    for record in book.current():
+        with run.scene(record, "tabulating"):
+            records.append(_checked_deps(_tabulated(record, run), run))
     return book.with_records(records)
 
 
@@ -91,29 +84,28 @@ def _checked_deps(record: SceneRecord, run: BuildRun) -> SceneRecord:
     return replace(record, tables=None) if errors else record
 
 
-def _tabulated(record: SceneRecord, run: BuildRun, executor) -> SceneRecord:
+def _tabulated(record: SceneRecord, run: BuildRun) -> SceneRecord:
     found = run.cache.load(record.key) if run.cache else None
     if found is not None:
         return _noted(replace(record, tables=found), run, cached=True, seconds=0.0)
-    run.await_kernels(record.scene.model)
-    ahead = run.ahead.pop(record.name, None)
-    units = list(ahead.units) if ahead else planned(record)
-
-    def here():
-        return _evaluated(record, units, results_in_order(executor, partial(timed, evaluate_unit), units), run)
-
-    if ahead is None:
-        results, seconds = here()
-    else:
-        try:
-            results, seconds = _evaluated(record, units, (future.result() for future in ahead.futures), run)
-        except Exception:  # computed again here, where an error names the model's file and line
-            results, seconds = here()
+    units, futures = run.work.pop(record.key.digest, None) or _submitted(planned(record), run.executor)
+    results, seconds = _evaluated(record, units, map(_result, units, futures), run)
     tables = assemble_tables(record.scene, units, results, list(record.outputs))
     run.report.evaluations += len(units)
     if run.cache:
         run.cache.store(record.key, tables)
     return _noted(replace(record, tables=tables), run, cached=False, seconds=seconds)
+
+
+def _result(unit, future) -> tuple:
+    """A unit's result and seconds. Should its work have failed but for an author error (a crash, whose line is
+    best named from a traceback of this process; or a worker lost), it is done again here."""
+    try:
+        return future.result()
+    except AuthorError:
+        raise
+    except Exception:
+        return evaluate_timed(unit)
 
 
 def planned_outputs(record: SceneRecord) -> list[str]:
@@ -136,12 +128,6 @@ def _evaluated(record: SceneRecord, units, timed_results, run: BuildRun) -> tupl
         seconds += took
         pace.done(unit.stops())
     return results, seconds
-
-
-def timed(function, *args):
-    """`function(*args)` and the seconds it took."""
-    start = time.perf_counter()
-    return function(*args), time.perf_counter() - start
 
 
 class _Pace:
@@ -184,7 +170,6 @@ def check_scenes(book: Book, run: BuildRun) -> Book:
         if record.tables is None:
             continue
         with run.scene(record, "checking its numerics"):
-            run.await_kernels(record.scene.model)
             found, errors = check_accuracy([record], run.remember, run.progress, shown=lambda _: record.outputs)
             for error in errors:
                 run.error(error)

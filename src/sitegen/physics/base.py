@@ -8,7 +8,6 @@ import inspect
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
-from pathlib import Path
 from typing import ClassVar
 
 import numpy as np
@@ -245,18 +244,6 @@ class Model:
         self, x: Mapping[str, np.ndarray], wanted: tuple[str, ...], effects: frozenset[str]
     ) -> dict[str, np.ndarray]:
         raise NotImplementedError
-
-    kernel_parts: tuple[str, ...] = ()  # parts of its compiled code that processes may compile side by side
-
-    def prepare_kernels(self, cache: Path, part: str | None = None) -> tuple[float, bool] | None:
-        """Compile the model's compiled code, or load it from the folder `cache`: (seconds, whether it
-        compiled), or None for a model without compiled code. `part` (one of `kernel_parts`): only that part,
-        into `cache`, for a process compiling it beside others."""
-        return None
-
-    def kernels_cached(self, cache: Path) -> bool:
-        """Whether `prepare_kernels(cache)` would only load (True for a model without compiled code)."""
-        return True
 
     def is_numerical(self, effects: Iterable[str]) -> bool:
         """Whether, with these effects, some output comes from a numerical method (and is checked)."""

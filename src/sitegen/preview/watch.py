@@ -52,14 +52,17 @@ BOOK_FILTER = watchfiles.DefaultFilter(
 )
 
 
-def serve_watching(book: BookConfig, out: Path, server: ThreadingHTTPServer, live: Live, say=print) -> int:
+def serve_watching(
+    book: BookConfig, out: Path, server: ThreadingHTTPServer, live: Live, say=print, jobs: int | str = 1, scheduler=None
+) -> int:
     """Build the book into `out`, serve it with `server` (which shows `live`) and rebuild on every
-    change until Ctrl-C; the exit status."""
+    change until Ctrl-C, each build's work run where `jobs` and `scheduler` say (as `sitegen build`'s); the
+    exit status."""
     stop, serving = threading.Event(), threading.Thread(target=server.serve_forever, name="preview-server", daemon=True)
     try:
         watcher = BookWatcher(book, stop)
         watcher.start()  # before the first build, so that no edit made once it is served goes unseen
-        builder = Builder(book, out, live, say)
+        builder = Builder(book, out, live, say, jobs=jobs, scheduler=scheduler)
         builder.rebuild(set())
         serving.start()
         host, port = server.server_address[:2]
@@ -90,6 +93,8 @@ class Builder:
     live: Live
     say: object = print
     registry: Registry | None = None
+    jobs: int | str = 1  # where each build's work runs (BuildConfig's)
+    scheduler: str | None = None
 
     def rebuild(self, changed: set[Path]) -> bool:
         """One attempt after `changed` (empty: the first build); whether it succeeded."""
@@ -99,7 +104,13 @@ class Builder:
         if not errors:
             report, errors = attempt(
                 BuildConfig(
-                    self.book.root, self.book.content, self.out, cache=self.book.root / ".cache", book=self.book
+                    self.book.root,
+                    self.book.content,
+                    self.out,
+                    cache=self.book.root / ".cache",
+                    jobs=self.jobs,
+                    scheduler=self.scheduler,
+                    book=self.book,
                 ),
                 self.registry,
                 self._scene_line,

@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import io
+import math
 import re
 from dataclasses import dataclass
+from decimal import Decimal
 from html import escape
 
 import matplotlib.pyplot as plt
@@ -102,14 +104,15 @@ def _layers_svg(layers: list[Layer], points: list[list[tuple[float, float]]], fr
             attributes = (
                 {"fill": "none", **layer.style} if layer.kind == "polyline" else dict(layer.style)
             )  # SVG fills by default
-            if layer.kind == "dots":  # a zero-length stroke with round caps is a dot
+            if layer.kind == "dots":  # a very short stroke with round caps is a dot
                 # inline style: matplotlib's stylesheet sets stroke-linecap: butt on every element
                 # (merged into the layer's own style: an element may carry one style attribute)
                 own = attributes.get("style", "")
                 attributes["style"] = (
                     own if "stroke-linecap" in own else "; ".join(filter(None, ["stroke-linecap: round", own]))
                 )
-                shape = f'path data-layer="{layer.name}" d="{format_dots(pts)}"'
+                step = dot_step(a)
+                shape = f'path data-layer="{layer.name}" data-dot="{step}" d="{format_dots(pts, step)}"'
             else:
                 shape = f'{layer.kind} data-layer="{layer.name}" points="{format_points(pts)}" stroke-linejoin="round"'
             style = " ".join(f'{k}="{v}"' for k, v in sorted(attributes.items()))
@@ -124,9 +127,17 @@ def format_points(points: list[tuple[float, float]]) -> str:
     return " ".join(f"{_short(x)},{_short(y)}" for x, y in points)
 
 
-def format_dots(points: list[tuple[float, float]]) -> str:
-    """SVG path text drawing a dot at every point."""
-    return " ".join(f"M{_short(x)},{_short(y)}h0" for x, y in points)
+def format_dots(points: list[tuple[float, float]], step: str) -> str:
+    """SVG path text drawing a dot at every point: a stroke `step` long (see `dot_step`)."""
+    return " ".join(f"M{_short(x)},{_short(y)}h{step}" for x, y in points)
+
+
+def dot_step(scale: float) -> str:
+    """The length of a dot's stroke in data units, for an axes of `scale` SVG units per data unit: a power of
+    ten between 0.005 and 0.05 SVG units long, too short to see, long enough to stay a stroke in single
+    precision. A zero-length stroke (`M x,y h0`) draws a dot in Chromium and Firefox, but WebKit paints
+    it, with a non-scaling stroke, as a block over the whole axes."""
+    return format(Decimal(1).scaleb(math.floor(math.log10(0.05 / abs(scale)))), "f")
 
 
 def _short(value: float) -> str:

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import functools
+import html as markup
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -216,11 +218,28 @@ def page_html(page: Page, body: str, pages: list[Page], book_title: str, book: B
             previous=previous,
             next=following,
             has_scenes=bool(page.found.scenes),
+            description=description(page, body),
             search_index=SEARCH_SCRIPT,
             book=book or BookConfig(Path(".")),
         )
     )
     return html.replace(_BIG_BODY, navigation.with_anchors(body), 1)
+
+
+_PARAGRAPH = re.compile(r"<p\b[^>]*>(.*?)</p>", re.S)
+_TAG = re.compile(r"<[^>]+>")
+DESCRIPTION_CHARS = 160  # about what a search engine shows under a result's title
+
+
+def description(page: Page, body: str) -> str:
+    """What a search engine shows for the page: its summary, else the start of its first paragraph."""
+    if page.summary:
+        return page.summary
+    first = _PARAGRAPH.search(body)
+    text = " ".join(markup.unescape(_TAG.sub("", first[1])).split()) if first else ""
+    if len(text) <= DESCRIPTION_CHARS:
+        return text
+    return text[: text.rindex(" ", 0, DESCRIPTION_CHARS)].rstrip(",;:") + "\u2026"
 
 
 def _contents(pages: list[Page]) -> list[TocEntry]:

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from ...physics.compiled import entry, kernel
+from ...physics.compiled import kernel
 from .kernel_radau import CURRENT_JAC, FACTORISED, H_ABS, HAS_SOL, STATE_SIZE, radau_step
 from .kernel_steppers import (
     DOP853_ORDER,
@@ -132,13 +132,13 @@ def events_of(hits, code, column):
     return rows[:n].copy()
 
 
-@entry
+@kernel
 def split_hits(hits, max_code, min_code, speed_code):
     """The maxima and minima (τ, r) and the speed extrema (τ, ṙ) among the hits."""
     return events_of(hits, max_code, 2), events_of(hits, min_code, 2), events_of(hits, speed_code, 3)
 
 
-@entry
+@kernel
 def march(method, packed, y0, rtol, atol, t_bound, grid, events, max_nfev):
     """Step from y0 at τ = 0 to t_bound with events, samples and the evaluation cap.
 

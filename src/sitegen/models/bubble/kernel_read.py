@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from ...physics.compiled import entry, kernel
+from ...physics.compiled import kernel
 from .kernel_extrema import larger_of, nan_max, window
 from .kernel_march import CAP_CODE, FAILED_CODE, MACH_CODE, UNBOUNDED_CODE
 
@@ -248,7 +248,7 @@ def gas_peaks(q, r_min):
     return q[Q_GAS] * compression ** q[Q_KAPPA] * q[Q_P0] * 1e-9, q[Q_T0] * compression ** (q[Q_KAPPA] - 1.0), ratio
 
 
-@entry
+@kernel
 def read(q, tau, r, v, end, code, maxima, minima, speeds):
     """Every dynamic output of one run as a row (the layout above; the solver's label is left to the caller)."""
     size = tau.shape[0] + CURVE_EXTREMA + 1  # the curve: samples, merged extrema and the stop

@@ -1,7 +1,7 @@
 """K4 compiled: one step of DOP853 (non-stiff) or of Radau IIA order 5 (stiff), with their dense output.
 
-Both follow scipy's solvers (integrate/_ivp: rk.py and radau.py): the same tableaux (DOP853's are
-read from scipy's own class), the same error estimators, step-size control, initial step and dense
+Both follow scipy's solvers (integrate/_ivp: rk.py and radau.py): the same tableaux (DOP853's in
+kernel_dop853.py, as Hairer publishes them), the same error estimators, step-size control, initial step and dense
 output, specialised to the bubble's two-component state. Radau's Newton iteration uses the analytic
 Jacobian of the composed right-hand side; its 2×2 real and complex systems are solved in closed form.
 `count[0]` counts right-hand-side evaluations.
@@ -12,20 +12,17 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.integrate import DOP853
 
 from ...physics.compiled import kernel
+from .kernel_dop853 import E3, E5, STAGES, A, B, C, D
 from .kernel_terms import jacobian, rhs
 
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
-STAGES = DOP853.n_stages  # 12; K[12] holds f at the step's end, K[13:16] the dense output's extra stages
-A = np.zeros((16, 16))
-A[:STAGES, :STAGES], A[STAGES + 1 :] = DOP853.A, DOP853.A_EXTRA
-C = np.zeros(16)
-C[:STAGES], C[STAGES + 1 :] = DOP853.C, DOP853.C_EXTRA
-B, E3, E5, D = DOP853.B.copy(), DOP853.E3.copy(), DOP853.E5.copy(), DOP853.D.copy()
 DOP853_ORDER = 7  # of its error estimator: sets the step-size exponent and the initial step
 
+# Radau IIA of order 5 (three stages): its nodes, error estimator, the eigenvalues of the inverse of its
+# coefficient matrix (one real, a complex pair) and the eigenvector basis T, as E. Hairer and G. Wanner give them in
+# Solving Ordinary Differential Equations II, 2nd ed., Springer 1996, section IV.8, and in their code RADAU5.
 S6 = 6**0.5
 RADAU_C = np.array([(4 - S6) / 10, (4 + S6) / 10, 1.0])
 RADAU_E = np.array([-13 - 7 * S6, -13 + 7 * S6, -1.0]) / 3

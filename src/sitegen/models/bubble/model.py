@@ -11,13 +11,9 @@ terminal events and caps (solve.py; what a run is: run.py); points that are one 
 from __future__ import annotations
 
 import math
-import os
-from concurrent.futures import ThreadPoolExecutor
-from pathlib import Path
 
 import numpy as np
 
-from ...physics import compiled
 from ...physics.base import Model, Output, Param
 from ...physics.numerics import Measurement, Numerics
 from . import terms
@@ -42,7 +38,7 @@ from .point import (
 )
 from .run import CURVE_POINTS, REFERENCE_CAPS
 from .scipy_path import SOLVERS
-from .solve import AUTO, COMPILED, KERNEL_PARTS, STIFF, ensure_compiled, method_for, reference_for, solve
+from .solve import AUTO, COMPILED, STIFF, method_for, reference_for, solve
 from .sweep import DigitSweep
 from .terms import P0, WATER
 
@@ -60,7 +56,6 @@ EFFECTS = (
     "radiation",
     "keller_miksis",
 )
-THREADS = min(2, os.cpu_count() or 1)  # the solves of a block of points run on this many threads
 
 # The dynamic outputs of each pressure history: (key of read_run, label, unit, decimals or labels).
 _T = "t/T at "
@@ -287,8 +282,8 @@ class Bubble(Model):
     error_metric = "max |ΔR|/R₀ over R(t) and its extrema"
     check_stops = 16  # each costs a solve and a tight reference solve (compiled: 1–50 ms)
     checks_digits = True
-    # An ODE solve per stop: blocks spread a scene over workers and pace its progress lines; a block's stops are
-    # solved on THREADS threads, so it holds enough of them (64, not 16) that one slow stop does not leave a thread idle.
+    # An ODE solve per stop (1–50 ms compiled): blocks spread a scene over the executor's workers and pace its
+    # progress lines, and hold enough stops to pay for their trip to a worker.
     chunk_stops = 64
     # The bench at the scenes' stops: `auto` at its own rule, the compiled solvers over rtol 1e-6 … 1e-10 (a scipy
     # solver costs 20–200 times as much, and an explicit one seconds a stop where the terms are stiff: those are
@@ -306,17 +301,6 @@ class Bubble(Model):
         if dynamic:
             results.update(_solve_points(x, dynamic, effects, self.settings))
         return results
-
-    kernel_parts = KERNEL_PARTS
-
-    def prepare_kernels(self, cache: Path, part: str | None = None) -> tuple[float, bool]:
-        """The compiled solver, compiled or loaded from `cache` once per process (or one part of it, into `cache`)."""
-        compiled.use_cache(cache)
-        return ensure_compiled(part)
-
-    def kernels_cached(self, cache: Path) -> bool:
-        """Whether the compiled solver is complete in `cache` (so preparing it loads, not compiles)."""
-        return compiled.is_cached(cache)
 
     def is_numerical(self, effects) -> bool:
         """Only a pressure history is solved: the closed forms alone need no check."""
@@ -406,8 +390,7 @@ CLOSED_FORMS = {
 def _solve_points(x, names, effects, settings: Numerics) -> dict[str, np.ndarray]:
     """Solve every point (each distinct nondimensional problem once) and read the named outputs.
 
-    The compiled solver and reading release the GIL, so THREADS threads solve points side by side; each
-    point's result depends on that point alone, so the tables do not depend on the number of threads.
+    Each point's result depends on that point alone, so the tables do not depend on how the grid is split.
     """
     shape = np.shape(x["R0"])
     flat = {name: np.ravel(x[name]).astype(float).tolist() for name in ALL}  # Python floats, read faster
@@ -418,9 +401,7 @@ def _solve_points(x, names, effects, settings: Numerics) -> dict[str, np.ndarray
         method, rtol, atol = method_for(pb, settings)
         return read_row(solve(pb, method, rtol, atol=atol), pb, scales, effects)
 
-    ensure_compiled()  # before the threads start: compiling or loading is done once
-    with ThreadPoolExecutor(max_workers=THREADS) as pool:
-        rows = np.array(list(pool.map(one, range(count))))
+    rows = np.array([one(i) for i in range(count)])
     sizes = {name: (Bubble.output(name).size,) if Bubble.output(name).size else () for name in names}
     return {name: rows[:, ROW_OF[name.split("_", 1)[1]]].reshape(shape + sizes[name]) for name in names}
 

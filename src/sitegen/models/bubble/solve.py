@@ -20,7 +20,6 @@ from functools import lru_cache
 
 import numpy as np
 
-from ...physics import compiled
 from ...physics.numerics import Numerics
 from . import kernel_read
 from .kernel_march import DOP853_METHOD, ENDED, RADAU_METHOD, march, split_hits
@@ -132,12 +131,6 @@ def integrate_compiled(
     pb: Problem, y0, method: str, rtol: float, caps: Caps = Caps(), atol: float | None = None
 ) -> Run:
     """The compiled path of `integrate`: the same events, samples and statuses, no Python per step."""
-    ensure_compiled()
-    return _marched(pb, y0, method, rtol, caps, atol)
-
-
-def _marched(pb: Problem, y0, method: str, rtol: float, caps: Caps, atol: float | None) -> Run:
-    """integrate_compiled once the kernels are ready (the warm-up calls it to compile them)."""
     start = time.perf_counter()
     grid = sample_grid(pb.tau_end)
     atol = default_atol(rtol) if atol is None else atol
@@ -177,32 +170,18 @@ def _run_of(marched, method: str, rtol: float, grid: np.ndarray, start: float) -
     )
 
 
-# The kernels in two parts of about 15 and 5 s of compiling, which processes can compile side by side:
-# the stepping (`march`) and the reading of a run (`read`).
-KERNEL_PARTS = ("march", "read")
-
-
-def ensure_compiled(part: str | None = None) -> tuple[float, bool]:
-    """Compile the bubble's kernels, or load them from the cache (once per process): (seconds, compiled).
-
-    `part` (one of KERNEL_PARTS): only those kernels, into the cache, for a process compiling beside others."""
+def warm_up() -> None:
+    """Call every compiled entry point once, with the types of the build's calls: each is compiled, or loaded
+    from the cache, now (for timings that should leave that out)."""
     pb = Problem(gas=1.0, kappa=1.4, visc=0.01, drive=0.5, omega=1.0, tau_end=0.5)
-
-    def warm_up():  # each entry point once, with the types of the build's calls
-        if part in (None, "march"):
-            for method in COMPILED:
-                _marched(pb, (1.0, 0.0), method, 1e-6, Caps(10_000), 1e-9)
-        if part in (None, "read"):
-            grid = sample_grid(pb.tau_end)  # a run as `march` returns one, made up: reading it compiles no stepping
-            made_up = (ENDED, (pb.tau_end, 1.0, 0.0), np.ones((grid.shape[0], 2)), np.zeros((0, 4)), 0)
-            run = _run_of(made_up, EXPLICIT, 1e-6, grid, 0.0)
-            q = np.ones(kernel_read.READING_SIZE)  # a reading of any point whose window is the run's
-            q[kernel_read.Q_TAU_END] = q[kernel_read.Q_PART] = pb.tau_end
-            kernel_read.read(
-                q, run.tau, run.r, run.v, run.end, STATUS_CODES[run.status], run.maxima, run.minima, run.speeds
-            )
-
-    return compiled.prepare(warm_up, part, KERNEL_PARTS)
+    for method in COMPILED:
+        integrate_compiled(pb, (1.0, 0.0), method, 1e-6, Caps(10_000), 1e-9)
+    grid = sample_grid(pb.tau_end)  # a run as `march` returns one, made up: reading it compiles no stepping
+    made_up = (ENDED, (pb.tau_end, 1.0, 0.0), np.ones((grid.shape[0], 2)), np.zeros((0, 4)), 0)
+    run = _run_of(made_up, EXPLICIT, 1e-6, grid, 0.0)
+    q = np.ones(kernel_read.READING_SIZE)  # a reading of any point whose window is the run's
+    q[kernel_read.Q_TAU_END] = q[kernel_read.Q_PART] = pb.tau_end
+    kernel_read.read(q, run.tau, run.r, run.v, run.end, STATUS_CODES[run.status], run.maxima, run.minima, run.speeds)
 
 
 def integrate(

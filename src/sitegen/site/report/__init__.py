@@ -65,7 +65,7 @@ def bench_figures(bench: dict, parts: list[str], models: Mapping, reports: Mappi
     """Every diagram that the report `parts` draw from bench.json alone, by the key `figure` remembers it by
     (but those `cache`, a TableCache, holds already).
 
-    Drawn before (or beside) the build's own work: a part is rendered as if the build had no scenes, and only
+    Drawn before the build's own work: a part is rendered as if the build had no scenes, and only
     its diagrams are kept. A diagram drawn from the build's data has another key then (or its part fails), and
     is drawn with the part, later."""
     drawn: dict[str, bytes] = {}

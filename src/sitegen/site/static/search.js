@@ -60,7 +60,8 @@
   function link(result) {
     var s = result.section, a = document.createElement("a"), title = document.createElement("span");
     var where = document.createElement("span"), here = location.pathname.split("/").pop() === s.page[0];
-    a.href = (here ? "" : s.page[0]) + (s.id ? "#" + s.id : "");
+    // on this page, a link to the place (the text's start for the page itself): following it keeps the scenes as they are
+    a.href = here ? "#" + (s.id || "main-content") : s.page[0] + (s.id ? "#" + s.id : "");
     title.className = "title";
     title.textContent = s.title;
     where.className = "where";
@@ -91,8 +92,16 @@
     list.hidden = true;
   }
 
+  /* The focus back in the box after the list was closed, without opening it again. */
+  var returning = false;
+  function backToBox() {
+    returning = true;
+    input.focus();
+    returning = false;
+  }
+
   input.addEventListener("input", show);
-  input.addEventListener("focus", show);
+  input.addEventListener("focus", function () { if (!returning) show(); });
   input.addEventListener("keydown", function (event) {
     var first = list.querySelector("a");
     if (event.key === "Enter" && first) first.click();
@@ -107,7 +116,7 @@
       (next < 0 ? input : links[Math.min(next, links.length - 1)]).focus();
     } else if (event.key === "Escape") {
       close();
-      input.focus();
+      backToBox();
     }
   });
   list.addEventListener("click", function (event) { if (event.target.closest("a")) close(); });

@@ -43,8 +43,36 @@
 
   function short(x) { return String(Math.round(x * 1e6) / 1e6); }
 
+  /* A scene made live: its controls listened to. Its data is read when a control first moves. */
   function Scene(root) {
-    var data = JSON.parse(root.querySelector("script.scene-data").textContent);
+    this.root = root;
+    this.name = root.id.slice(6); // "scene-collision" -> "collision"
+    var self = this, moved = function () { self.update(); self.remember(); };
+    var controls = root.querySelectorAll("[data-param]");
+    for (var i = 0; i < controls.length; i++) {
+      controls[i].addEventListener("input", moved);
+      controls[i].addEventListener("change", moved);
+    }
+    var button = root.querySelector("button[data-animate]");
+    if (button) this.animation = new Animation(this, root, button);
+    var reset = root.querySelector("button[data-reset]"); // none on a scene without controls
+    if (reset) reset.addEventListener("click", function () { self.setStops(self.load().defaults); });
+  }
+
+  /* Whether a control holds another value than the page was built with (the browser kept the reader's). */
+  function restored(root) {
+    var inputs = root.querySelectorAll("input");
+    for (var i = 0; i < inputs.length; i++) {
+      var input = inputs[i];
+      if (input.type === "radio" ? input.checked !== input.defaultChecked : input.value !== input.defaultValue) return true;
+    }
+    return false;
+  }
+
+  /* The scene's tables and recipes, decoded when first needed; returns the scene. */
+  Scene.prototype.load = function () {
+    if (this.data) return this;
+    var root = this.root, data = JSON.parse(root.querySelector("script.scene-data").textContent);
     Object.keys(data.tables).forEach(function (name) {
       var table = data.tables[name];
       if (table.same) data.tables[name] = data.tables[table.same]; // identical tables are stored once
@@ -58,20 +86,9 @@
     this.readouts = each(data.readouts, "out", "out");
     this.whys = each(data.readouts, "why", "out");
     this.layers = data.layers.map(function (l) { return all("layer", l.name); }); // both figures
-    this.root = root;
-    this.name = root.id.slice(6); // "scene-collision" -> "collision"
     this.defaults = data.sliders.map(function (s, i) { return this.stop(i, true); }, this);
-    var self = this, moved = function () { self.update(); self.remember(); };
-    this.controls.forEach(function (control) {
-      control.addEventListener("input", moved);
-      control.addEventListener("change", moved);
-    });
-    var button = root.querySelector("button[data-animate]");
-    if (button) this.animation = new Animation(this, root, button);
-    var reset = root.querySelector("button[data-reset]"); // none on a scene without controls
-    if (reset) reset.addEventListener("click", function () { self.setStops(self.defaults); });
-    this.update();
-  }
+    return this;
+  };
 
   /* A control's stop (`initial`: as built); even sliders hold values, the others indices. */
   Scene.prototype.stop = function (i, initial) {
@@ -94,6 +111,7 @@
 
   /* Every control to `stops`, the animation paused, the scene redrawn, its link written. */
   Scene.prototype.setStops = function (stops) {
+    this.load();
     if (this.animation) this.animation.pause();
     stops.forEach(function (k, i) { this.setStop(i, k); }, this);
     this.update();
@@ -230,7 +248,7 @@
   };
 
   Scene.prototype.update = function () {
-    var stops = this.stops(), data = this.data, self = this;
+    var stops = this.load().stops(), data = this.data, self = this;
     data.sliders.forEach(function (s, i) {
       var text = self.stopText(i, stops[i]);
       if (s.kind !== "choice") self.controls[i].setAttribute("aria-valuetext", text);
@@ -251,12 +269,13 @@
         }).join("");
         return;
       }
-      var vertices = self.vertices(layer, stops), dots = layer.kind === "dots";
-      var text = vertices.map(function (p) {
-        var xy = short(p[0]) + "," + short(p[1]);
-        return dots ? "M" + xy + "h0" : xy;
-      }).join(" ");
-      for (var j = 0; j < elements.length; j++) elements[j].setAttribute(dots ? "d" : "points", text);
+      var pairs = self.vertices(layer, stops).map(function (p) { return short(p[0]) + "," + short(p[1]); });
+      var points = layer.kind === "dots" ? null : pairs.join(" ");
+      for (var j = 0; j < elements.length; j++) {
+        if (points !== null) { elements[j].setAttribute("points", points); continue; }
+        var step = "h" + elements[j].getAttribute("data-dot"); // a dot: a stroke too short to see (render/svg.py)
+        elements[j].setAttribute("d", pairs.map(function (xy) { return "M" + xy + step; }).join(" "));
+      }
     });
   };
 
@@ -264,7 +283,6 @@
   function Animation(scene, root, button) {
     this.scene = scene;
     this.button = button;
-    this.index = scene.data.sliders.map(function (s) { return s.param; }).indexOf(button.getAttribute("data-animate"));
     this.timer = null;
     var self = this;
     button.addEventListener("click", function () { if (self.timer) self.pause(); else self.play(); });
@@ -276,7 +294,8 @@
   }
 
   Animation.prototype.play = function () {
-    var self = this;
+    var self = this, param = this.button.getAttribute("data-animate");
+    this.index = this.scene.load().data.sliders.map(function (s) { return s.param; }).indexOf(param);
     this.mark(true);
     this.timer = setInterval(function () { self.step(); }, FRAME_MS);
   };
@@ -304,23 +323,25 @@
   };
 
   /* A box wider than the text scrolls; an equation's becomes focusable and says so (a table's is a
-   * labelled region). Overflow depends on font and width: decided on resize. */
-  function markScrollers() {
-    var boxes = document.querySelectorAll(".equation, .report-scroll");
-    for (var i = 0; i < boxes.length; i++) {
-      var box = boxes[i], scrolls = box.scrollWidth > box.clientWidth + 1;
-      box.classList.toggle("scrolls", scrolls);
-      if (!box.classList.contains("equation")) continue;
+   * labelled region). Overflow depends on font and width: measured once the page is drawn (reading a
+   * finished layout costs nothing; at the start it would force one), on resize and when a font arrives.
+   * Every box is read, then every box marked, so that marking one does not make the next read lay out. */
+  function markScrollers(boxes) {
+    var wide = boxes.map(function (box) { return box.scrollWidth > box.clientWidth + 1; });
+    boxes.forEach(function (box, i) {
+      box.classList.toggle("scrolls", wide[i]);
+      if (!box.classList.contains("equation")) return;
       var marks = { tabindex: "0", role: "group", "aria-label": "equation, scrolls sideways" };
-      for (var name in marks) if (scrolls) box.setAttribute(name, marks[name]); else box.removeAttribute(name);
-    }
+      for (var name in marks) if (wide[i]) box.setAttribute(name, marks[name]); else box.removeAttribute(name);
+    });
   }
 
   /* A link to a scene's state sets its controls (ignoring unknown names and values) and shows it. */
-  function openLink(scenes) {
+  function openLink(live) {
     var link = /^#([^:]+):(.*)$/.exec(location.hash), given = {}; // "#collision:m1=2,e=0.5"
-    var scene = link && scenes.filter(function (s) { return s.name === link[1]; })[0];
-    if (!scene) return;
+    var root = link && document.getElementById("scene-" + link[1]);
+    if (!root || !root.hasAttribute("data-scene")) return;
+    var scene = live(root).load();
     link[2].split(",").forEach(function (pair) {
       var kv = pair.split("=");
       try { given[kv[0]] = decodeURIComponent(kv[1]); } catch (error) { /* malformed: ignored */ }
@@ -329,7 +350,10 @@
       var text = given[scene.data.sliders[i].param];
       return text === undefined ? k : scene.findStop(i, text);
     }));
-    scene.root.scrollIntoView();
+    // Blocks off the screen hold a guessed height until they near it, so a scene far down would move
+    // once they are laid out: every block is laid out now, and the browser keeps the scene in view.
+    document.documentElement.classList.add("laid-out");
+    root.scrollIntoView();
   }
 
   /* Search loads its index (a classic script, for file://) when first used. */
@@ -341,19 +365,45 @@
     }, { once: true });
   }
 
-  function start() {
-    markScrollers();
-    window.addEventListener("resize", markScrollers);
-    if (document.fonts && document.fonts.ready) document.fonts.ready.then(markScrollers);
-    var elements = document.querySelectorAll("[data-scene]"), scenes = [];
-    for (var i = 0; i < elements.length; i++) scenes.push(new Scene(elements[i]));
-    // Back restores the controls after load without an input event: redraw.
-    window.addEventListener("pageshow", function () {
-      scenes.forEach(function (scene) { scene.update(); });
+  /* Paper shows what a closed <details> holds (a derivation): opened for printing, closed again after. */
+  function openDetailsToPrint() {
+    var opened = [];
+    window.addEventListener("beforeprint", function () {
+      var closed = document.querySelectorAll("details:not([open])");
+      for (var i = 0; i < closed.length; i++) { closed[i].open = true; opened.push(closed[i]); }
     });
-    openLink(scenes);
-    window.addEventListener("hashchange", function () { openLink(scenes); });
+    window.addEventListener("afterprint", function () {
+      opened.splice(0).forEach(function (details) { details.open = false; });
+    });
+  }
+
+  function start() {
+    var boxes = [].slice.call(document.querySelectorAll(".equation, .report-scroll"));
+    var measure = function () { markScrollers(boxes); };
+    requestAnimationFrame(function () { setTimeout(measure, 0); }); // after the first frame
+    window.addEventListener("resize", measure);
+    if (document.fonts) document.fonts.addEventListener("loadingdone", measure);
+    // A scene comes alive when the reader first reaches for it (or the browser restored its controls):
+    // until then the page shows what the build drew, and loads nothing.
+    var elements = [].slice.call(document.querySelectorAll("[data-scene]")), scenes = [];
+    var live = function (root) {
+      var i = elements.indexOf(root);
+      return scenes[i] || (scenes[i] = new Scene(root));
+    };
+    ["focusin", "pointerdown", "keydown", "input", "change", "click"].forEach(function (type) {
+      document.addEventListener(type, function (e) { // capturing: before the control's own listeners
+        var root = e.target.closest ? e.target.closest("[data-scene]") : null;
+        if (root) live(root);
+      }, true);
+    });
+    // Back (or a reload) may give the controls the reader's values without an input event: redraw.
+    var revive = function () { elements.forEach(function (root) { if (restored(root)) live(root).update(); }); };
+    revive();
+    window.addEventListener("pageshow", revive);
+    openLink(live);
+    window.addEventListener("hashchange", function () { openLink(live); });
     searchOnDemand();
+    openDetailsToPrint();
     var contents = document.getElementById("book-contents"); // the phone's panel closes on a link
     if (contents) contents.addEventListener("click", function (e) { if (e.target.closest("a") && contents.matches(":popover-open")) contents.hidePopover(); });
   }

@@ -172,11 +172,7 @@ def finding(panel: dict) -> str:
         whose = "The scene's setting" if panel.get("own") else "The chosen setting"
         parts.append(
             f"{whose}, {run_html(c)}, takes {duration(c['time_s'])} "
-            + (
-                "and is exact."
-                if c.get("exact")
-                else f"with error {sci(c['error'])} ({c['evaluations']:,} evaluations)."
-            )
+            + ("and is exact." if c.get("exact") else f"with error {sci(c['error'])}{_evaluations(c)}.")
         )
     if head["dominating"]:
         d = head["dominating"]
@@ -189,9 +185,13 @@ def finding(panel: dict) -> str:
         for target, run in head["cheapest"].items()
         if run
     ]
-    if cheapest:
+    if cheapest and sum(summary.usable(r) for r in panel["runs"]) > 1:  # with one run, nothing to choose from
         parts.append("Cheapest run " + "; ".join(cheapest) + ".")
     return " ".join(parts)
+
+
+def _evaluations(run: dict) -> str:
+    return f" ({run['evaluations']:,} evaluations)" if run.get("evaluations") else ""
 
 
 def run_html(run: dict) -> str:

@@ -14,33 +14,25 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from helpers import write_book
 
-from sitegen.accuracy.experiments import (
-    CHAIN_T,
-    bubble_problem,
-    case_errors,
-    chain_by_eigh,
-    chain_error,
-    chain_exact,
-    collapse_errors,
-    extrema,
-    run_chain_ivp,
-    run_verlet,
-    skip_reason,
-    solve_case,
-    verlet_steps,
-)
 from sitegen.accuracy.resolution import LINES, interpolation_error, resolution_experiment
 from sitegen.build import BuildConfig, build
 from sitegen.cli import main
 from sitegen.content.bench_results import BENCH_NAME, load_results
 from sitegen.errors import BuildFailed
+from sitegen.models.bubble.bench import bubble_problem, case_errors, collapse_errors, extrema, skip_reason, solve_case
+from sitegen.models.chain.bench import ROUND_TRIP as CHAIN_T
+from sitegen.models.chain.bench import by_eigh as chain_by_eigh
+from sitegen.models.chain.bench import exact_after_round_trip as chain_exact
+from sitegen.models.chain.bench import pulse_error as chain_error
+from sitegen.models.chain.bench import run_ivp as run_chain_ivp
+from sitegen.models.chain.bench import run_verlet, verlet_steps
 from sitegen.registry import builtin_registry
 from sitegen.site.report import report_parts, summary
 from sitegen.site.report.html import sci
 
 MODELS = builtin_registry().models
+DEFAULTS = MODELS["bubble"].defaults()
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -57,7 +49,7 @@ def test_verlet_error_falls_fourfold_per_halving_of_the_step(n):
 
 
 def test_verlet_steps_hit_the_courant_number():
-    """N = 64 (a = 1/65), ν = 0.5 over T = 2: 260 steps, as in docs/physics/chain.md."""
+    """N = 64 (a = 1/65), ν = 0.5 over T = 2: 260 steps, as in physics.md §11.1."""
     assert verlet_steps(64, 0.5) == 260 and math.isclose(CHAIN_T, 2.0)
 
 
@@ -87,39 +79,41 @@ def test_chain_error_measures_a_known_offset():
 
 def test_dop853_preset_A_at_rtol_1e_9_is_within_1e_7_of_the_analytic_collapse():
     """Case A, DOP853 rtol 1e-9: max |ΔR|/R0 ≤ 1e-7 against betaincinv (measured 3.5e-10), stop time ≤ 1e-8 rel."""
-    run = solve_case("A", "DOP853", 1e-9)
-    errors = collapse_errors(run, bubble_problem("A"))
+    run = solve_case(bubble_problem("A", DEFAULTS), "DOP853", 1e-9)
+    errors = collapse_errors(run, bubble_problem("A", DEFAULTS))
     assert errors["curve"] <= 1e-7 and errors["t_stop"] <= 1e-8
 
 
 def test_analytic_collapse_has_no_error_against_itself():
     """The closed-form run measured against the closed form: 0 up to rounding (≤ 1e-14)."""
-    errors = collapse_errors(solve_case("A", "analytic", 0.0), bubble_problem("A"))
+    pb = bubble_problem("A", DEFAULTS)
+    errors = collapse_errors(solve_case(pb, "analytic", 0.0), pb)
     assert errors["curve"] <= 1e-14 and errors["t_stop"] <= 1e-14
 
 
 def test_collapse_error_measures_a_known_offset():
     """Negative control: the analytic curve raised by 2e-4 R0 measures 2e-4."""
-    run = solve_case("A", "analytic", 0.0)
+    run = solve_case(bubble_problem("A", DEFAULTS), "analytic", 0.0)
     raised = dataclasses.replace(run, r=run.r + 2e-4)
-    assert collapse_errors(raised, bubble_problem("A"))["curve"] == pytest.approx(2e-4, rel=1e-6)
+    assert collapse_errors(raised, bubble_problem("A", DEFAULTS))["curve"] == pytest.approx(2e-4, rel=1e-6)
 
 
 def test_driven_readout_errors_measure_known_perturbations():
     """Case B readouts: a run whose R_max is 1e-5 larger (relative) than the reference measures exactly that."""
-    reference = solve_case("B", "DOP853", 1e-8)
-    period = 2 * math.pi / bubble_problem("B").omega
+    pb = bubble_problem("B", DEFAULTS)
+    reference = solve_case(pb, "DOP853", 1e-8)
+    period = 2 * math.pi / pb.omega
     r_max = extrema(reference, period)[0]
     maxima = reference.maxima.copy()
     maxima[np.argmax(maxima[:, 1]), 1] = r_max * (1 + 1e-5)
-    errors = case_errors("B", dataclasses.replace(reference, maxima=maxima), reference)
+    errors = case_errors("B", pb, dataclasses.replace(reference, maxima=maxima), reference)
     assert errors["R_max"] == pytest.approx(1e-5, rel=1e-6) and errors["R_min"] == 0 and errors["curve"] == 0
 
 
 def test_driven_bubble_extrema_are_the_reference_readouts():
-    """Case B (one period): R_max/R0 = 6.8115 and R_min/R0 = 0.17624 at t/T = 0.51661 (docs/physics/bubble.md preset
-    B)."""
-    r_max, r_min, t_min = extrema(solve_case("B", "DOP853", 1e-10), 2 * math.pi / bubble_problem("B").omega)
+    """Case B (one period): R_max/R0 = 6.8115 and R_min/R0 = 0.17624 at t/T = 0.51661 (physics.md K4 preset B)."""
+    pb = bubble_problem("B", DEFAULTS)
+    r_max, r_min, t_min = extrema(solve_case(pb, "DOP853", 1e-10), 2 * math.pi / pb.omega)
     assert f"{r_max:.4f}" == "6.8115" and f"{r_min:.5f}" == "0.17624" and f"{t_min:.5f}" == "0.51661"
 
 
@@ -165,8 +159,7 @@ def test_exactly_structured_axes_interpolate_to_round_off(line, axis, nodes):
 
 
 def test_two_node_line_in_e_misses_the_parabola_by_its_sagitta():
-    """K_after(e) = K_before − ½µΔ²(1 − e²) with µ = 2/3, Δ = 4: a chord through e = 0, 1 misses by 16/3 · ¼ = 4/3 at e
-    = ½."""
+    """K_after(e) = K_before − ½µΔ²(1 − e²) with µ = 2/3, Δ = 4: a chord through e = 0, 1 misses by 16/3 · ¼ = 4/3 at e = ½."""
     error, _ = interpolation_error(LINES["K_after"], "linear", 2)
     assert error == pytest.approx(4 / 3, abs=1e-12)
 
@@ -183,7 +176,7 @@ def test_two_node_line_in_e_misses_the_parabola_by_its_sagitta():
     ids=["v1f-linear-17", "v1f-log-65", "dv-linear-65", "dv-log-65", "MA-linear-65"],
 )
 def test_plain_axes_reproduce_the_measured_table(line, axis, nodes, expected):
-    """The errors of docs/physics/README.md for linear and log axes (to the two digits it quotes)."""
+    """The errors of physics.md §12 for linear and log axes (to the two digits it quotes)."""
     error, _ = interpolation_error(LINES[line], axis, nodes)
     assert error == pytest.approx(expected, rel=0.05)
 
@@ -240,21 +233,23 @@ def test_numbers_are_written_as_the_captions_write_them(value, text):
 
 
 def test_quick_bench_writes_strict_json_with_the_expected_keys(tmp_path):
-    """`sitegen bench --quick` on a one-scene book writes strict, sorted JSON with every section."""
+    """`sitegen bench --quick` on a one-scene book writes strict, sorted JSON with every section; a book without
+    numerical scenes measures no model (the impulse is a closed form)."""
     root = tmp_path / "book"
-    page = '+++\ntitle = "Try"\n+++\n\n```scene\nmodel: impulse\nid: pulse\nslider m: 1..4 step 1 default 2\n```\n'
-    write_book(root, {"index": page})
+    (root / "content").mkdir(parents=True)
+    (root / "book.toml").write_text("")
+    (root / "content" / "index.md").write_text(
+        '+++\ntitle = "Try"\n+++\n\n```scene\nmodel: impulse\nid: pulse\nslider m: 1..4 step 1 default 2\n```\n'
+    )
     out = tmp_path / "bench.json"
     assert main(["bench", "--quick", "--root", str(root), "--out", str(out)]) == 0
     text = out.read_text()
     data = json.loads(text, parse_constant=lambda name: pytest.fail(f"non-finite {name}"))
     assert text == json.dumps(data, indent=1, sort_keys=True, allow_nan=False, ensure_ascii=False) + "\n"
-    assert {"schema", "machine", "plan", "chain", "bubble", "resolution", "build", "seconds"} <= set(data)
+    assert {"schema", "machine", "plan", "models", "resolution", "build", "seconds"} <= set(data)
     assert {"cpu", "cores", "python", "numpy", "scipy", "date"} <= set(data["machine"])
-    assert {r["method"] for r in data["chain"]["runs"]} == {"exact DST", "velocity Verlet", "RK45", "DOP853"}
-    assert data["bubble"]["A"]["chosen"]["method"] == "analytic" and data["bubble"]["A"]["runs"]
+    assert data["models"] == {} and data["resolution"] == []
     assert set(data["build"]["scenes"]) == {"index#pulse"} and "index.html" in data["build"]["pages"]
-    assert all(run["error"] >= 0 and run["time_s"] > 0 for run in data["chain"]["runs"])
 
 
 def test_committed_bench_results_cover_every_experiment():
@@ -262,8 +257,13 @@ def test_committed_bench_results_cover_every_experiment():
     compiled solvers beside scipy's, and the settings sweep of every bubble scene."""
     data = load_results(ROOT / "content" / BENCH_NAME)
     assert data is not None, "run `make bench` to write content/accuracy/bench.json"
-    assert {r["N"] for r in data["chain"]["runs"]} == {64, 256} and set(data["bubble"]) == {"A", "B", "C"}
-    assert {r["method"] for r in data["bubble"]["B"]["runs"]} == {
+    chain, bubble = (data["models"][name]["experiments"] for name in ("chain", "bubble"))
+    assert [p["title"] for p in chain["chain-round-trip"]["panels"]] == [
+        "chain of N = 64 masses",
+        "chain of N = 256 masses",
+    ]
+    assert {f"bubble-{case}" for case in "ABC"} <= set(bubble)
+    assert {r["method"] for r in bubble["bubble-B"]["panels"][0]["runs"]} == {
         "RK45",
         "DOP853",
         "Radau",
@@ -275,8 +275,9 @@ def test_committed_bench_results_cover_every_experiment():
     bubble_scenes = {
         f"newtons-laws-examples#{s}" for s in ("rayleigh-collapse", "driven-bubble", "driven-map", "blake-threshold")
     }
-    assert set(data["digits"]) == bubble_scenes
-    for sweep in data["digits"].values():  # at the chosen setting no shown value is wrong at any stop
+    sweeps = bubble["settings"]["scenes"]
+    assert set(sweeps) == bubble_scenes
+    for sweep in sweeps.values():  # at the chosen setting no shown value is wrong at any stop
         assert next(r for r in sweep["runs"] if r["rtol"] == sweep["chosen"])["wrong"] == 0
 
 
@@ -285,9 +286,11 @@ def test_committed_bench_results_cover_every_experiment():
 
 def _book_with(tmp_path: Path, block: str) -> BuildConfig:
     """A home page and an accuracy page holding one report block (no bench.json, no scenes)."""
-    return write_book(
-        tmp_path, {"accuracy": f'+++\ntitle = "Accuracy"\n+++\n\nText.\n\n```accuracy-report\n{block}\n```\n'}
-    )
+    content = tmp_path / "content"
+    content.mkdir(exist_ok=True)
+    (content / "index.md").write_text('+++\ntitle = "Book"\n+++\n\nHome.\n')
+    (content / "accuracy.md").write_text(f'+++\ntitle = "Accuracy"\n+++\n\nText.\n\n```accuracy-report\n{block}\n```\n')
+    return BuildConfig(tmp_path, content, tmp_path / "build", cache=None)
 
 
 def test_unknown_report_part_is_an_author_error_at_its_line(tmp_path):
@@ -295,7 +298,7 @@ def test_unknown_report_part_is_an_author_error_at_its_line(tmp_path):
     with pytest.raises(BuildFailed) as failure:
         build(_book_with(tmp_path, "show: nope"), progress=None)
     parts = ", ".join(report_parts(MODELS))
-    assert "chain, bubble-A, bubble-B, bubble-C" in parts  # declared by the chain and bubble models
+    assert "chain, bubble, chain-round-trip, bubble-A, bubble-B, bubble-C, settings" in parts  # models, their own
     assert [str(e) for e in failure.value.errors] == [
         f"content/accuracy.md:8: accuracy-report: unknown part 'nope'; parts: {parts}"
     ]
@@ -303,8 +306,12 @@ def test_unknown_report_part_is_an_author_error_at_its_line(tmp_path):
 
 @pytest.mark.parametrize(
     "part, text",
-    [("chain", "No benchmark results yet"), ("scenes", "No numerical scenes were checked")],
-    ids=["chain-without-bench", "scenes-without-records"],
+    [
+        ("chain-round-trip", "No benchmark results yet"),
+        ("chain", "No benchmark results yet"),
+        ("scenes", "No numerical scenes were checked"),
+    ],
+    ids=["experiment-without-bench", "model-without-bench", "scenes-without-records"],
 )
 def test_report_blocks_say_clearly_when_there_is_nothing_to_show(tmp_path, part, text):
     """Without bench.json a bench part says how to get one; with no records the scene table says so."""
@@ -324,13 +331,14 @@ def test_accuracy_page_is_built_and_linked_from_the_home_page(built_site):
     assert not any("data-report-slot" in p.read_text() for p in built_site.glob("*.html"))
 
 
-@pytest.mark.parametrize("figure", ["chain", "bubble-A", "bubble-B", "bubble-C", "settings", "resolution"])
+@pytest.mark.parametrize(
+    "figure", ["chain-round-trip", "bubble-A", "bubble-B", "bubble-C", "settings", "bubble", "resolution"]
+)
 def test_accuracy_page_has_each_diagram_with_its_numbers(built_site, figure):
     """Each diagram: an inline SVG with a label, a caption and a table of the numbers behind it."""
     html = (built_site / "accuracy.html").read_text()
     found = re.search(
-        rf'<figure class="report-figure" id="fig-{figure}">(.*?)</figure>\s*<details '
-        r'class="report-data">(.*?)</details>',
+        rf'<figure class="report-figure" id="fig-{figure}">(.*?)</figure>\s*<details class="report-data">(.*?)</details>',
         html,
         re.S,
     )
@@ -342,7 +350,7 @@ def test_accuracy_page_has_each_diagram_with_its_numbers(built_site, figure):
         and "<table" in found[2]
     )
     if figure != "resolution":
-        assert "chosen:" in found[1], "the chosen setting is marked"
+        assert "chosen:" in found[1] or "scene's setting:" in found[1], "the chosen setting is marked"
 
 
 def test_every_checked_scene_has_its_row_and_its_caption_links_to_it(built_site):
@@ -387,9 +395,9 @@ def test_the_reports_diagrams_from_bench_alone_are_drawn_once_and_not_again_when
 
     bench = load_results(ROOT / "tests" / "book" / "content" / BENCH_NAME)
     registry = builtin_registry()
-    parts = ["machine", "chain", "bubble-B", "digits"]  # one diagram (bubble-B has no results in this quick run)
+    parts = ["machine", "chain-round-trip", "bubble-B", "digits", "scenes"]  # two diagrams; the scenes need the build
     drawn = bench_figures(bench, parts, registry.models, registry.reports)
-    assert len(drawn) == 1
+    assert len(drawn) == 2
     assert all(svg.count(b"<svg") == 2 for svg in drawn.values())  # each wide and narrow
 
     asked = {}

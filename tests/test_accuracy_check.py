@@ -184,7 +184,7 @@ def test_automatic_method_switches_to_implicit_for_stiff_terms(preset, rtol, lab
             "unknown method 'Euler'; this model offers auto, RK45, "
             "DOP853, Radau, BDF, LSODA, compiled-DOP853, compiled-Radau",
         ),
-        ({"steps": "10"}, "unknown setting 'steps'; numerics take method, rtol, atol, nodes, tolerance"),
+        ({"steps": "10"}, "unknown setting 'steps'; numerics take method, rtol, atol, nodes, step, tolerance"),
         ({"nodes": "32"}, "method auto has no setting 'nodes'; it takes rtol, atol and tolerance"),
         ({"rtol": "2"}, "rtol '2' must lie in [1e-14, 1)"),
         ({"tolerance": "-1"}, "tolerance '-1' must be a number >= 0"),

@@ -35,9 +35,9 @@ LAYERS = (
     ),  # tools that use the build and the layers below it (sitegen.testing: checks a book's tests call)
     ("sitegen.cli", "sitegen.progress"),  # the command, and how it shows a build's progress on a terminal
 )
-# Who may import the built-in models by name: their own plugins, the registry (which lists them) and the
-# bench's experiments (which time the solvers themselves). The build gets them from the registry only.
-MODEL_USERS = ("sitegen.models", "sitegen.registry", "sitegen.accuracy")
+# Who may import the built-in models by name: their own plugins and the registry (which lists them). The build
+# and the bench get them from the registry only (the bench reads what each model declares).
+MODEL_USERS = ("sitegen.models", "sitegen.registry")
 
 
 def _modules() -> dict[str, Path]:

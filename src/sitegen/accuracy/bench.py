@@ -1,4 +1,9 @@
-"""`sitegen bench`: run every accuracy–cost experiment, write bench.json, print a readable summary."""
+"""`sitegen bench`: measure what the book's numerical choices cost, write bench.json, print a summary.
+
+Every numerically computed scene's model gets the work–precision experiment of its declared methods
+(experiments.py) and the experiments it declares of its own (`Model.experiments`); then the interpolation
+experiment and the build's costs. Nothing here names a model: the book's scenes say which are measured.
+"""
 
 from __future__ import annotations
 
@@ -7,54 +12,78 @@ from contextlib import contextmanager
 from dataclasses import asdict
 from pathlib import Path
 
+from ..build import BuildConfig, needed_outputs, resolve_book
+from ..compute.check import sample_stops
 from ..content.bench_results import SCHEMA
+from ..registry import load_registry
 from ..site.report import summary
 from .build_costs import scene_cold_times, site_sizes
-from .digit_sweep import digit_sweep
-from .experiments import FULL, Plan, bubble_experiment, chain_experiment
+from .experiments import FULL, Plan, bench_scene, method_experiment
 from .resolution import resolution_experiment
-from .timing import MEDIUM, SAMPLE, SLOW, machine_info
+from .timing import MEDIUM, SAMPLE, SLOW, machine_info, time_medians
 
 REPEATS = (
     f"a warm-up call, then the median of 5 timed runs for calls under {MEDIUM:g} s, 3 under {SLOW:g} s; "
-    f"a call of {SLOW:g} s or more is timed once; calls under {SAMPLE * 1e3:g} ms are timed in loops"
+    f"a call of {SLOW:g} s or more is timed once; calls under {SAMPLE * 1e3:g} ms are timed in loops; "
+    "each method and setting at a scene's stops: the median of 3"
 )
+
+
+def numerical_scenes(root: Path) -> tuple[dict[str, list], set[str]]:
+    """The book's numerically computed scenes as the bench measures them, by model name (in the book's order),
+    and the names ("page#id") of all its scenes."""
+    config = BuildConfig.at(root, cache=None)
+    registry = load_registry(config.book)
+    records = resolve_book(config, registry).scenes
+    found: dict[str, list] = {}
+    for record in records:
+        scene = record.scene
+        if scene.model.settings is None or not scene.model.is_numerical(scene.effects):
+            continue
+        item = bench_scene(record.name, scene, needed_outputs(scene, registry), sample_stops(scene))
+        found.setdefault(scene.model.name, []).append(item)
+    return found, {record.name for record in records}
 
 
 def run_bench(root: Path, plan: Plan = FULL, progress=print) -> dict:
     """Every experiment of the plan on this machine, as one JSON-ready dict."""
     start = time.perf_counter()
     results = {"schema": SCHEMA, "machine": machine_info(), "plan": {**_plain(asdict(plan)), "repeats": REPEATS}}
-    sections = {}
-    with _section(sections, "chain", progress, "velocity Verlet, RK45, DOP853 against the exact DST solution"):
-        results["chain"] = chain_experiment(plan)
-    results["bubble"] = {}
-    for case in plan.cases:
-        with _section(
-            sections,
-            f"bubble {case}",
-            progress,
-            f"{', '.join(plan.bubble_methods)} over {len(plan.bubble_rtols)} tolerances",
-        ):
-            results["bubble"][case] = bubble_experiment(case, plan)
-    with _section(
-        sections, "digits", progress, "every stop of each bubble scene at several rtols against a tight reference"
-    ):
-        results["digits"] = digit_sweep(root, plan.sweep_rtols, progress)
+    sections: dict[str, float] = {}
+    scenes, names = numerical_scenes(root)
+    results["models"] = {name: _model_results(items, plan, sections, progress) for name, items in scenes.items()}
     with _section(sections, "resolution", progress, "interpolation error against bytes"):
-        results["resolution"] = resolution_experiment()
+        results["resolution"] = resolution_experiment(names)
     with _section(
         sections, "build", progress, "per scene: cold tabulation time, states, stored values, bytes; bytes per page"
     ):
         pages, data = site_sizes(root)
-        scenes = scene_cold_times(root, plan.scene_repeats, progress)
+        costs = scene_cold_times(root, plan.scene_repeats, progress)
         results["build"] = {
-            "scenes": {name: {**row, "data": data.get(name)} for name, row in scenes.items()},
+            "scenes": {name: {**row, "data": data.get(name)} for name, row in costs.items()},
             "pages": pages,
         }
     results["section_seconds"] = sections
     results["seconds"] = time.perf_counter() - start
     return results
+
+
+def _model_results(items: list, plan: Plan, sections: dict, progress) -> dict:
+    """One model's generic experiment over its scenes, and the experiments it declares of its own."""
+    model = type(items[0].scene.model)
+    with _section(sections, model.name, progress, f"{', '.join(model.methods)} at {len(items)} scene(s)' stops"):
+        methods = method_experiment(items, plan, progress)
+    own = {}
+
+    def timer(jobs: dict, repeats: int = plan.max_repeats) -> dict:
+        return time_medians(jobs, repeats)
+
+    for name, experiment in model.experiments.items():
+        with _section(sections, name, progress, f"{model.name}'s own experiment {name}"):
+            data = experiment.measure(items, plan.quick, timer)
+        if data is not None:
+            own[name] = {"kind": experiment.kind, **data}
+    return {"title": model.title, "methods": methods, "experiments": own}
 
 
 @contextmanager
@@ -72,24 +101,20 @@ def _plain(data: dict) -> dict:
 
 
 def summary_lines(results: dict) -> list[str]:
-    """The readable summary: machine, chain, each bubble case, resolution and build costs."""
+    """The readable summary: machine, each experiment's runs and headlines, dominated settings, resolution, build."""
     m = results["machine"]
     lines = [
         f"machine: {m['cpu']}, {m['cores']} cores, Python {m['python']}, NumPy {m['numpy']}, SciPy {m['scipy']}, "
         f"{m['date']} {m['time_utc']} UTC; bench took {results['seconds']:.0f} s"
     ]
-    lines += _chain_lines(results["chain"])
-    for case, data in results["bubble"].items():
-        lines += _bubble_lines(case, data)
-    lines.append("bubble scenes, every stop against the tight reference (rtol: wrong, near a boundary, ms per solve):")
-    for name, sweep in results.get("digits", {}).items():
-        lines.append(
-            f"  {name:<40} "
-            + ", ".join(
-                f"{r['rtol']:.0e}: {r['wrong']}, {r['near']}, {r['seconds'] / sweep['stops'] * 1e3:.2f} ms"
-                for r in sweep["runs"]
-            )
-        )
+    for part, title, data in summary.experiments(results):
+        lines.append(f"{part}: {title}; error = {data['metric']}; reference {data['reference']}")
+        for panel in data["panels"]:
+            lines += _panel_lines(panel)
+    for results_of in results["models"].values():
+        for part, data in results_of["experiments"].items():
+            if data["kind"] == "digit-sweep":
+                lines += _sweep_lines(part, data)
     lines.append("resolution (max interpolation error / display resolution, float32 bytes):")
     for row in results["resolution"]:
         lines.append(
@@ -108,58 +133,42 @@ def summary_lines(results: dict) -> list[str]:
         lines.append(
             f"  {name:<28} {page['html_gzip'] / 1024:7.1f} KiB gzip, with assets {page['total_gzip'] / 1024:7.1f} KiB"
         )
-    return lines
+    dominated = summary.dominated_lines(results)  # last, where an author sees it
+    lines.append(f"scenes whose settings another setting beats: {len(dominated) or 'none'}")
+    return lines + [f"  {line}" for line in dominated]
 
 
-def _chain_lines(chain: dict) -> list[str]:
-    lines = ["chain (error = max|u − u_DST|/A at t = 2L/c):"]
-    for n in sorted({r["N"] for r in chain["runs"]}):
-        head = summary.chain_headlines(chain, n)
-        dst = head["dst"]
-        lines.append(f"  N = {n}: exact DST {dst['time_s'] * 1e3:.3f} ms (vs eigh {dst['error']:.1e})")
-        if head["halving"]:
-            h = head["halving"]
-            lines.append(f"    Verlet ν {h['from']:g} → {h['to']:g}: error ÷{h['error']:.2f}, time ×{h['time']:.2f}")
-        if head["cheapest_1e-6"]:
-            c = head["cheapest_1e-6"]
-            lines.append(
-                f"    cheapest integrator to 1e-6: {summary.label(c)}, {c['time_s'] * 1e3:.2f} ms = "
-                f"{head['dst_advantage']:.0f}× the DST"
-            )
-        lines.append("    time per extra digit: " + _digits(head["per_digit"]))
-    return lines
-
-
-def _bubble_lines(case: str, data: dict) -> list[str]:
-    head = summary.bubble_headlines(data)
-    lines = [
-        f"bubble {data['title']}; error = {data['metric']}; reference {data['reference']} "
-        f"(check {data['reference_check'].get('agreement')})"
-    ]
-    for run in data["runs"]:
-        if "skipped" in run:
+def _panel_lines(panel: dict) -> list[str]:
+    """One panel's runs, its cost per digit, its Pareto front and its chosen run."""
+    head = summary.headlines(panel)
+    lines = [f"  {summary.panel_title(panel)}:"]
+    for run in panel["runs"]:
+        if run.get("status", "ok") != "ok":
+            lines.append(f"    {summary.label(run):<28} {run.get('skipped') or run['status']}")
             continue
         error = f"{run['error']:.2e}" if run.get("error") is not None else "   —    "
         lines.append(
-            f"  {summary.label(run):<22} nfev {run['nfev']:>8}  {run['time_s'] * 1e3:9.2f} ms  err {error}  "
-            f"{run['status']}"
+            f"    {summary.label(run):<28} {run.get('evaluations', 0):>9,} evaluations {run['time_s'] * 1e3:10.3f} ms  "
+            f"err {error}"
         )
-    skipped = [r for r in data["runs"] if "skipped" in r]
-    if skipped:
-        lines.append(f"  skipped {len(skipped)}: " + "; ".join(sorted({r["skipped"] for r in skipped})))
-    lines.append("  time per extra digit: " + _digits(head["per_digit"]))
-    lines.append("  Pareto front: " + ", ".join(summary.label(r) for r in head["pareto"]))
-    lines.append(
-        "  cheapest within "
-        + "; ".join(
-            f"{target:.0e}: {summary.label(run)} ({run['time_s'] * 1e3:.1f} ms)"
-            for target, run in head["cheapest"].items()
-            if run
-        )
-    )
+    lines.append("    time per extra digit: " + _digits(head["per_digit"]))
+    lines.append("    Pareto front: " + ", ".join(summary.label(r) for r in head["pareto"]))
     if head["chosen"]:
         c = head["chosen"]
-        lines.append(f"  chosen: {summary.label(c)}: {c['time_s'] * 1e3:.2f} ms, error {c['error']:.1e}")
+        lines.append(f"    chosen: {summary.label(c)}: {c['time_s'] * 1e3:.3f} ms, error {c['error']:.1e}")
+    return lines
+
+
+def _sweep_lines(part: str, data: dict) -> list[str]:
+    lines = [f"{part}: every stop of each scene at several rtols (rtol: wrong, near a boundary, ms per solve):"]
+    for name, sweep in data["scenes"].items():
+        lines.append(
+            f"  {name:<40} "
+            + ", ".join(
+                f"{r['rtol']:.0e}: {r['wrong']}, {r['near']}, {r['seconds'] / sweep['stops'] * 1e3:.2f} ms"
+                for r in sweep["runs"]
+            )
+        )
     return lines
 
 

@@ -8,22 +8,13 @@ each timed run tabulates the scene from nothing, as a first build on a fresh che
 from __future__ import annotations
 
 import re
-import sys
 import tempfile
 from pathlib import Path
 
 from ..build import BuildConfig, build, resolve_book, tabulate_book
 from ..site.sizes import gzip_bytes
+from .experiments import clear_model_caches
 from .timing import time_medians
-
-
-def clear_model_caches() -> None:
-    """Forget every memo of the physics modules (e.g. the bubble's solved points), so a run starts cold."""
-    for name, module in list(sys.modules.items()):
-        if name.startswith(("sitegen.physics", "sitegen.models")) and module is not None:
-            for value in list(vars(module).values()):
-                if callable(getattr(value, "cache_clear", None)):
-                    value.cache_clear()
 
 
 def scene_cold_times(root: Path, repeats: int = 3, progress=None) -> dict[str, dict]:

@@ -146,16 +146,19 @@ def json_gzip_bytes(values: np.ndarray, decimals: int) -> int:
     return gzip_bytes(json.dumps(quanta, separators=(",", ":")).encode())
 
 
-def resolution_experiment() -> list[dict]:
-    """Every row of the resolution table (docs/physics/README.md), then one 'every stop' row per output (what the page
-    ships, no interpolation)."""
+def resolution_experiment(scenes=None) -> list[dict]:
+    """Every row of the resolution table (docs/physics/README.md), then one 'every stop' row per output (what the page ships, no interpolation); only the
+    outputs of `scenes` ("page#id") when given (a book without those scenes has no rows)."""
+    lines = {key: line for key, line in LINES.items() if scenes is None or line.scene in scenes}
     rows = []
     for key, axis, counts in CASES:
+        if key not in lines:
+            continue
         line = LINES[key]
         for count in counts:
             error, values = interpolation_error(line, axis, count)
             rows.append(_row(key, line, axis, count, error, values))
-    for key, line in LINES.items():
+    for key, line in lines.items():
         values = line.exact(line.stops)
         finite = values[np.isfinite(values)]
         rows.append(_row(key, line, "per stop", len(line.stops), 0.0, finite))

@@ -34,3 +34,13 @@ class SceneAccuracy:
     def anchor(self) -> str:
         """The id of this scene's row on the accuracy page."""
         return f"acc-{self.page}-{self.scene}"
+
+    @property
+    def methods_anchor(self) -> str:
+        """The id of its model's part on the accuracy page: what each method costs at this scene's stops."""
+        return methods_anchor(self.model)
+
+
+def methods_anchor(model: str) -> str:
+    """The id of a model's part on the accuracy page (what the captions of its scenes link to)."""
+    return f"methods-{model}"

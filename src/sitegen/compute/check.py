@@ -195,9 +195,12 @@ def stop_text(scene: ResolvedScene, stop: tuple[int, ...]) -> str:
     return ", ".join(parts) or "the scene's fixed values"
 
 
-def caption_sentence(record: SceneAccuracy, link: bool) -> str:
-    """The caption's closing sentence (HTML): the measured error, against what, and a link to the row."""
+def caption_sentence(record: SceneAccuracy, link: bool, methods: bool = False) -> str:
+    """The caption's closing sentence (HTML): the measured error, against what, a link to the row and (`methods`:
+    the accuracy page shows the model's part) one to what each of the model's methods costs at the scene's stops."""
     see = f', see <a href="accuracy.html#{record.anchor}">accuracy and cost</a>' if link else ""
+    if link and methods:
+        see += f' and <a href="accuracy.html#{record.methods_anchor}">what each method costs</a>'
     return (
         f"Measured error {_number_html(record.error)} ({escape(record.metric)}) against "
         f"{_exponents_html(escape(record.reference))}{see}."

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-SCHEMA = 1
+SCHEMA = 2  # 2: results by model (each its methods and its own experiments)
 BENCH_NAME = Path("accuracy") / "bench.json"  # under content/: the accuracy page is rendered from it
 BENCH_FILE = Path("content") / BENCH_NAME  # the same, from the project root
 

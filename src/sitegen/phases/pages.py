@@ -27,15 +27,16 @@ def assemble_scenes(book: Book, run: BuildRun) -> Book:
     """Each scene's element: figure, controls, readouts at the defaults, caption and inline data."""
     if run.failed:
         return book
-    linked = any(p.slug == "accuracy" for p in book.pages)  # the rows exist only on the accuracy page
+    accuracy = next((p for p in book.pages if p.slug == "accuracy"), None)  # the rows exist only on that page
+    parts = {block.part for block in accuracy.found.reports} if accuracy else set()
     records = []
     for record in book.current():
         with run.scene(record, "assembling its element"):
-            records.append(_assembled(record, book, run, linked))
+            records.append(_assembled(record, book, run, accuracy is not None, parts))
     return book.with_records(records)
 
 
-def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> SceneRecord:
+def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool, parts: set) -> SceneRecord:
     scene, tables, figure, page = record.scene, record.tables, record.figure, record.page
     # The figure's layers go into the payload: a change to the view's layers is a new payload.
     key = digest(scene_digest(record), source_digest(PAYLOAD_CODE), repr(figure.layers))
@@ -47,7 +48,8 @@ def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool) -> 
     number = f'<span class="caption-label">Figure\u00a0{page.found.scene_number(record.index)}</span>'
     caption = f"{number} {caption}".strip()
     if record.accuracy is not None:
-        caption = f"{caption} {caption_sentence(record.accuracy, linked)}".strip()
+        methods = record.accuracy.model in parts  # the accuracy page shows the model's part
+        caption = f"{caption} {caption_sentence(record.accuracy, linked, methods)}".strip()
     html = scene_html(scene, tables, figure, caption, payload.decode(), run.config.book)
     return replace(record, html=html, data_bytes=_data_bytes(payload, run) if book.has_reports else (len(payload), 0))
 

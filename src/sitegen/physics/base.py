@@ -170,8 +170,14 @@ class Model:
     methods: ClassVar[dict[str, dict[str, object]]] = {}  # method: the settings it takes, at their defaults
     error_metric: ClassVar[str] = ""
     check_stops: ClassVar[int] = 16  # slider stops the build's check samples (fewer for an ODE solve per point)
-    # The accuracy-report parts that this model's bench results fill (part name: what it shows).
-    reports: ClassVar[dict[str, str]] = {}
+    # What `sitegen bench` measures of the methods: each over a ladder of its setting (rtol, nodes or step) at
+    # the stops the build checks. A ladder here replaces the default one of a setting for every method
+    # (`{"rtol": (1e-4, 1e-6, 1e-8)}`) or for one method (`{"RK45": {"rtol": (1e-4, 1e-6)}}`); an empty ladder
+    # measures a method only at the scenes' own settings.
+    ladders: ClassVar[dict[str, object]] = {}
+    # Experiments of the model's own that the bench runs beside (name: a BenchExperiment, numerics.py); each
+    # is a part of the accuracy report under its name.
+    experiments: ClassVar[dict[str, object]] = {}
 
     checks_digits: ClassVar[bool] = False  # whether measure_error also compares the displayed digits
 

@@ -13,7 +13,8 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 
-KEYS = ("method", "rtol", "atol", "nodes", "tolerance")  # everything a scene's `numerics:` line may set
+KEYS = ("method", "rtol", "atol", "nodes", "step", "tolerance")  # everything a scene's `numerics:` line may set
+SETTINGS = ("rtol", "atol", "nodes", "step")  # the knobs that change the computed numbers
 MAX_NODES = 1024
 
 
@@ -22,8 +23,9 @@ class Numerics:
     """One choice of numerical settings: the method, its knobs, and the largest error allowed.
 
     `rtol`/`atol` are an ODE solver's relative and absolute tolerances (None: the method's own
-    rule), `nodes` a quadrature's points per smooth piece; `tolerance` is the declared bound on the
-    error the build measures against the model's reference, in the model's `error_metric`.
+    rule), `nodes` a quadrature's points per smooth piece (or a grid's resolution), `step` a fixed-step
+    method's step in the model's own unit; `tolerance` is the declared bound on the error the build
+    measures against the model's reference, in the model's `error_metric`.
     """
 
     method: str
@@ -31,6 +33,7 @@ class Numerics:
     rtol: float | None = None
     atol: float | None = None
     nodes: int | None = None
+    step: float | None = None
 
     def text(self) -> str:
         """The settings as an author writes them, e.g. `method DOP853, rtol 1e-06, tolerance 0.0001`."""
@@ -39,9 +42,7 @@ class Numerics:
     def knobs(self) -> str:
         """The settings that change the computed numbers (all but the tolerance), as an author writes them."""
         parts = [f"method {self.method}"]
-        parts += [
-            f"{key} {written(value)}" for key in ("rtol", "atol", "nodes") if (value := getattr(self, key)) is not None
-        ]
+        parts += [f"{key} {written(value)}" for key in SETTINGS if (value := getattr(self, key)) is not None]
         return ", ".join(parts)
 
 
@@ -76,11 +77,7 @@ def configure(default: Numerics, methods: Mapping[str, Mapping[str, object]], ch
         if key not in ("method", "tolerance") and key not in taken:
             offers = f"takes {', '.join(taken)} and tolerance" if taken else "takes only tolerance"
             raise ValueError(f"method {method} has no setting '{key}'; it {offers}")
-    start = (
-        default
-        if method == default.method
-        else replace(default, **{**dict.fromkeys(("rtol", "atol", "nodes")), **taken})
-    )
+    start = default if method == default.method else replace(default, **{**dict.fromkeys(SETTINGS), **taken})
     return replace(start, method=method, **{key: _value(key, text) for key, text in changes.items() if key != "method"})
 
 
@@ -96,8 +93,8 @@ def _value(key: str, text: str) -> float | int:
         return int(number)
     if key == "rtol" and not (1e-14 <= number < 1.0):
         raise ValueError(f"rtol '{text}' must lie in [1e-14, 1)")
-    if key == "atol" and not (0.0 < number < math.inf):
-        raise ValueError(f"atol '{text}' must be a positive number")
+    if key in ("atol", "step") and not (0.0 < number < math.inf):
+        raise ValueError(f"{key} '{text}' must be a positive number")
     if key == "tolerance" and not (0.0 <= number < math.inf):
         raise ValueError(f"tolerance '{text}' must be a number >= 0")
     return number
@@ -106,3 +103,31 @@ def _value(key: str, text: str) -> float | int:
 def written(value: float, form: str = "g") -> str:
     """A number as an author writes it: 1e-6 rather than 1e-06 (`form` as in format(), e.g. ".1e")."""
     return re.sub(r"e([-+])0*(\d)", r"e\1\2", format(value, form))
+
+
+@dataclass(frozen=True)
+class BenchScene:
+    """A scene of the book as `sitegen bench` measures it: "page#id", the resolved scene (its model, axes,
+    effects and settings), the outputs it shows, and its parameter values at each stop the build checks."""
+
+    name: str
+    scene: object
+    shown: tuple[str, ...]
+    stops: tuple[Mapping[str, float], ...]
+
+
+class BenchExperiment:
+    """An experiment of a model's own that `sitegen bench` runs beside the generic one (`Model.experiments`).
+
+    `measure` gets the book's scenes of the model, whether the run is quick (a smoke test: a few points, one
+    run each) and `timer`, which times a dict of calls and gives each its result and median seconds (the bench
+    times, the experiment only declares what to time). It returns JSON-ready data, or None when the book
+    gives it nothing to measure. `kind` says how the accuracy page draws it: "work-precision" (panels of runs,
+    drawn like the generic experiment) or "digit-sweep" (scenes' shown digits against time).
+    """
+
+    kind = "work-precision"
+
+    def measure(self, scenes, quick: bool, timer) -> dict | None:
+        """The experiment's results as JSON-ready data."""
+        raise NotImplementedError

@@ -1,4 +1,5 @@
-"""Static diagrams of the accuracy page: work–precision (error against time) and resolution against bytes.
+"""Static diagrams of the accuracy page: work–precision (error against time, the Pareto front as a grey band)
+and resolution against bytes.
 
 They take plain points, not bench.json, and draw them in the house style; `figure_svg` turns
 them into byte-stable inline SVG. Nothing is written over the data: each panel's legend (with the
@@ -31,6 +32,7 @@ LABEL_MARGIN = (
     1.0  # pt kept clear round a label: a browser draws a text's box a little taller than matplotlib measures it
 )
 RING_SIZE = 15  # pt: the ring round the chosen setting
+FRONT_WIDTH = 7  # pt: the band that joins the Pareto front
 
 
 @dataclass(frozen=True)
@@ -64,6 +66,7 @@ class Panel:
     line: tuple[float, str] | None = None  # a horizontal reference line (y, label)
     xlim: tuple[float, float] | None = None  # fixed limits (shared by panels); None: fit the points
     ylim: tuple[float, float] | None = None
+    front: tuple[Point, ...] = ()  # the Pareto front, fastest first: drawn as a grey band under the lines
 
 
 def work_precision_figure(panels: list[Panel], xlabel: str, ylabel: str, note: str, narrow: bool = False) -> plt.Figure:
@@ -161,6 +164,18 @@ def _draw_panel(ax, panel: Panel, xlabel: str, ylabel: str) -> None:
         axis.set_major_formatter(DECADE)
     for index, series in enumerate(panel.series):
         _draw_series(ax, panel, series, COLOURS[index % len(COLOURS)], MARKERS[index % len(MARKERS)])
+    if panel.front:
+        ax.plot(
+            [p.x for p in panel.front],
+            [_clamped(panel, p.y) for p in panel.front],
+            color=s.MUTED,
+            lw=FRONT_WIDTH,
+            alpha=0.3,
+            solid_capstyle="round",
+            solid_joinstyle="round",
+            label="Pareto front",
+            zorder=2,
+        )
     if panel.exact:
         ax.plot([panel.exact.x], [panel.floor], marker="*", ms=12, color=s.INK, ls="none", zorder=5)
     if panel.line:

@@ -17,13 +17,18 @@ import numpy as np
 from ...physics.base import Model, Output, Param
 from ...physics.numerics import Measurement, Numerics
 from . import terms
+from .bench import Regime
 from .compare import run_difference, shown_difference
 from .point import (
+    ALL,
     BLAKE_LABELS,
     CURVE_SIZE,
     DRIVE_PERIODS,
     FLAGS,
+    HISTORY_PARAMS,
+    LIQUID_AND_GAS,
     MISSING,
+    PREFIX,
     ROW_OF,
     SOLVER_LABELS,
     check_effects,
@@ -34,6 +39,7 @@ from .point import (
 from .run import CURVE_POINTS, REFERENCE_CAPS
 from .scipy_path import SOLVERS
 from .solve import AUTO, COMPILED, STIFF, method_for, reference_for, solve
+from .sweep import DigitSweep
 from .terms import P0, WATER
 
 EFFECTS = (
@@ -50,10 +56,6 @@ EFFECTS = (
     "radiation",
     "keller_miksis",
 )
-LIQUID_AND_GAS = ("R0", "rho", "c", "kappa", "h_frac", "p_v", "sigma", "mu", "D_g")
-HISTORY_PARAMS = {"step": ("p_inf", "gas_content"), "drive": ("p_a", "f"), "ramp": ("depth", "t_ramp", "t_hold")}
-PREFIX = {"step": "collapse", "drive": "driven", "ramp": "ramp"}
-ALL = LIQUID_AND_GAS + tuple(p for names in HISTORY_PARAMS.values() for p in names)
 
 # The dynamic outputs of each pressure history: (key of read_run, label, unit, decimals or labels).
 _T = "t/T at "
@@ -283,10 +285,11 @@ class Bubble(Model):
     # An ODE solve per stop (1–50 ms compiled): blocks spread a scene over the executor's workers and pace its
     # progress lines, and hold enough stops to pay for their trip to a worker.
     chunk_stops = 64
-    reports = {
-        **{f"bubble-{case}": f"the work–precision diagram of bubble case {case}" for case in "ABC"},
-        "settings": "the bubble scenes' settings: every stop's shown digits against time",
-    }
+    # The bench at the scenes' stops: `auto` at its own rule, the compiled solvers over rtol 1e-6 … 1e-10 (a scipy
+    # solver costs 20–200 times as much, and an explicit one seconds a stop where the terms are stiff: those are
+    # compared on the three regimes of docs/physics/bubble.md instead, and the sweep puts every stop's digits against time).
+    ladders = {"rtol": (1e-6, 1e-7, 1e-8, 1e-9, 1e-10), AUTO: {"rtol": ()}, **{name: {"rtol": ()} for name in SOLVERS}}
+    experiments = {**{f"bubble-{case}": Regime(case) for case in "ABC"}, "settings": DigitSweep()}
 
     def _evaluate(self, x, wanted, effects):
         check_effects(effects)

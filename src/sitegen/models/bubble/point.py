@@ -17,6 +17,12 @@ from .run import CURVE_POINTS, STATUS_CODES, Run
 from .solve import ANALYTIC, EXPLICIT, EXPLICIT_RTOL, IMPLICIT, IMPLICIT_RTOL, STIFF
 from .terms import P0, T0, Problem
 
+# The parameters: the liquid's and the gas's, and each pressure history's (with the prefix of its outputs).
+LIQUID_AND_GAS = ("R0", "rho", "c", "kappa", "h_frac", "p_v", "sigma", "mu", "D_g")
+HISTORY_PARAMS = {"step": ("p_inf", "gas_content"), "drive": ("p_a", "f"), "ramp": ("depth", "t_ramp", "t_hold")}
+PREFIX = {"step": "collapse", "drive": "driven", "ramp": "ramp"}
+ALL = LIQUID_AND_GAS + tuple(p for names in HISTORY_PARAMS.values() for p in names)
+
 DRIVE_PERIODS = 2  # the driven bubble runs two acoustic periods from rest at R0
 CURVE_SIZE = CURVE_POINTS + kernel_read.CURVE_EXTREMA + 1  # samples, extrema and the stop
 

@@ -4,24 +4,14 @@ from __future__ import annotations
 
 import time
 
+from .bench import PRESETS
 from .model import Bubble
 from .point import Scales, compose
 from .run import Run
 from .solve import solve
 from .terms import Problem
 
-PRESETS = {  # name: (effects, parameters that differ from the defaults), docs/physics/bubble.md
-    "A": (("inertia", "vapour", "step"), {"R0": 1000.0, "p_inf": 1.0}),
-    "B": (
-        ("gas", "vdw_hard_core", "surface_tension", "viscosity", "drive", "keller_miksis"),
-        {"R0": 4.5, "p_a": 1.3, "f": 26.5},
-    ),
-    "C": (("gas", "vapour", "surface_tension", "viscosity", "ramp"), {"R0": 1.0, "kappa": 1.0, "depth": 0.99}),
-    "stiff": (
-        ("gas", "surface_tension", "viscosity", "drive"),
-        {"R0": 1.0, "mu": 1.0, "rho": 1260.0, "p_a": 0.5, "f": 20.0, "kappa": 1.4},
-    ),
-}
+__all__ = ["PRESETS", "preset_problem", "run_preset"]
 
 
 def preset_problem(preset: str, **changes) -> tuple[Problem, Scales]:

@@ -10,6 +10,7 @@ import numpy as np
 
 from ...physics.base import Model, Output, Param
 from ...physics.numerics import Measurement, Numerics
+from .bench import RoundTrip
 from .integrators import dense_motion
 from .modes import (
     AMPLITUDE,
@@ -149,7 +150,7 @@ class Chain(Model):
     numerics = Numerics("DST", tolerance=1e-9)
     methods = {"DST": {}}
     error_metric = "max |Δuⱼ|/A at the frame"
-    reports = {"chain": "the chain's work–precision diagram"}
+    experiments = {"chain-round-trip": RoundTrip()}  # the integrators kept for comparison (bench.py)
 
     def measure_error(self, values, effects) -> Measurement:
         """The modal solution at one stop against the dense eigendecomposition (or expm when damped)."""

@@ -5,8 +5,9 @@ page) and this build's own deterministic data (the scenes' accuracy records and 
 the build hands over: nothing is read back from built HTML). No clock is read here, so the same
 sources and the same bench.json give the same bytes.
 
-The parts every book has are below; a model whose bench results fill parts declares them
-(`Model.reports`), and its plugin's report view (the registry's `reports`) draws them: this module names no model.
+The parts every book has are below; every numerical model has a part under its name (methods.py), and each
+experiment a model declares of its own (`Model.experiments`) a part under the experiment's name, drawn by the
+experiment's kind: this module names no model.
 """
 
 from __future__ import annotations
@@ -19,9 +20,12 @@ from html import escape
 from ...compute.accuracy import SceneAccuracy
 from ...compute.cache import compute_now
 from ...render.work_precision import Panel, Point, Series, resolution_figure
+from . import summary
 from .html import FIGURES_KIND, MISSING, duration, factor, figure, figure_html, kib, sci, table
+from .methods import experiment_part, finding, model_part, powers
+from .sweep import sweep_part
 
-PER_DIGIT_METHODS = ("velocity Verlet", "RK45", "DOP853", "Radau", "BDF", "LSODA", "compiled-DOP853", "compiled-Radau")
+DRAWN_BY_KIND = {"work-precision": experiment_part, "digit-sweep": sweep_part}
 
 
 @dataclass(frozen=True)
@@ -34,28 +38,27 @@ class ReportContext:
     scenes: tuple  # the build's scene records (each with .page and .scene)
     table_bytes: Mapping  # "page#scene" -> (raw, gzip) bytes of the scene's inline tables in this build
     remember: object = compute_now
-    models: Mapping = None  # the models of the build, by name (their declared report parts)
-    reports: Mapping = None  # the report views of the models that declare parts, by model name
-
-    @property
-    def views(self) -> list:
-        """The report views of the models that declare parts, in the registry's order."""
-        views = self.reports or {}
-        return [views[name] for name, model in (self.models or {}).items() if model.reports and name in views]
+    models: Mapping = None  # the models of the build, by name
+    reports: Mapping = None  # the registry's REPORTS (unused: every part is drawn from bench.json by its kind)
 
 
 def report_parts(models: Mapping) -> list[str]:
-    """Every part a block may show: the book's own, and those the models declare."""
-    declared = [part for model in models.values() for part in model.reports]
-    return ["machine", *declared, "digits", "resolution", "scenes", "build"]
+    """Every part a block may show: the book's own, one per numerical model (by its name), and the
+    experiments the models declare of their own."""
+    numerical = [name for name, model in models.items() if model.numerics is not None]
+    declared = [part for model in models.values() for part in model.experiments]
+    return ["machine", *numerical, *declared, "digits", "resolution", "scenes", "build"]
 
 
 def report_part(part: str, context: ReportContext) -> str:
     """The HTML of one report block."""
     if part in BOOK_PARTS:
         return BOOK_PARTS[part](context)
-    name = next(name for name, model in context.models.items() if part in model.reports)
-    return context.reports[name].part(part, context)
+    if part in context.models:
+        return model_part(part, context)
+    model = next(model for model in context.models.values() if part in model.experiments)
+    found = ((context.bench or {}).get("models") or {}).get(model.name, {}).get("experiments", {}).get(part)
+    return DRAWN_BY_KIND.get(model.experiments[part].kind, experiment_part)(part, found, context)
 
 
 def bench_figures(bench: dict, parts: list[str], models: Mapping, reports: Mapping, cache=None) -> dict[str, bytes]:
@@ -109,6 +112,8 @@ def resolution_part(context: ReportContext) -> str:
     if not context.bench:
         return MISSING
     rows = context.bench["resolution"]
+    if not rows:
+        return '<p class="report-missing">No scene of this book shows an output of the interpolation experiment.</p>\n'
     label = "Interpolation error against stored bytes for four outputs, by choice of axis and number of nodes."
 
     def draw(narrow):
@@ -187,18 +192,21 @@ def machine_part(context: ReportContext) -> str:
 
 
 def digits_part(context: ReportContext) -> str:
-    """What one more correct digit costs, per method, and the headline ratios of the run."""
+    """What one more correct digit costs, per method of every experiment, and the headline of each panel."""
     if not context.bench:
         return MISSING
-    items = [item for view in context.views for item in view.findings(context.bench)]
-    rows = [
-        [problem] + [factor(costs.get(m)) for m in PER_DIGIT_METHODS]
-        for view in context.views
-        for problem, costs in view.per_digit(context.bench)
+    found = summary.experiments(context.bench)
+    items = [finding(panel) for _, _, data in found for panel in data["panels"]]
+    items += [powers(escape(text)) for _, _, data in found for text in data.get("findings", [])]
+    costs = [
+        (summary.panel_title(panel), summary.headlines(panel)["per_digit"])
+        for _, _, data in found
+        for panel in data["panels"]
     ]
+    methods = list(dict.fromkeys(m for _, per in costs for m, f in per.items() if f))
     numbers = table(
-        ["problem"] + list(PER_DIGIT_METHODS),
-        rows,
+        ["problem", *map(escape, methods)],
+        [[escape(title)] + [factor(per.get(m)) for m in methods] for title, per in costs if any(per.values())],
         "Time multiplier per extra correct digit (least-squares slope of log time against −log error)",
     )
     return (

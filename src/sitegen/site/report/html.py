@@ -121,19 +121,11 @@ def _row(cells: list[str], row_id: str, text: tuple[int, ...]) -> str:
 
 
 def run_point(run: dict) -> Point:
-    """A run as a point (time in ms, error) labelled by its Courant number or its rtol exponent."""
-    if run.get("courant") is not None:
-        return Point(run["time_s"] * 1e3, run["error"], f"{run['courant']:g}")
-    if run.get("rtol"):
-        exponent = rtol_exponent(run["rtol"])
+    """A run as a point (time in ms, error) labelled by n of its rtol = 10⁻ⁿ or the value of its setting."""
+    value = run.get("value")
+    if value is None:
+        return Point(run["time_s"] * 1e3, run["error"])
+    if run.get("setting") == "rtol":
+        exponent = rtol_exponent(value)
         return Point(run["time_s"] * 1e3, run["error"], exponent, major=int(exponent) % 3 == 0)
-    return Point(run["time_s"] * 1e3, run["error"])
-
-
-def label_html(run: dict) -> str:
-    """A run as the page's prose names it: "DOP853 at rtol 10<sup>−6</sup>", "velocity Verlet at ν = 0.1"."""
-    if run.get("rtol"):
-        return f"{escape(run['method'])} at rtol {sci(run['rtol'])}"
-    if run.get("courant") is not None:
-        return f"velocity Verlet at ν = {run['courant']:g}"
-    return escape(run["method"])
+    return Point(run["time_s"] * 1e3, run["error"], f"{value:g}")

@@ -11,60 +11,74 @@ listed rather than hidden. The reference is the compiled solvers at tight settin
 from __future__ import annotations
 
 import math
-import time
-from pathlib import Path
 
 import numpy as np
 
-from ..build import BuildConfig, needed_outputs, resolve_book
-from ..compute.grid import CHOICE
-from ..models.bubble.compare import run_difference, shown_difference
-from ..models.bubble.model import ALL, CLOSED_FORMS, PREFIX, Bubble
-from ..models.bubble.point import compose, read_run
-from ..models.bubble.run import REFERENCE_CAPS
-from ..models.bubble.solve import AUTO, EXPLICIT_RTOL, method_for, reference_for, solve, warm_up
-from ..physics.numerics import Numerics
+from ...compute.grid import CHOICE
+from ...physics.numerics import BenchExperiment, Numerics
+from .compare import run_difference, shown_difference
+from .point import ALL, PREFIX, compose, read_run
+from .run import REFERENCE_CAPS
+from .solve import AUTO, EXPLICIT_RTOL, method_for, reference_for, solve, warm_up
 
 RTOLS = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
 NEAR_LISTED = 40  # stops listed by name per scene and setting (the count is always complete)
 
 
-def digit_sweep(root: Path, rtols=RTOLS, progress=None) -> dict:
-    """For every bubble scene of the book: per rtol, its wrong and near-boundary values over all stops and the
-    seconds its solves take (one thread, compiled, uncached), against the tight reference."""
-    warm_up()  # compiled (or loaded) before any solve is timed
-    items = [r for r in resolve_book(BuildConfig.at(root, cache=None)).scenes if r.scene.model.name == "bubble"]
-    results = {}
-    for item in items:
-        name = f"{item.page.slug}#{item.scene.id}"
-        results[name] = _scene_sweep(item.scene, rtols)
-        if progress:
-            runs = ", ".join(
-                f"{r['rtol']:.0e}: {r['wrong']} wrong, {r['near']} near, {r['seconds']:.2f} s"
-                for r in results[name]["runs"]
-            )
-            progress(f"  {name:<40} {runs}")
-    return results
+class DigitSweep(BenchExperiment):
+    """Every stop of each bubble scene at several rtols, its shown digits against a tight reference's."""
+
+    kind = "digit-sweep"
+
+    def measure(self, scenes, quick: bool, timer) -> dict | None:
+        """Per scene and rtol: its wrong and near-boundary values over all stops and the seconds its solves
+        take (compiled, uncached, timed once), against the tight reference."""
+        if not scenes:
+            return None
+        warm_up()  # compiled (or loaded) before any solve is timed
+        rtols = RTOLS[2:3] if quick else RTOLS
+        sweeps = {item.name: _scene_sweep(item, rtols, timer) for item in scenes}
+        return {
+            "scenes": sweeps,
+            "title": "bubble scenes, every stop",
+            "ringed": max(sweeps, key=lambda name: (sweeps[name]["stops"], name)),  # the ring: on the largest scene
+            "label": "Time per solve against the largest error in units of the last shown digit, every stop of "
+            "each bubble scene.",
+        }
 
 
-def _scene_sweep(scene, rtols) -> dict:
+def _scene_sweep(item, rtols, timer) -> dict:
+    scene = item.scene
     history = next(h for h in PREFIX if h in scene.effects)
-    solved_outputs = {o.name for o in Bubble.outputs if o.name not in CLOSED_FORMS and not o.name.endswith("_solver")}
-    shown = [n for n in needed_outputs(scene) if n.startswith(PREFIX[history] + "_") and n in solved_outputs]
     points = [(stop, _point(scene, stop)) for stop in np.ndindex(*[a.count for a in scene.axes])]
     problems = [compose({n: point[n] for n in ALL}, scene.effects) for _, point in points]
     references = [_reference(pb) for pb, _ in problems]
-    runs = []
-    for rtol in rtols:
+    read = read_run(references[0], *problems[0], scene.effects)  # what a solve gives: the outputs to compare
+    shown = [
+        n
+        for n in item.shown
+        if n.startswith(PREFIX[history] + "_") and n.split("_", 1)[1] in read and not n.endswith("_solver")
+    ]
+
+    def solve_all(rtol: float) -> list:
         settings = Numerics(AUTO, tolerance=1.0, rtol=rtol)
-        start = time.perf_counter()
         solved = []
         for pb, scales in problems:
             method, tol, atol = method_for(pb, settings)
             run = solve.__wrapped__(pb, method, tol, atol=atol)
             solved.append((run, read_run(run, pb, scales, scene.effects)))
-        seconds = time.perf_counter() - start
-        runs.append({"rtol": rtol, "seconds": seconds, **_compare(scene, points, problems, solved, references, shown)})
+        return solved
+
+    runs = []
+    for rtol in rtols:  # one rtol at a time: the solved runs of every stop are many
+        timed = timer({rtol: lambda rtol=rtol: solve_all(rtol)}, 1)[rtol]  # timed once: it is thousands of solves
+        runs.append(
+            {
+                "rtol": rtol,
+                "seconds": timed.seconds,
+                **_compare(scene, points, problems, timed.result, references, shown),
+            }
+        )
     return {
         "stops": len(points),
         "shown": shown,
@@ -91,10 +105,10 @@ def _compare(scene, points, problems, solved, references, shown) -> dict:
     for (stop, _), (pb, scales), (run, mine), reference in zip(points, problems, solved, references):
         theirs = read_run(reference, pb, scales, scene.effects)
         error = run_difference(run, reference, pb, scales, scene.effects)
-        bad, close = shown_difference(mine, theirs, prefix, error, Bubble.outputs)
+        bad, close = shown_difference(mine, theirs, prefix, error, type(scene.model).outputs)
         wrong += [f"{_stop_text(scene, stop)}: {n}" for n in bad if n in shown]
         near += [f"{_stop_text(scene, stop)}: {n}" for n in close if n in shown]
-        worst = max([worst] + [_units(mine, theirs, n) for n in shown])
+        worst = max([worst] + [_units(type(scene.model), mine, theirs, n) for n in shown])
     return {
         "wrong": len(wrong),
         "near": len(near),
@@ -104,9 +118,9 @@ def _compare(scene, points, problems, solved, references, shown) -> dict:
     }
 
 
-def _units(mine: dict, theirs: dict, name: str) -> float:
+def _units(model, mine: dict, theirs: dict, name: str) -> float:
     """The largest difference of one shown output in units of its last displayed digit (0 for labels)."""
-    output = Bubble.output(name)
+    output = model.output(name)
     if output.labels:
         return 0.0 if np.array_equal(mine[name.split("_", 1)[1]], theirs[name.split("_", 1)[1]]) else math.inf
     a, b = (

@@ -33,7 +33,13 @@ BOOK = Path(__file__).resolve().parent / "book"  # the tiny book: a few pages, o
 # Compiled code is keyed by content (kernels' sources, numba, target), so every book the tests build, in
 # this process or another, shares the project's: the kernels compile once per checkout, not once per book.
 COMPILED = ROOT / ".cache" / "compiled"
-BROWSER_MODULES = {"test_browser", "test_accessibility"}
+BROWSER_MODULES = {
+    "test_browser",
+    "test_accessibility",
+    "test_chromium_reader",
+    "test_firefox_reader",
+    "test_webkit_reader",
+}
 SLOW_FIXTURES = {"built_site", "two_builds"}  # the real book; the tiny book built again in another process
 # Tests that take seconds each on their own (node-id prefixes), left to `make test`:
 SLOW_TESTS = (
@@ -76,6 +82,8 @@ os.environ.setdefault(CACHE_ENV, str(COMPILED))  # the tests that call the solve
 # files by their number of tests), so the long files start first and the short ones fill in at the end. Left to the
 # default, a file of two long tests came last and ran alone for 40 s while the other processes had nothing to do.
 LONGEST_FIRST = (
+    "test_webkit_reader",
+    "test_firefox_reader",
     "test_browser",
     "test_accessibility",
     "test_reader_tools",
@@ -261,6 +269,19 @@ def pytest_collection_finish(session) -> None:
     from sitegen.phases.collect import YOUNG
 
     gc.set_threshold(YOUNG, *gc.get_threshold()[1:])
+
+
+def pytest_terminal_summary(terminalreporter) -> None:
+    """The browser engines the tests drove, as each reported its version (reader_checks.py records them)."""
+    versions = {
+        value
+        for reports in terminalreporter.stats.values()
+        for report in reports
+        for name, value in getattr(report, "user_properties", ())
+        if name == "browser"
+    }
+    if versions:
+        terminalreporter.write_line("browser engines: " + ", ".join(sorted(versions)))
 
 
 @pytest.hookimpl(trylast=True)

@@ -1,5 +1,6 @@
 # sitegen: `make site` builds the book into build/; `make test` runs every test.
-# Both set up what they need on a fresh machine (.venv, node_modules; for the tests Debian's chromium and Java).
+# Both set up what they need on a fresh machine (.venv, node_modules; for the tests Debian's chromium, firefox-esr,
+# WebKitGTK's driver, a virtual X display and Java).
 
 PYTHON ?= python3
 VENV   := .venv
@@ -95,6 +96,11 @@ node_modules/.installed: package.json package-lock.json | tools-node
 NODE_PKGS     = $(if $(shell command -v node >/dev/null && command -v npm >/dev/null && echo found),,nodejs npm)
 JAVA_PKGS     = $(if $(shell command -v java),,default-jre-headless)
 CHROMIUM_PKGS = $(if $(shell test -x /usr/bin/chromium && echo found),,chromium)
+# The reader's checks in Firefox ESR and in WebKitGTK (MiniBrowser comes with the driver's library), the latter in
+# a virtual X display (tests/engines.py).
+ENGINE_PKGS   = $(if $(shell test -x /usr/bin/firefox-esr && echo found),,firefox-esr) \
+                $(if $(shell test -x /usr/bin/WebKitWebDriver && echo found),,webkit2gtk-driver) \
+                $(if $(shell command -v Xvfb),,xvfb)
 # sudo resets the environment: DEBIAN_FRONTEND is handed to apt through env, so that it never asks a question.
 APT           = $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get
 apt_install   = @packages="$(strip $(1))"; test -z "$$packages" || { $(APT) update -q && $(APT) install -y -q $$packages; }
@@ -111,7 +117,7 @@ tools-chromium:
 tools-check:
 	$(call apt_install,$(NODE_PKGS) $(JAVA_PKGS))
 
-# Everything `make test` needs: node, chromium, and Java for the HTML checker (vnu.jar, from npm's vnu-jar:
+# Everything `make test` needs: node, the three browsers, and Java for the HTML checker (vnu.jar, from npm's vnu-jar:
 # npm ci runs no install scripts, so its postinstall never tries to download a Java runtime).
 tools-test:
-	$(call apt_install,$(NODE_PKGS) $(CHROMIUM_PKGS) $(JAVA_PKGS))
+	$(call apt_install,$(NODE_PKGS) $(CHROMIUM_PKGS) $(ENGINE_PKGS) $(JAVA_PKGS))

@@ -1,0 +1,5 @@
+"""The reader's checks (tests/reader_checks.py) in Chromium: Debian's Chromium through Playwright."""
+
+from reader_checks import *  # noqa: F403 (its fixtures and tests, collected here in their order)
+
+ENGINE = "chromium"

@@ -1,0 +1,6 @@
+"""The reader's checks (tests/reader_checks.py) in WebKitGTK: Debian's WebKitGTK (MiniBrowser) through
+WebKitWebDriver and selenium, in a virtual display."""
+
+from reader_checks import *  # noqa: F403 (its fixtures and tests, collected here in their order)
+
+ENGINE = "webkit"

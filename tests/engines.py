@@ -48,8 +48,9 @@ ERROR_LOG_SCRIPT = """<script>(function () {
 
 
 def _expression(function: str, arg) -> str:
-    """A call of `function` (its source) with `arg`, as an expression whose value is the JSON text of the result."""
-    return f"JSON.stringify(({function})({json.dumps(arg)}))"
+    """A call of `function` (its source) with `arg`, as an expression whose value is a promise of the JSON text of
+    its result (the function may return a promise: it is waited for)."""
+    return f"new Promise(done => done(({function})({json.dumps(arg)}))).then(value => JSON.stringify(value))"
 
 
 def _parsed(text):
@@ -293,7 +294,13 @@ class WebKit(Engine):
         )
 
     def evaluate(self, function, arg=None):
-        return _parsed(self.driver.execute_script("return " + _expression(function, arg)))
+        answer = self.driver.execute_async_script(
+            "const answer = arguments[arguments.length - 1];"
+            f"{_expression(function, arg)}.then(text => answer([text]), error => answer(String(error && error.stack || error)));"
+        )
+        if not isinstance(answer, list):
+            raise RuntimeError(f"WebKit: {answer}")
+        return _parsed(answer[0])
 
     def _resize(self, width, height):
         """The window's size set so that the viewport has the size asked (the window adds its toolbar). The

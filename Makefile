@@ -21,8 +21,8 @@ site: $(VENV)/.site-installed tools-node
 # Tests run in several processes (pytest-xdist), each test file in one of them, so that a file's
 # shared pages and builds are made once; the books every file reads are built once per run. The
 # browser tests mostly wait on Chromium, so `make test` runs one process more than this machine's
-# two cores; `make check` is busy computing and runs one per core. Each process is handed the longest files
-# first (tests/conftest.py lists them), not the files with the most tests.
+# two cores; `make check` is busy computing and runs one per core. The files with browser and slow tests are
+# handed out first (tests/conftest.py orders them by their marks), so that no long file starts last.
 TEST_WORKERS ?= 3
 CHECK_WORKERS ?= 2
 test: tools-test $(VENV)/.test-installed node_modules/.installed

@@ -32,7 +32,10 @@ from sitegen.review.figures import CHROMIUM, LAUNCH_ARGS  # noqa: E402
 
 
 def spread(seconds: list[float]) -> str:
-    return f"min {min(seconds):.3f} s, median {statistics.median(seconds):.3f} s, max {max(seconds):.3f} s ({len(seconds)} runs)"
+    return (
+        f"min {min(seconds):.3f} s, median {statistics.median(seconds):.3f} "
+        f"s, max {max(seconds):.3f} s ({len(seconds)} runs)"
+    )
 
 
 def rebuild_times(config: BuildConfig, page: Path, runs: int) -> list[float]:
@@ -78,7 +81,8 @@ def main(runs: int) -> None:
         starter = Path(scratch) / "starter"
         new_book(starter)
         print(
-            f"preview: starter book, rebuild after a prose edit: {spread(rebuild_times(BuildConfig.at(starter), starter / 'content' / 'pendulum.md', runs))}",
+            "preview: starter book, rebuild after a prose edit: "
+            f"{spread(rebuild_times(BuildConfig.at(starter), starter / 'content' / 'pendulum.md', runs))}",
             flush=True,
         )
         copy = Path(scratch) / "repository-book"
@@ -86,7 +90,8 @@ def main(runs: int) -> None:
         shutil.copy(ROOT / "book.toml", copy / "book.toml")
         config = BuildConfig.at(copy, cache=ROOT / ".cache")
         print(
-            f"preview: this repository's book, rebuild after a prose edit: {spread(rebuild_times(config, copy / 'content' / 'newtons-laws.md', runs))}",
+            "preview: this repository's book, rebuild after a prose edit: "
+            f"{spread(rebuild_times(config, copy / 'content' / 'newtons-laws.md', runs))}",
             flush=True,
         )
         print(f"preview: starter book, prose edit saved -> shown in Chromium: {spread(browser_times(starter, runs))}")

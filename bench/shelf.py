@@ -107,11 +107,13 @@ def timed_build(root: Path) -> tuple[float, float, float]:
 
 def main(counts: list[int]) -> None:
     print(
-        "shelf: copies of the chapter 'Newton's laws' (6 scenes each), every scene computed; one fresh process per build"
+        "shelf: copies of the chapter 'Newton's laws' (6 scenes "
+        "each), every scene computed; one fresh process per build"
     )
     compile_bytecode()
     print(
-        f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} {'peak MiB':>9} {'child MiB':>10} {'no-op s':>8}"
+        f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} "
+        f"{'peak MiB':>9} {'child MiB':>10} {'no-op s':>8}"
     )
     for copies in counts:
         with tempfile.TemporaryDirectory() as folder:

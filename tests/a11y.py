@@ -57,7 +57,8 @@ const over = (top, bottom) => {
   return [0, 1, 2].map(i => (top[i] * top[3] + bottom[i] * bottom[3] * (1 - top[3])) / a).concat([a]);
 };
 const luminance = c => {
-  const [r, g, b] = c.slice(0, 3).map(v => { v /= 255; return v <= 0.03928 ? v / 12.92 : ((v + 0.055) / 1.055) ** 2.4; });
+  const [r, g, b] = c.slice(0, 3).map(v => { v /= 255; return v <= 0.03928 ? v / 12.92 : ((v + 0.055) / 1.055)
+    ** 2.4; });
   return 0.2126 * r + 0.7152 * g + 0.0722 * b;
 };
 const contrast = (a, b) => {
@@ -120,7 +121,9 @@ def text_contrast_problems(page) -> list[str]:
           const size = parseFloat(style.fontSize), bold = parseInt(style.fontWeight, 10) >= 700;
           const needed = size >= 24 || (bold && size >= 18.66) ? large : normal;
           const ratio = contrast(over(colour, backgroundOf(el)), backgroundOf(el));
-          if (ratio < needed) problems.push(`${where(el)} "${text.textContent.trim().slice(0, 30)}": ${ratio.toFixed(2)} < ${needed} (${style.color} on rgb(${backgroundOf(el).slice(0, 3).map(Math.round)}))`);
+          if (ratio < needed)
+            problems.push(`${where(el)} "${text.textContent.trim().slice(0, 30)}": ${ratio.toFixed(2)} < ${needed} ` +
+              `(${style.color} on rgb(${backgroundOf(el).slice(0, 3).map(Math.round)}))`);
         }
         return problems;
       }""",
@@ -165,10 +168,12 @@ def focused_element_problems(page, focus_contrast: float = FOCUS_CONTRAST) -> di
         } else {
           const ring = parse(style.outlineColor), behind = backgroundOf(el.parentElement || el);
           const ratio = contrast(over(ring, behind), behind);
-          if (ratio < minimum) problems.push(`focus ring ${style.outlineColor} has contrast ${ratio.toFixed(2)} < ${minimum}`);
+          if (ratio < minimum)
+            problems.push(`focus ring ${style.outlineColor} has contrast ${ratio.toFixed(2)} < ${minimum}`);
         }
         const box = el.getBoundingClientRect();
-        if (box.bottom < 0 || box.top > innerHeight || box.right < 0 || box.left > innerWidth) problems.push('focused but off screen');
+        if (box.bottom < 0 || box.top > innerHeight || box.right < 0 || box.left > innerWidth)
+          problems.push('focused but off screen');
         return {where: name, problems};
       }""",
         focus_contrast,
@@ -192,7 +197,8 @@ def target_size_problems(page, minimum: int = MIN_TARGET) -> list[str]:
           targets.push({name: where(target), box, small: box.width < minimum - 0.01 || box.height < minimum - 0.01});
         }
         const centre = b => [b.left + b.width / 2, b.top + b.height / 2];
-        const distanceToBox = ([x, y], b) => Math.hypot(Math.max(b.left - x, 0, x - b.right), Math.max(b.top - y, 0, y - b.bottom));
+        const distanceToBox = ([x, y], b) => Math.hypot(Math.max(b.left - x, 0, x - b.right), Math.max(b.top - y, 0,
+          y - b.bottom));
         const problems = [];
         for (const t of targets.filter(t => t.small)) {
           const c = centre(t.box);
@@ -200,7 +206,8 @@ def target_size_problems(page, minimum: int = MIN_TARGET) -> list[str]:
             ? Math.hypot(centre(u.box)[0] - c[0], centre(u.box)[1] - c[1]) < minimum
             : distanceToBox(c, u.box) < minimum / 2));
           if (crowded.length) {
-            problems.push(`${t.name} is ${t.box.width.toFixed(1)}x${t.box.height.toFixed(1)} px, closer than ${minimum} px to ${crowded.map(u => u.name).join(', ')}`);
+            problems.push(`${t.name} is ${t.box.width.toFixed(1)}x${t.box.height.toFixed(1)} px, closer than ` +
+              `${minimum} px to ${crowded.map(u => u.name).join(', ')}`);
           }
         }
         return problems;
@@ -216,10 +223,12 @@ def control_size_problems(page, minimum: int = MIN_TARGET) -> list[str]:
         + _COLOUR_JS
         + r"""
         const problems = [];
-        for (const el of document.querySelectorAll('[data-scene] input[type="range"], [data-scene] button, [data-scene] input[type="radio"]')) {
+        for (const el of document.querySelectorAll('[data-scene] input[type="range"], [data-scene] button, ' +
+          '[data-scene] input[type="radio"]')) {
           const target = el.type === 'radio' ? el.closest('label') : el;
           const box = target.getBoundingClientRect();
-          if (box.width < minimum || box.height < minimum) problems.push(`${where(target)}: ${box.width.toFixed(1)}x${box.height.toFixed(1)} px`);
+          if (box.width < minimum || box.height < minimum)
+            problems.push(`${where(target)}: ${box.width.toFixed(1)}x${box.height.toFixed(1)} px`);
         }
         return problems;
       }""",
@@ -235,8 +244,10 @@ def overflow_problems(page) -> list[str]:
         + r"""
         const problems = [];
         const width = document.documentElement.clientWidth;
-        if (document.documentElement.scrollWidth > width) problems.push(`the page scrolls sideways: ${document.documentElement.scrollWidth} px > ${width} px`);
-        const scrolls = el => { for (let n = el.parentElement; n; n = n.parentElement) { if (/auto|scroll|hidden|clip/.test(getComputedStyle(n).overflowX)) return true; } return false; };
+        if (document.documentElement.scrollWidth > width)
+          problems.push(`the page scrolls sideways: ${document.documentElement.scrollWidth} px > ${width} px`);
+        const scrolls = el => { for (let n = el.parentElement; n; n = n.parentElement) {
+          if (/auto|scroll|hidden|clip/.test(getComputedStyle(n).overflowX)) return true; } return false; };
         for (const el of document.body.querySelectorAll('*')) {
           if (el.closest('svg') && el.localName !== 'svg') continue;
           const box = el.getBoundingClientRect();
@@ -253,9 +264,11 @@ def moving_state(page) -> dict:
     """What could move on its own: every layer's geometry, every readout and control value."""
     return page.evaluate(
         r"""() => ({
-          layers: [...document.querySelectorAll('svg [data-layer]')].map(e => (e.getAttribute('points') || '') + (e.getAttribute('d') || '')),
+          layers: [...document.querySelectorAll('svg [data-layer]')].map(e => (e.getAttribute('points') || '')
+            + (e.getAttribute('d') || '')),
           readouts: [...document.querySelectorAll('[data-out]')].map(e => e.textContent),
-          controls: [...document.querySelectorAll('[data-scene] input')].map(e => e.type === 'radio' ? String(e.checked) : e.value),
+          controls: [...document.querySelectorAll('[data-scene] input')]
+            .map(e => e.type === 'radio' ? String(e.checked) : e.value),
           animations: document.getAnimations().map(a => a.animationName || a.transitionProperty || a.constructor.name),
         })"""
     )

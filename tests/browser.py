@@ -362,13 +362,15 @@ _STATE_JS = """const readState = () => {
       })),
     };
   });
-  const readouts = Object.fromEntries([...root.querySelectorAll('[data-out]')].map(el => [el.dataset.out, el.textContent]));
+  const readouts = Object.fromEntries([...root.querySelectorAll('[data-out]')].map(el => [el.dataset.out,
+    el.textContent]));
   const layers = Object.fromEntries([...root.querySelectorAll('svg [data-layer]')].map(el => {
     const attr = el.tagName.toLowerCase() === 'path' ? 'd' : 'points';
     return [el.dataset.layer, [attr, el.getAttribute(attr)]];
   }));
   const b = root.querySelector('button[data-animate]');
-  const button = b ? {animate: b.dataset.animate, pressed: b.getAttribute('aria-pressed'), text: b.textContent.trim()} : null;
+  const button = b ? {animate: b.dataset.animate, pressed: b.getAttribute('aria-pressed'),
+    text: b.textContent.trim()} : null;
   return {controls, readouts, layers, button};
 };"""
 
@@ -463,7 +465,8 @@ def reset(page, scene: BookScene) -> SceneState:
     _in_scene(
         page,
         scene,
-        "const b = root.querySelector('button[data-animate]'); if (b && b.getAttribute('aria-pressed') === 'true') b.click();",
+        "const b = root.querySelector('button[data-animate]'); "
+        "if (b && b.getAttribute('aria-pressed') === 'true') b.click();",
     )
     return move(page, scene, dict(zip(scene.params, scene.defaults)))
 
@@ -681,7 +684,8 @@ SOLVED_SEARCH_POINTS = 500
 
 
 def _search_stops(counts: tuple[int, ...], limit: int | None) -> list[list[int]]:
-    """The stops of each axis to search: all of them, or the coarsest every-k-th (with the last) within `limit` points."""
+    """The stops of each axis to search: all of them, or the coarsest every-k-th (with the last) within `limit`
+    points."""
     step = 1
     while limit and math.prod(len(range(0, c - 1, step)) + 1 for c in counts) > limit:
         step += 1

@@ -2,10 +2,9 @@
 session, and the markers that pick a fast subset (`make check` runs everything but `browser` and
 `slow`).
 
-A test that asks for `built_site` (the real book) or for a book built in another process (SLOW_FIXTURES)
-is marked `slow`, as are the tests SLOW_TESTS lists; one that asks for `chromium`,
-or lives in a browser module, is marked `browser`: the marks follow from what a test uses, so a
-new test cannot forget them.
+A test that takes seconds carries `@pytest.mark.slow` (or its module `pytestmark`, or its case
+`pytest.param(..., marks=...)`); a test that asks for `built_site` (the real book) is marked `slow`
+here and one that asks for `chromium` `browser`, so that a new test using them cannot forget the mark.
 """
 
 from __future__ import annotations
@@ -14,6 +13,7 @@ import fcntl
 import gc
 import os
 import shutil
+from collections import Counter
 from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -33,68 +33,7 @@ BOOK = Path(__file__).resolve().parent / "book"  # the tiny book: a few pages, o
 # (Set before sitegen.physics.compiled is first imported, which reads it.)
 COMPILED = ROOT / ".cache" / "compiled"
 os.environ.setdefault("SITEGEN_COMPILED_CACHE", str(COMPILED))  # the tests' builds, solvers and subprocesses
-BROWSER_MODULES = {"test_browser", "test_accessibility"}
-SLOW_FIXTURES = {"built_site", "two_builds"}  # the real book; the tiny book built again in another process
-# Tests that take seconds each on their own (node-id prefixes), left to `make test`:
-SLOW_TESTS = (
-    # an ODE solve per stop, with every solver or over whole grids (the bubble's tests of its hard cases)
-    "tests/test_bubble_hard_cases.py::",
-    "tests/test_properties.py::test_effect_vanishes_in_its_limit[bubble.",
-    "tests/test_output_deps.py::test_output_ignores_parameters_outside_its_deps[bubble-",
-    "tests/test_bubble_model.py::test_effect_vanishing_limit_reproduces_the_reduced_model[",
-    "tests/test_hard_cases_extra.py::test_resonance_response_jumps_between_adjacent_frequencies_so_interpolation_fails",
-    # exact rationals at tens of thousands of stops; 500 fuzzed scenes resolved
-    "tests/test_tables_exact.py::test_every_checked_stop_is_exact_to_the_displayed_digit[collision]",
-    "tests/test_tables_exact.py::test_every_checked_stop_is_exact_to_the_displayed_digit[lever]",
-    "tests/test_fuzz.py::test_scene_resolution_never_crashes",
-    # many builds, or builds in other processes, of small books
-    "tests/test_fuzz.py::test_build_of_fuzzed_books_succeeds_or_reports_author_errors",
-    "tests/test_interrupted_build.py::test_kill",
-    "tests/test_build.py::test_computing_from_nothing_is_deterministic_across_hash_seeds",
-    "tests/test_review.py::test_review_against_a_revision_builds_it_in_a_temporary_worktree",
-    "tests/test_build.py::test_builds_are_byte_identical_across_folders_and_hash_seeds",
-    "tests/test_collect.py::test_a_watcher_keeps_nothing_of_its_earlier_builds",  # five rebuilds
-    "tests/test_executors.py::test_dask_cluster_gives_the_serial_bytes",
-    "tests/test_executors.py::test_sigterm_stops_a_build_and_its_workers",  # a book built in another process
-    "tests/test_executors.py::test_the_command_with_jobs_gives_the_bytes_of_the_build_in_process",  # three builds
-    "tests/test_determinism_load.py::",  # bubble books built in other processes, beside spinning CPUs
-    # pip building and installing the wheel (and a fresh venv that builds a book with it)
-    "tests/test_install.py::test_installing_writes_nothing_into_build",
-    "tests/test_install.py::test_the_wheel_carries",
-    "tests/test_install.py::test_the_installed_wheel_builds_a_book_elsewhere",
-    "tests/test_install.py::test_a_new_book_builds_and_previews_with_the_installed_tool",
-)
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-
-
-# The test files that take longest in `make test`, longest first. pytest-xdist hands a process one whole file at a
-# time, in the order of the collection (with --no-loadscope-reorder, as the Makefile asks; by default it orders the
-# files by their number of tests), so the long files start first and the short ones fill in at the end. Left to the
-# default, a file of two long tests came last and ran alone for 40 s while the other processes had nothing to do.
-LONGEST_FIRST = (
-    "test_browser",
-    "test_accessibility",
-    "test_reader_tools",
-    "test_properties",
-    "test_interrupted_build",
-    "test_layout",
-    "test_determinism_load",
-    "test_figure_goldens",
-    "test_install",
-    "test_bubble_hard_cases",
-    "test_sweep",
-    "test_bubble_model",
-    "test_review",
-    "test_fuzz",
-    "test_bubble_compiled",
-    "test_build",
-    "test_preview",
-    "test_tables_exact",
-    "test_executors",
-    "test_stamp",
-    "test_html_validity",
-    "test_plugins",
-)
 
 
 COLLECTED = pytest.StashKey[list]()  # the node ids of every test collected, before -m or -k leave any out
@@ -102,17 +41,18 @@ COLLECTED = pytest.StashKey[list]()  # the node ids of every test collected, bef
 
 @pytest.hookimpl(tryfirst=True)  # before -m and -k deselect: they read these marks
 def pytest_collection_modifyitems(config, items) -> None:
-    """Mark what builds the real book or a book in another process (or is listed in SLOW_TESTS) `slow`, and
-    what drives Chromium `browser`; put the longest files first."""
+    """Mark what builds the real book `slow` and what drives Chromium `browser`; put the files with such tests first."""
     config.stash[COLLECTED] = [item.nodeid for item in items]
-    rank = {name: k for k, name in enumerate(LONGEST_FIRST)}
-    items.sort(key=lambda item: rank.get(item.path.stem, len(rank)))  # stable: the rest keep their order
     for item in items:
         names = set(getattr(item, "fixturenames", ()))
-        if names & SLOW_FIXTURES or item.nodeid.startswith(SLOW_TESTS):
+        if "built_site" in names:
             item.add_marker(pytest.mark.slow)
-        if "chromium" in names or item.module.__name__ in BROWSER_MODULES:
+        if "chromium" in names:
             item.add_marker(pytest.mark.browser)
+    weight = Counter()
+    for item in items:
+        weight[item.path] += 2 * bool(item.get_closest_marker("browser")) + bool(item.get_closest_marker("slow"))
+    items.sort(key=lambda item: -weight[item.path])  # stable: each file's tests keep their order
 
 
 def share_compiled(root: Path) -> None:

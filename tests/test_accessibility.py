@@ -32,6 +32,8 @@ from browser import ROOT, front, load, new_page
 
 from sitegen.content.pages import discover_pages
 
+pytestmark = pytest.mark.browser  # the whole module is about pages in Chromium
+
 PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
 SCHEMES = ("light", "dark")
 WIDTHS = {"desktop": 1280, "phone": 360}
@@ -175,17 +177,21 @@ def test_readouts_are_announced_politely(page_as_loaded, name):
           const problems = [];
           for (const out of document.querySelectorAll('[data-out]')) {
             const region = out.closest('[aria-live]');
-            if (!region || region.getAttribute('aria-live') !== 'polite') problems.push(`readout ${out.dataset.out} is not in a polite live region`);
+            if (!region || region.getAttribute('aria-live') !== 'polite')
+              problems.push(`readout ${out.dataset.out} is not in a polite live region`);
           }
-          for (const el of document.querySelectorAll('[aria-live="assertive"], [role="alert"]')) problems.push(`assertive region ${el.outerHTML.slice(0, 60)}`);
+          for (const el of document.querySelectorAll('[aria-live="assertive"], [role="alert"]'))
+            problems.push(`assertive region ${el.outerHTML.slice(0, 60)}`);
           for (const input of document.querySelectorAll('input[type="range"]')) {
             const label = document.querySelector(`label[for="${input.id}"]`);
-            if (!label || !label.textContent.trim() || label.getBoundingClientRect().width === 0) problems.push(`slider ${input.id} has no visible label`);
+            if (!label || !label.textContent.trim() || label.getBoundingClientRect().width === 0)
+              problems.push(`slider ${input.id} has no visible label`);
             if (!input.getAttribute('aria-valuetext')) problems.push(`slider ${input.id} has no aria-valuetext`);
           }
           for (const group of document.querySelectorAll('fieldset')) {
             const legend = group.querySelector('legend');
-            if (!legend || !legend.textContent.trim()) problems.push(`radio group ${group.dataset.param} has no legend`);
+            if (!legend || !legend.textContent.trim())
+              problems.push(`radio group ${group.dataset.param} has no legend`);
           }
           return problems;
         }"""
@@ -220,8 +226,10 @@ def test_page_reads_at_360px(phone_page, name):
     problems = overflow_problems(page)
     assert not problems, "\n".join(problems)
     sizes = page.evaluate(
-        """() => ({text: Math.min(...[...document.querySelectorAll('p, li, dd, dt, label, figcaption')].map(e => parseFloat(getComputedStyle(e).fontSize))),
-                   sliders: [...document.querySelectorAll('input[type="range"]')].map(e => e.getBoundingClientRect().width)})"""
+        """() => ({text: Math.min(...[...document.querySelectorAll('p, li, dd, dt, label, figcaption')]
+                     .map(e => parseFloat(getComputedStyle(e).fontSize))),
+                   sliders: [...document.querySelectorAll('input[type="range"]')]
+                     .map(e => e.getBoundingClientRect().width)})"""
     )
     assert sizes["text"] >= 14, sizes
     assert all(w >= 120 for w in sizes["sliders"]), sizes
@@ -245,17 +253,24 @@ def test_print_shows_scenes_as_they_are_without_controls(open_page, name):
     page.emulate_media(media="print")
     printed = page.evaluate(
         r"""() => {
-          const shown = el => { const b = el.getBoundingClientRect(); return getComputedStyle(el).display !== 'none' && b.width > 0 && b.height > 0; };
+          const shown = el => { const b = el.getBoundingClientRect();
+            return getComputedStyle(el).display !== 'none' && b.width > 0 && b.height > 0; };
           return {
-            controls: [...document.querySelectorAll('input, button, select')].filter(shown).map(e => e.outerHTML.slice(0, 80)),
-            unchosen: [...document.querySelectorAll('fieldset label')].filter(l => !l.querySelector('input:checked') && shown(l)).map(l => l.textContent.trim()),
-            chosen: [...document.querySelectorAll('fieldset label')].filter(l => l.querySelector('input:checked') && shown(l)).length,
+            controls: [...document.querySelectorAll('input, button, ' +
+              'select')].filter(shown).map(e => e.outerHTML.slice(0, 80)),
+            unchosen: [...document.querySelectorAll('fieldset label')].filter(l => !l.querySelector('input:checked')
+              && shown(l)).map(l => l.textContent.trim()),
+            chosen: [...document.querySelectorAll('fieldset label')].filter(l => l.querySelector('input:checked') &&
+              shown(l)).length,
             groups: document.querySelectorAll('fieldset').length,
-            hidden: [...document.querySelectorAll('[data-out], output, .scene-svg.wide')].filter(e => !shown(e)).map(e => e.outerHTML.slice(0, 80)),
+            hidden: [...document.querySelectorAll('[data-out], output, ' +
+              '.scene-svg.wide')].filter(e => !shown(e)).map(e => e.outerHTML.slice(0, 80)),
             phone: [...document.querySelectorAll('.scene-svg.narrow')].filter(shown).length,
             cut: [...document.querySelectorAll('main *')].filter(e => !e.closest('svg') || e.localName === 'svg')
-              .filter(e => shown(e) && e.getBoundingClientRect().right > document.querySelector('article').getBoundingClientRect().right + 0.5)
-              .map(e => `${e.localName}.${e.className.baseVal ?? e.className}: right ${e.getBoundingClientRect().right.toFixed(0)}`).slice(0, 10),
+              .filter(e => shown(e) &&
+                e.getBoundingClientRect().right > document.querySelector('article').getBoundingClientRect().right + 0.5)
+              .map(e => `${e.localName}.${e.className.baseVal ?? e.className}: right ` +
+                `${e.getBoundingClientRect().right.toFixed(0)}`).slice(0, 10),
             article: document.querySelector('article').getBoundingClientRect().right,
             texts: [...document.querySelectorAll('[data-out], output')].map(e => e.textContent),
             ink: getComputedStyle(document.body).color,

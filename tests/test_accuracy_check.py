@@ -6,11 +6,10 @@ from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
+from helpers import resolved_scene, write_book
 
-from sitegen.build import BuildConfig, build
+from sitegen.build import build
 from sitegen.compute.check import caption_sentence, check_scenes, sample_stops
-from sitegen.compute.scenes import resolve_scene
-from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import BuildFailed, SourceLoc
 from sitegen.models.bubble.model import Bubble
 from sitegen.models.bubble.point import SOLVER_LABELS
@@ -21,7 +20,6 @@ from sitegen.registry import builtin_registry
 MODELS = builtin_registry().models
 
 ROOT = Path(__file__).resolve().parents[1]
-HOME = '+++\ntitle = "Test book"\n+++\n\nA home page.\n'
 
 # Small grids of the book's three bubble scenes (presets A with gas, B and C), two stops each.
 COLLAPSE = """model: bubble
@@ -51,11 +49,8 @@ BUBBLE_SCENES = [
 
 
 def _scene(text: str):
-    """A scene block resolved against the registry (it must be valid)."""
-    spec, errors = parse_scene_block(text.splitlines(), SourceLoc("content/t.md", 1))
-    scene, problems = resolve_scene(spec, MODELS)
-    assert not errors and not problems, errors + problems
-    return scene
+    """A scene block resolved against the registry (it must be valid), at content/t.md."""
+    return resolved_scene(text, where=SourceLoc("content/t.md", 1))
 
 
 def _record(text: str):
@@ -97,7 +92,7 @@ def test_loosened_tolerance_fails_the_build(tmp_path):
         + COLLAPSE
         + "\nnumerics: method DOP853, rtol 1e-2, tolerance 1e-8\n```\n"
     )
-    config = _book(tmp_path, {"loose": page})
+    config = write_book(tmp_path, {"loose": page}, cache=True)
     with pytest.raises(BuildFailed) as failure:
         build(config, progress=None)
     (error,) = failure.value.errors
@@ -109,7 +104,7 @@ def test_loosened_tolerance_fails_the_build(tmp_path):
 def test_checked_scene_caption_states_the_error_and_links_only_when_the_page_exists(tmp_path):
     """The caption ends with the measured error; the link to its row appears once content/accuracy.md exists."""
     page = '+++\ntitle = "Chain"\n+++\n\n```scene\nmodel: chain\nslider N: 4, 8 default 8\ncaption: Beads.\n```\n'
-    config = _book(tmp_path, {"beads": page})
+    config = write_book(tmp_path, {"beads": page}, cache=True)
     report = build(config, progress=None)
     (record,) = report.accuracy
     assert (record.page, record.scene, record.method, record.model) == ("beads", "chain", "exact DST", "chain")
@@ -138,7 +133,8 @@ def test_no_op_rebuild_runs_no_check_solves(tmp_path):
 def test_sample_is_deterministic_and_holds_defaults_and_corners():
     """The sampled stops are the same on every call and include the defaults and both extreme corners."""
     scene = _scene(
-        "model: chain\nslider N: 1, 2, 4, 8, 16 default 8\nslider t: 0..2 step 0.1 default 0.5\nchoice launch: right-moving | split default split"
+        "model: chain\nslider N: 1, 2, 4, 8, 16 default 8\nslider t: 0..2 step "
+        "0.1 default 0.5\nchoice launch: right-moving | split default split"
     )
     stops = sample_stops(scene)
     assert stops == sample_stops(scene) and len(stops) == len(set(stops)) == 16
@@ -185,7 +181,8 @@ def test_automatic_method_switches_to_implicit_for_stiff_terms(preset, rtol, lab
     [
         (
             {"method": "Euler"},
-            "unknown method 'Euler'; this model offers auto, RK45, DOP853, Radau, BDF, LSODA, compiled-DOP853, compiled-Radau",
+            "unknown method 'Euler'; this model offers auto, RK45, "
+            "DOP853, Radau, BDF, LSODA, compiled-DOP853, compiled-Radau",
         ),
         ({"steps": "10"}, "unknown setting 'steps'; numerics take method, rtol, atol, nodes, step, tolerance"),
         ({"nodes": "32"}, "method auto has no setting 'nodes'; it takes rtol, atol and tolerance"),
@@ -237,12 +234,3 @@ def test_caption_sentence_writes_powers_of_ten(error, expected):
     record = SimpleNamespace(error=error, metric="max |ΔR|/R₀", reference="Radau at rtol 1e-12", anchor="acc-p-s")
     sentence = caption_sentence(record, link=False)
     assert sentence.startswith(expected) and "Radau at rtol\u00a010<sup>−12</sup>." in sentence
-
-
-def _book(tmp_path: Path, pages: dict[str, str]) -> BuildConfig:
-    """A throwaway project with the given pages and a home page, cached in tmp_path/.cache."""
-    content = tmp_path / "content"
-    content.mkdir()
-    for name, text in {"index": HOME, **pages}.items():
-        (content / f"{name}.md").write_text(text, encoding="utf-8")
-    return BuildConfig(tmp_path, content, tmp_path / "build", cache=tmp_path / ".cache")

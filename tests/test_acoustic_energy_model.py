@@ -1,4 +1,5 @@
-"""K5 (acoustic energy bookkeeping): closed-form averages, the local balance, the standing-wave limit and the effects."""
+"""K5 (acoustic energy bookkeeping): closed-form averages, the local balance, the standing-wave limit and the
+effects."""
 
 from __future__ import annotations
 
@@ -8,12 +9,10 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+from helpers import resolved_scene
 
 from sitegen.compute.quantize import SPECIAL, fmt, quantize
-from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
-from sitegen.content.scenes import parse_scene_block
-from sitegen.errors import SourceLoc
 from sitegen.models.acoustic_energy.model import (
     INVALID,
     RHO,
@@ -25,11 +24,8 @@ from sitegen.models.acoustic_energy.model import (
     incident_energy_density,
     standing_factor,
 )
-from sitegen.registry import builtin_registry
 from sitegen.site.assemble import readout_text
 from sitegen.site.payload import scene_payload
-
-MODELS = builtin_registry().models
 
 EPS = np.finfo(float).eps
 ALL = ("reflection", "absorption", "spherical_spreading")
@@ -77,7 +73,7 @@ def _sample_points(seed: int, n: int = 64):
     ids=["P", "wavelength", "e_avg-uJ", "I_avg-mW", "L_I", "transport", "ek_share"],
 )
 def test_defaults_display_the_spec_readouts(output, expected):
-    """At the defaults (94 dB, 1 kHz, R_r = 0, ωt = 0) the page shows physics.md's values."""
+    """At the defaults (94 dB, 1 kHz, R_r = 0, ωt = 0) the page shows docs/physics/acoustic_energy.md's values."""
     value = float(_evaluate([output], **AcousticEnergy.defaults())[output])
     assert fmt(value, AcousticEnergy.output(output).decimals) == expected
 
@@ -137,10 +133,7 @@ def _energy_scene(extra: str = ""):
         "readouts: I_avg L_I ek_share",
         extra,
     ]
-    spec, errors = parse_scene_block(lines, SourceLoc("try.md", 1))
-    assert not errors
-    scene, errors = resolve_scene(spec, MODELS)
-    assert not errors
+    scene = resolved_scene(lines)
     return scene, tabulate_scene(scene, [o.name for o in scene.readouts])
 
 
@@ -197,7 +190,8 @@ def test_sampled_mean_energy_is_exact_with_three_or_more_samples(samples, R):
 @pytest.mark.parametrize("R", [0.0, 0.35, 1.0], ids=["R=0", "R=0.35", "R=1"])
 @pytest.mark.parametrize("samples", [3, 4, 7, 24], ids=["M=3", "M=4", "M=7", "M=24"])
 def test_sampled_mean_intensity_is_exact_with_three_or_more_samples(samples, R):
-    """M ≥ 3 samples give ⟨I⟩ = c⟨e⟩ᵢ(1 − R)(1 + R) within 1e−14 of c⟨e⟩ᵢ (relative; absolute at R = 1, where ⟨I⟩ = 0)."""
+    """M ≥ 3 samples give ⟨I⟩ = c⟨e⟩ᵢ(1 − R)(1 + R) within 1e−14 of c⟨e⟩ᵢ (relative; absolute at R = 1, where ⟨I⟩ =
+    0)."""
     x, t, f = _sample_points(seed=10 + samples)
     _, mean_I = _sampled_means(R, samples, x, t[0], f)
     scale = C * incident_energy_density(94.0)
@@ -206,7 +200,8 @@ def test_sampled_mean_intensity_is_exact_with_three_or_more_samples(samples, R):
 
 @pytest.mark.parametrize("quantity", ["e", "I"])
 def test_two_samples_are_not_enough(quantity):
-    """M = 2 (R_r = 0) gives 2cos²(kx − ωt₀) × the truth: 0.743 × truth where cos² = 0.3715 (physics.md's measurement)."""
+    """M = 2 (R_r = 0) gives 2cos²(kx − ωt₀) × the truth: 0.743 × truth where cos² = 0.3715
+    (docs/physics/acoustic_energy.md's measurement)."""
     phase = np.arccos(np.sqrt(0.3715))  # kx − ωt₀ in radians
     f = 1000.0
     x = np.array([phase / (2 * np.pi * f / C)])
@@ -297,7 +292,8 @@ def test_mismatched_residual_converges_at_second_order(R):
 
 @pytest.mark.parametrize("R", [0.0, 0.5, 1.0], ids=["R=0", "R=0.5", "R=1"])
 def test_matched_steps_make_the_balance_test_vacuous(R):
-    """ωΔt = kΔx = 0.3: each difference quotient is off by > 0.5 % of ω⟨e⟩ᵢ, yet the residual is at roundoff (≤ 1e−13)."""
+    """ωΔt = kΔx = 0.3: each difference quotient is off by > 0.5 % of ω⟨e⟩ᵢ, yet the residual is at roundoff (≤
+    1e−13)."""
     x, t, f = _sample_points(seed=6)
     dx, dt = _steps(0.3, 1.0, f)
     de_dt, dI_dx = _central_differences(x, t, f, R, dx, dt)

@@ -8,11 +8,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import build_errors, tree, write_book
 from test_bad_input import FINITE_HINT
 
-from sitegen.build import BuildConfig, build
+from sitegen.build import build
 from sitegen.config import BookConfig
-from sitegen.errors import BuildFailed
 from sitegen.physics import Model, Output, Param
 from sitegen.registry import builtin_registry
 from sitegen.render.style import new_figure
@@ -20,17 +20,7 @@ from sitegen.render.style import new_figure
 HERE = Path(__file__).parent
 INVALID = HERE / "invalid"
 ROOT = HERE.parent
-HOME = '+++\ntitle = "Test book"\n+++\n\nA home page.\n'
 CASES = sorted(p.stem for p in INVALID.glob("*.md"))
-
-
-def make_book(tmp_path: Path, pages: dict[str, str]) -> BuildConfig:
-    """A throwaway project with the given pages (and a home page unless one is given)."""
-    content = tmp_path / "content"
-    content.mkdir()
-    for name, text in {"index": HOME, **pages}.items():
-        (content / f"{name}.md").write_text(text, encoding="utf-8")
-    return BuildConfig(tmp_path, content, tmp_path / "build")
 
 
 def _expected(name: str) -> list[str]:
@@ -38,13 +28,6 @@ def _expected(name: str) -> list[str]:
     text = (INVALID / f"{name}.expected").read_text(encoding="utf-8")
     text = text.replace("{figures}", ", ".join(sorted(builtin_registry().figures)))
     return text.replace("{models}", ", ".join(sorted(builtin_registry().models))).splitlines()
-
-
-def build_errors(config: BuildConfig) -> list[str]:
-    """The author errors of a build that must fail."""
-    with pytest.raises(BuildFailed) as failure:
-        build(config, progress=None)
-    return [str(e) for e in failure.value.errors]
 
 
 def test_every_invalid_fixture_has_expected_messages():
@@ -56,7 +39,7 @@ def test_every_invalid_fixture_has_expected_messages():
 def test_invalid_page_reports_exact_errors(tmp_path, name):
     """A broken page fails the build with exactly the expected `file:line: message` lines (with the files of
     its folder next to it, and its .bib as the book's bibliography, where it has them)."""
-    config = make_book(tmp_path, {name: (INVALID / f"{name}.md").read_text(encoding="utf-8")})
+    config = write_book(tmp_path, {name: (INVALID / f"{name}.md").read_text(encoding="utf-8")})
     if (INVALID / name).is_dir():
         shutil.copytree(INVALID / name, config.content, dirs_exist_ok=True)
     if (INVALID / f"{name}.bib").is_file():
@@ -70,25 +53,25 @@ def test_errors_from_several_pages_are_reported_together(tmp_path):
     """One run reports every error of every page, sorted by file and line."""
     pages = {name: (INVALID / f"{name}.md").read_text(encoding="utf-8") for name in ("bad-range", "unknown-model")}
     expected = [line for name in ("bad-range", "unknown-model") for line in _expected(name)]
-    assert build_errors(make_book(tmp_path, pages)) == expected
+    assert build_errors(write_book(tmp_path, pages)) == expected
 
 
 def test_failed_build_leaves_previous_build_untouched(tmp_path):
     """A build that fails does not touch the build/ folder of the last good build."""
-    config = make_book(tmp_path, {})
+    config = write_book(tmp_path, {})
     build(config, progress=None)
-    before = {p.relative_to(config.out): p.read_bytes() for p in config.out.rglob("*") if p.is_file()}
+    before = tree(config.out)
     (config.content / "broken.md").write_text((INVALID / "unknown-model.md").read_text(), encoding="utf-8")
     build_errors(config)
-    after = {p.relative_to(config.out): p.read_bytes() for p in config.out.rglob("*") if p.is_file()}
+    after = tree(config.out)
     assert after == before
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["build", "content"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["book.toml", "build", "content"]
 
 
 def test_duplicate_scene_ids_on_one_page(tmp_path):
     """Two scenes with one id on a page: the second is reported at its own line."""
     block = "```scene\nmodel: impulse\n```\n\n"
-    config = make_book(tmp_path, {"twice": '+++\ntitle = "Twice"\n+++\n\n' + block + block})
+    config = write_book(tmp_path, {"twice": '+++\ntitle = "Twice"\n+++\n\n' + block + block})
     assert build_errors(config) == [
         "content/twice.md:9: scene 'impulse': another scene on this page has id 'impulse'; add 'id: <unique-name>'"
     ]
@@ -97,8 +80,9 @@ def test_duplicate_scene_ids_on_one_page(tmp_path):
 def test_unknown_effect_lists_what_the_model_offers(tmp_path):
     """An effect the model does not offer is an error that names the effects it does offer."""
     page = '+++\ntitle = "Effects"\n+++\n\n```scene\nmodel: collision\neffects: restitution_law drag\n```\n'
-    assert build_errors(make_book(tmp_path, {"effects": page})) == [
-        "content/effects.md:7: scene 'collision': model 'collision' has no effect 'drag'. It offers: restitution_law, contact_spring_dashpot, explosive"
+    assert build_errors(write_book(tmp_path, {"effects": page})) == [
+        "content/effects.md:7: scene 'collision': model 'collision' has no effect "
+        "'drag'. It offers: restitution_law, contact_spring_dashpot, explosive"
     ]
 
 
@@ -106,7 +90,7 @@ def test_effect_of_another_model_lists_what_this_model_offers(tmp_path):
     """Naming an effect that exists, but on another model (the chain's boundary on the impulse), is an error at
     the effects line listing the impulse's own effects."""
     page = '+++\ntitle = "Effects"\n+++\n\n```scene\nmodel: impulse\neffects: boundary shape\n```\n'
-    assert build_errors(make_book(tmp_path, {"effects": page})) == [
+    assert build_errors(write_book(tmp_path, {"effects": page})) == [
         "content/effects.md:7: scene 'impulse': model 'impulse' has no effect 'boundary'. "
         "It offers: shape, initial_velocity, contact_from_collision"
     ]
@@ -118,23 +102,24 @@ def test_parameter_replaced_by_an_enabled_effect_is_an_error_at_its_control(tmp_
         '+++\ntitle = "Contact"\n+++\n\n```scene\nmodel: collision\neffects: contact_spring_dashpot\n'
         "slider e: 0..1 step 0.5 default 1\n```\n"
     )
-    assert build_errors(make_book(tmp_path, {"contact": page})) == [
+    assert build_errors(write_book(tmp_path, {"contact": page})) == [
         "content/contact.md:8: scene 'collision': parameter 'e' is not used with effect 'contact_spring_dashpot', "
         "which takes its place; remove its control"
     ]
 
 
 def test_restitution_above_one_names_the_effect_that_allows_it(tmp_path):
-    """e > 1 is outside the domain unless the scene enables `explosive`; the error says so, and with the effect it builds."""
+    """e > 1 is outside the domain unless the scene enables `explosive`; the error says so, and with the effect it
+    builds."""
     block = "```scene\nmodel: collision\n{effects}slider e: 0..1.5 step 0.5 default 1\n```\n"
     page = '+++\ntitle = "Explosive"\n+++\n\n' + block.format(effects="")
     (tmp_path / "without").mkdir()
     (tmp_path / "with").mkdir()
-    assert build_errors(make_book(tmp_path / "without", {"explosive": page})) == [
+    assert build_errors(write_book(tmp_path / "without", {"explosive": page})) == [
         "content/explosive.md:7: scene 'collision': slider 'e' max 1.5 exceeds the model's bound 1.0 "
         "(effect 'explosive' allows larger values)"
     ]
-    config = make_book(
+    config = write_book(
         tmp_path / "with",
         {"explosive": page.replace(block.format(effects=""), block.format(effects="effects: explosive\n"))},
     )
@@ -144,7 +129,7 @@ def test_restitution_above_one_names_the_effect_that_allows_it(tmp_path):
 def test_unknown_parent_page(tmp_path):
     """A parent that is not a page is reported at the page's first line."""
     page = '+++\ntitle = "Orphan"\nparent = "nowhere"\n+++\n\nText.\n'
-    assert build_errors(make_book(tmp_path, {"orphan": page})) == [
+    assert build_errors(write_book(tmp_path, {"orphan": page})) == [
         "content/orphan.md:1: parent 'nowhere' is not a page; pages: index, orphan"
     ]
 
@@ -178,9 +163,9 @@ def test_non_finite_output_fails_the_build_naming_the_stop(tmp_path, register):
     """A model returning inf at some stop fails the build, naming the scene and the slider values."""
     register({"singular": _Singular}, {"singular": _BareFigure()})
     page = '+++\ntitle = "Pole"\n+++\n\n```scene\nmodel: singular\nslider x: -1..1 step 0.5 default 1\n```\n'
-    assert build_errors(make_book(tmp_path, {"pole": page})) == [
-        "content/pole.md:5: scene 'singular': output 'inverse' is not finite (inf) at x=0.0; the model must return finite numbers"
-        + FINITE_HINT
+    assert build_errors(write_book(tmp_path, {"pole": page})) == [
+        "content/pole.md:5: scene 'singular': output 'inverse' is not "
+        "finite (inf) at x=0.0; the model must return finite numbers" + FINITE_HINT
     ]
 
 

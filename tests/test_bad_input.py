@@ -9,10 +9,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import build_errors, write_book
 
 from sitegen import cli
-from sitegen.build import BuildConfig, build
-from sitegen.errors import BuildFailed
+from sitegen.build import build
 from sitegen.physics import Model, Output, Param
 from sitegen.render.layers import Layer
 from sitegen.render.style import new_figure
@@ -23,24 +23,6 @@ FINITE_HINT = (
     ', or, where the physics is singular or the quantity does not exist, say how the page shows it: special="—" '
     '(or "∞") and why="…" (or why_from=) on the Output'
 )
-HOME = '+++\ntitle = "Test book"\n+++\n\nA home page.\n'
-
-
-def make_book(root: Path, pages: dict[str, str | bytes]) -> BuildConfig:
-    """A throwaway project with the given pages and a home page."""
-    content = root / "content"
-    content.mkdir(parents=True)
-    for name, text in {"index": HOME, **pages}.items():
-        data = text if isinstance(text, bytes) else text.encode("utf-8")
-        (content / f"{name}.md").write_bytes(data)
-    (root / "book.toml").write_text("")  # a book with every default
-    return BuildConfig(root, content, root / "build")
-
-
-def build_errors(config: BuildConfig) -> list[str]:
-    with pytest.raises(BuildFailed) as failure:
-        build(config, progress=None)
-    return [str(e) for e in failure.value.errors]
 
 
 class _Figure:
@@ -97,7 +79,7 @@ def test_model_that_raises_a_numerical_error(tmp_path, register_model):
     """A model failing with ValueError/ArithmeticError (its documented way) is an author error at the scene."""
     register_model("fragile", _raise(ValueError("the integral diverges")))
     register_model("divider", _raise(ZeroDivisionError("division by zero")))
-    config = make_book(tmp_path, {"a": SCENE.format(name="fragile"), "b": SCENE.format(name="divider")})
+    config = write_book(tmp_path, {"a": SCENE.format(name="fragile"), "b": SCENE.format(name="divider")})
     assert build_errors(config) == [
         "content/a.md:5: scene 'fragile': model 'fragile' failed: the integral diverges",
         "content/b.md:5: scene 'divider': model 'divider' failed: division by zero",
@@ -108,7 +90,7 @@ def test_solve_out_of_time_reports_the_stop(tmp_path, register_model):
     """A solve whose time or evaluation budget ran out returns NaN (failure as data); the build
     fails naming the scene and the first slider value where it happened."""
     register_model("capped", _capped)
-    config = make_book(tmp_path, {"slow": SCENE.format(name="capped")})
+    config = write_book(tmp_path, {"slow": SCENE.format(name="capped")})
     assert build_errors(config) == [
         "content/slow.md:5: scene 'capped': output 'y' is not finite (nan) at x=2; the model must return finite numbers"
         + FINITE_HINT
@@ -118,7 +100,7 @@ def test_solve_out_of_time_reports_the_stop(tmp_path, register_model):
 def test_solve_that_exceeds_its_time_limit_is_an_author_error(tmp_path, register_model):
     """A solver that raises TimeoutError at its wall-time cap fails the build at the scene, saying so."""
     register_model("stalled", _raise(TimeoutError("the solve exceeded its 10 s wall-time limit")))
-    config = make_book(tmp_path, {"stall": SCENE.format(name="stalled")})
+    config = write_book(tmp_path, {"stall": SCENE.format(name="stalled")})
     assert build_errors(config) == [
         "content/stall.md:5: scene 'stalled': model 'stalled' failed: the solve exceeded its 10 s wall-time limit"
     ]
@@ -127,7 +109,7 @@ def test_solve_that_exceeds_its_time_limit_is_an_author_error(tmp_path, register
 def test_model_returning_infinity_reports_the_stop(tmp_path, register_model):
     """A model returning ±inf where its output declares no words for it fails the build at that stop."""
     register_model("blowup", lambda x: np.where(x == 3, np.inf, x))
-    config = make_book(tmp_path, {"pole": SCENE.format(name="blowup")})
+    config = write_book(tmp_path, {"pole": SCENE.format(name="blowup")})
     assert build_errors(config) == [
         "content/pole.md:5: scene 'blowup': output 'y' is not finite (inf) at x=3; the model must return finite numbers"
         + FINITE_HINT
@@ -155,7 +137,7 @@ class _CurveFigure(_Figure):
 def test_a_vector_output_that_is_not_finite_names_the_element(tmp_path, register):
     """The error names the element of the vector and the stop, and says how to show it in words instead."""
     register({"curve": _Curve}, {"curve": _CurveFigure()})
-    config = make_book(tmp_path, {"curve": SCENE.format(name="curve")})
+    config = write_book(tmp_path, {"curve": SCENE.format(name="curve")})
     assert build_errors(config) == [
         "content/curve.md:5: scene 'curve': output 'ys' (element 2) is not finite (nan) at x=3; the model must "
         "return finite numbers" + FINITE_HINT
@@ -169,7 +151,7 @@ def test_value_too_large_to_show_exactly(tmp_path):
         '+++\ntitle = "Huge"\n+++\n\n```scene\nmodel: collision\n'
         "slider m1: 1e20..3e20 step 1e20 default 1e20\nreadouts: p_before\n```\n"
     )
-    assert build_errors(make_book(tmp_path, {"huge": page})) == [
+    assert build_errors(write_book(tmp_path, {"huge": page})) == [
         "content/huge.md:5: scene 'collision': output 'p_before' is 3e+20 at m1=1E+20, too large to show "
         "with 2 decimals (at most 9.0072e+13); narrow the sliders' ranges"
     ]
@@ -178,14 +160,14 @@ def test_value_too_large_to_show_exactly(tmp_path):
 def test_file_that_is_not_utf8(tmp_path):
     """A page saved in another encoding is an error at the line of the first bad byte."""
     page = '+++\ntitle = "Caf\xe9"\n+++\n'.encode("latin-1")
-    assert build_errors(make_book(tmp_path, {"latin": page})) == [
+    assert build_errors(write_book(tmp_path, {"latin": page})) == [
         "content/latin.md:2: the file is not UTF-8 text (byte 0xe9); save it as UTF-8"
     ]
 
 
 def test_byte_order_mark_is_ignored(tmp_path):
     """A UTF-8 byte-order mark (some editors write one) does not hide the front matter."""
-    config = make_book(tmp_path, {"bom": "\ufeff" + '+++\ntitle = "BOM"\n+++\n\nText.\n'})
+    config = write_book(tmp_path, {"bom": "\ufeff" + '+++\ntitle = "BOM"\n+++\n\nText.\n'})
     assert build(config, progress=None).pages == 2
 
 
@@ -206,7 +188,7 @@ def test_every_error_of_every_page_in_one_run(tmp_path, capsys):
         name: (ROOT / "tests" / "invalid" / f"{name}.md").read_text(encoding="utf-8")
         for name in ("not-finite-or-reversed", "front-matter-types", "bad-tex")
     }
-    make_book(tmp_path, pages)
+    write_book(tmp_path, pages)
     status, err = run_cli(tmp_path, capsys)
     expected = [
         line
@@ -229,7 +211,7 @@ def test_missing_content_folder(tmp_path, capsys):
 
 def test_output_that_cannot_be_written(tmp_path, capsys):
     """An output folder that cannot be made (here: under a file) is one line and exit 2."""
-    make_book(tmp_path, {})
+    write_book(tmp_path, {})
     (tmp_path / "file").write_text("not a folder")
     status, err = run_cli(tmp_path, capsys, "--out", str(tmp_path / "file" / "build"))
     assert status == 2 and "Traceback" not in err, err
@@ -240,7 +222,7 @@ def test_internal_error_is_reported_without_traceback(tmp_path, register_model, 
     """A bug (an exception no author can cause) is one line naming it and where it struck (page, line,
     scene, phase), exit 3; --debug shows the traceback."""
     register_model("buggy", _raise(KeyError("oops")))
-    make_book(tmp_path, {"bug": SCENE.format(name="buggy")})
+    write_book(tmp_path, {"bug": SCENE.format(name="buggy")})
     assert cli.main(["build", "--root", str(tmp_path), "--no-cache"]) == 3
     err = capsys.readouterr().err
     assert (
@@ -256,7 +238,7 @@ def test_debug_shows_the_traceback_and_keeps_the_exit_status(tmp_path, register_
     """--debug adds the traceback (ending in the exception and the line that raised it) to the same one-line
     report, and the build still exits 3, as a script or a CI job reading the status expects."""
     register_model("buggy", _raise(KeyError("oops")))
-    make_book(tmp_path, {"bug": SCENE.format(name="buggy")})
+    write_book(tmp_path, {"bug": SCENE.format(name="buggy")})
     assert cli.main(["build", "--root", str(tmp_path), "--no-cache", "--debug"]) == 3
     err = capsys.readouterr().err
     assert err.startswith("Traceback (most recent call last):") and "KeyError: 'oops'\n" in err

@@ -60,6 +60,8 @@ from sitegen.compute.proof import proof_stops
 from sitegen.compute.quantize import fmt
 from sitegen.compute.structure import structured_pieces
 
+pytestmark = pytest.mark.browser  # the whole module is about pages in Chromium
+
 PAGES, SCENES = book()
 PAGE_NAMES = [p.output_name for p in PAGES]
 TRANSPORTS = ("file", "http")

@@ -1,5 +1,6 @@
-"""K4 hard cases (physics.md K4 "Hard cases" and §14), one test each with the stated tolerance, and
-the guards: every solve has terminal events and an evaluation cap (no wall-time cap: results never depend on the clock)."""
+"""K4 hard cases (docs/physics/bubble.md "Hard cases"), one test each with the stated tolerance, and
+the guards: every solve has terminal events and an evaluation cap (no wall-time cap: results never depend on the
+clock)."""
 
 from __future__ import annotations
 
@@ -18,6 +19,8 @@ from sitegen.models.bubble.run import CAP_NFEV, CORE, FAILED, KM_STOP, MACH, OK,
 from sitegen.models.bubble.scipy_path import SOLVERS
 from sitegen.models.bubble.solve import choose_method, integrate, method_for, solve
 from sitegen.models.bubble.terms import EPSILON, make_rhs, rayleigh_radius, rayleigh_tau
+
+pytestmark = pytest.mark.slow  # every test solves the bubble ODE over many stops or with every solver
 
 A_STOPS = list(
     itertools.product((100, 200, 500, 1000, 2000, 5000, 10000), (0.25, 0.5, 1, 2, 5, 10), (0, 1e-4, 1e-3, 1e-2, 1e-1))
@@ -111,7 +114,8 @@ def test_preset_A_grid_evaluates_with_caps_respected():
     ids=["DOP853-1e-6:within", "analytic:within", "BDF-1e-3:beyond", "LSODA-1e-3:beyond"],
 )
 def test_plotted_layer_near_collapse_is_within_1e_3(method, rtol, within):
-    """The plotted R(t) of the collapse: max |ΔR|/R0 ≤ 1e-3 for the solvers the model uses; loose BDF/LSODA interpolants miss it."""
+    """The plotted R(t) of the collapse: max |ΔR|/R0 ≤ 1e-3 for the solvers the model uses; loose BDF/LSODA
+    interpolants miss it."""
     pb, _ = preset_problem("A")
     run = solve(pb) if method == "analytic" else solve(pb, method, rtol)
     reached = np.isfinite(run.r)
@@ -123,7 +127,8 @@ def test_plotted_layer_near_collapse_is_within_1e_3(method, rtol, within):
 
 
 def test_violent_collapse_without_keller_miksis_is_flagged_invalid():
-    """Preset B minus Keller–Miksis: the first collapse passes 0.2c and reaches |Ṙ| = c; the model flags itself invalid."""
+    """Preset B minus Keller–Miksis: the first collapse passes 0.2c and reaches |Ṙ| = c; the model flags itself
+    invalid."""
     effects = tuple(e for e in PRESETS["B"][0] if e != "keller_miksis")
     pb, scales = compose(_point("B"), effects)
     run = solve(pb)
@@ -132,7 +137,8 @@ def test_violent_collapse_without_keller_miksis_is_flagged_invalid():
 
 
 def test_mildly_driven_incompressible_bubble_past_0_2_c_is_flagged():
-    """Preset B minus Keller–Miksis at p_a = 1.2 p0: the run's max |Ṙ|/c lies between 0.2 and 1, so it ends but is flagged."""
+    """Preset B minus Keller–Miksis at p_a = 1.2 p0: the run's max |Ṙ|/c lies between 0.2 and 1, so it ends but is
+    flagged."""
     effects = tuple(e for e in PRESETS["B"][0] if e != "keller_miksis")
     pb, scales = compose(_point("B", p_a=1.2), effects)
     run = solve(pb)
@@ -155,7 +161,8 @@ def _stiff_bubble():
 
 
 def test_stiff_viscous_microbubble_gets_an_implicit_solver_under_5000_evaluations():
-    """4µT/ρR0² > 1e3 selects the compiled Radau automatically; the two-period solve takes fewer than 5000 evaluations."""
+    """4µT/ρR0² > 1e3 selects the compiled Radau automatically; the two-period solve takes fewer than 5000
+    evaluations."""
     pb = _stiff_bubble()
     assert pb.stiffness > 1e3 and choose_method(pb)[0] == "compiled-Radau"
     run = solve(pb)
@@ -227,7 +234,8 @@ def test_keller_miksis_start_beyond_0_9_c_is_refused():
 
 @pytest.mark.parametrize("mach", [0.95, 0.999, 1.0, 1.5], ids=["0.95c", "0.999c", "c", "1.5c"])
 def test_keller_miksis_right_hand_side_stays_finite_as_the_denominator_vanishes(mach):
-    """At outward Ṙ → c the denominator (1 − Ṙ/c)R + 4µ/ρc is held at 0.05 R: r̈ is finite (trial stages are rejected, not NaN)."""
+    """At outward Ṙ → c the denominator (1 − Ṙ/c)R + 4µ/ρc is held at 0.05 R: r̈ is finite (trial stages are rejected,
+    not NaN)."""
     pb, _ = preset_problem("B")
     assert all(math.isfinite(v) for v in make_rhs(pb)(0.0, (1.0, mach * pb.sound)))
 
@@ -236,7 +244,8 @@ def test_keller_miksis_right_hand_side_stays_finite_as_the_denominator_vanishes(
 
 
 def _si_run(pb, scales, rtol):
-    """Preset B integrated in SI units (R in m, Ṙ in m/s) with SciPy's default atol = 1e-6, sampled on the model's grid."""
+    """Preset B integrated in SI units (R in m, Ṙ in m/s) with SciPy's default atol = 1e-6, sampled on the model's
+    grid."""
     rhs, radius, t_ref = make_rhs(pb), scales.radius, scales.t_ref
     speed = radius / t_ref
 
@@ -251,7 +260,8 @@ def _si_run(pb, scales, rtol):
 
 
 def test_si_units_with_default_atol_fail_where_nondimensional_units_succeed():
-    """DOP853 rtol 1e-6 on preset B: in SI (atol 1e-6 m ≈ 0.2 R0) max |ΔR|/R0 > 0.1; nondimensional (atol 1e-9) ≤ 1e-4."""
+    """DOP853 rtol 1e-6 on preset B: in SI (atol 1e-6 m ≈ 0.2 R0) max |ΔR|/R0 > 0.1; nondimensional (atol 1e-9) ≤
+    1e-4."""
     pb, scales = preset_problem("B")
     reference = solve(pb, "DOP853", 1e-9).r
     assert np.max(np.abs(solve(pb).r - reference)) <= 1e-4
@@ -262,7 +272,8 @@ def test_si_units_with_default_atol_fail_where_nondimensional_units_succeed():
 
 
 def test_peak_mach_number_comes_from_event_detection():
-    """Preset B: max |Ṙ|/c from the r̈ = 0 event is 0.4578; the max over 20 001 samples of the same solution is ≥ 3 % low."""
+    """Preset B: max |Ṙ|/c from the r̈ = 0 event is 0.4578; the max over 20 001 samples of the same solution is ≥ 3 %
+    low."""
     pb, scales = preset_problem("B")
     event_value = read_run(solve(pb), pb, scales, PRESETS["B"][0])["mach"]
     period = pb.tau_end / 2

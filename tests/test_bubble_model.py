@@ -89,7 +89,8 @@ def test_betaincinv_curve_round_trips_through_betainc():
 
 @pytest.mark.parametrize("gap, tolerance", [(1e-3, 1e-4), (1e-9, 1e-7)], ids=["tc-t=1e-3:1e-4", "tc-t=1e-9:1e-7"])
 def test_rayleigh_radius_near_collapse_follows_the_two_fifths_law(gap, tolerance):
-    """R ≃ (5/2)^(2/5)(2Δp/3ρ)^(1/5) R0^(3/5) (t_c − t)^(2/5): ratio within 1e-4 at 1e-3, 1e-7 at 1e-9 (measured 5e-5, 4e-9)."""
+    """R ≃ (5/2)^(2/5)(2Δp/3ρ)^(1/5) R0^(3/5) (t_c − t)^(2/5): ratio within 1e-4 at 1e-3, 1e-7 at 1e-9 (measured 5e-5,
+    4e-9)."""
     tau_c = rayleigh_tau(1.0)
     exact = float(rayleigh_radius(1.0 - gap / tau_c))
     asymptote = 2.5**0.4 * (2.0 / 3.0) ** 0.2 * gap**0.4
@@ -195,7 +196,8 @@ def test_rayleigh_plesset_small_oscillation_follows_linear_theory():
 
 
 def test_keller_miksis_small_oscillation_decays_at_the_linear_rate():
-    """KM, x0 = 1e-5: the decay rate fitted to successive maxima matches b/2a of the linear KM oscillator to 1e-4 rel."""
+    """KM, x0 = 1e-5: the decay rate fitted to successive maxima matches b/2a of the linear KM oscillator to 1e-4
+    rel."""
     x0 = 1e-5
     pb, k = _linear_problem(("gas", "surface_tension", "viscosity", "keller_miksis"), x0, periods=12)
     run = integrate(pb, (1.0 + x0, 0.0), "DOP853", 1e-12)
@@ -297,7 +299,8 @@ def test_depth_one_puts_the_far_field_at_the_blake_threshold():
     ],
 )
 def test_preset_B_defaults_show_the_reference_readouts(output, shown):
-    """Preset B (4.5 µm, p_a = 1.30 p0, 26.5 kHz, KM, argon): the reference digits of physics.md (T_g 1.16e4 K, f0 893.5 kHz)."""
+    """Preset B (4.5 µm, p_a = 1.30 p0, 26.5 kHz, KM, argon): the reference digits of docs/physics/bubble.md (T_g
+    1.16e4 K, f0 893.5 kHz)."""
     assert _shown("B", output) == shown
 
 
@@ -315,7 +318,8 @@ def test_preset_B_defaults_show_the_reference_readouts(output, shown):
     ids=["gas", "gas+sigma", "gas+vapour", "gas+vapour+sigma"],
 )
 def test_equilibrium_gas_pressure_includes_only_enabled_terms(effects, gas):
-    """p_g0 = p0 − p_v + 2σ/R0 with each term present only when its effect is enabled (§0.4 rule 1)."""
+    """p_g0 = p0 − p_v + 2σ/R0 with each term present only when its effect is enabled (docs/physics/README.md, effects,
+    rule 1)."""
     pb, _ = compose(_point("C"), effects)
     sigma, vapour = 0.0728 / (P0 * 1e-6), 2339.0 / P0
     expected = {1.0: 1.0, "1+2S": 1.0 + 2 * sigma, "1-Pv": 1.0 - vapour, "1-Pv+2S": 1.0 - vapour + 2 * sigma}[gas]
@@ -329,7 +333,8 @@ def test_equilibrium_gas_pressure_includes_only_enabled_terms(effects, gas):
     ids=["sigma", "mu", "kappa", "h", "p_a", "D_g", "depth"],
 )
 def test_parameters_of_disabled_effects_are_never_used(param, value):
-    """Preset A (vapour, step only): changing a parameter of an effect it does not name leaves every output bitwise equal."""
+    """Preset A (vapour, step only): changing a parameter of an effect it does not name leaves every output bitwise
+    equal."""
     names = ["t_c", "R_mach", "collapse_R_min", "collapse_mach", "collapse_flag", "collapse_curve_y"]
     base = Bubble().evaluate(PRESETS["A"][1], wanted=names, effects=PRESETS["A"][0])
     moved = Bubble().evaluate({**PRESETS["A"][1], param: value}, wanted=names, effects=PRESETS["A"][0])
@@ -359,7 +364,8 @@ def test_parameters_of_disabled_effects_are_never_used(param, value):
     ],
 )
 def test_solver_follows_from_the_composed_terms(preset, changes, effects, method):
-    """Analytic when only inertia (+ vapour) act, the compiled Radau when 4µT/ρR0² > 1e3, the compiled DOP853 otherwise."""
+    """Analytic when only inertia (+ vapour) act, the compiled Radau when 4µT/ρR0² > 1e3, the compiled DOP853
+    otherwise."""
     pb, _ = compose(_point(preset, **changes), PRESETS[preset][0] if effects is None else effects)
     assert choose_method(pb)[0] == method
 
@@ -436,6 +442,7 @@ VANISHING = [
 
 
 @pytest.mark.parametrize("preset, base, effects, tiny, removed", VANISHING)
+@pytest.mark.slow
 def test_effect_vanishing_limit_reproduces_the_reduced_model(preset, base, effects, tiny, removed):
     """With the effect's parameter → 0 the run matches the run without the effect to 1e-6 rel (samples and extrema)."""
     point = _point(preset, **base, **tiny)
@@ -480,7 +487,8 @@ def test_scale_free_collapse_is_solved_once_per_nondimensional_problem():
 
 
 def test_drawn_curve_passes_through_the_event_detected_minimum():
-    """Preset B: the lowest vertex of the drawn R(t) is the event-detected minimum (0.17587 R0, 2nd cycle); samples alone stay above 0.35 R0."""
+    """Preset B: the lowest vertex of the drawn R(t) is the event-detected minimum (0.17587 R0, 2nd cycle); samples
+    alone stay above 0.35 R0."""
     out = _evaluate("B", ["driven_R_min", "driven_R_min2"])
     curve = Bubble().evaluate(PRESETS["B"][1], wanted=["driven_curve_y"], effects=PRESETS["B"][0])["driven_curve_y"]
     pb, _ = preset_problem("B")

@@ -11,16 +11,13 @@ import sys
 from pathlib import Path
 
 import pytest
+from helpers import tree, write_book
 
 from sitegen.site.sizes import gzip_bytes
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGE_BUDGET_GZIP = 400 * 1024
 SCRIPT_BUDGET = 24 * 1024  # the design's budget for the one script, unminified
-
-
-def _tree(folder: Path) -> dict[str, bytes]:
-    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
 def _cli_build(out: Path, seed: str, root: Path = ROOT, *options: str) -> subprocess.CompletedProcess:
@@ -34,6 +31,7 @@ def _cli_build(out: Path, seed: str, root: Path = ROOT, *options: str) -> subpro
     )
 
 
+@pytest.mark.slow
 def test_builds_are_byte_identical_across_folders_and_hash_seeds(tiny_book, tiny_site, tmp_path):
     """A build of the tiny book from its cache, into another folder under another hash seed in another
     process, gives the bytes of the session's build (from nothing, in this process): the cache's round
@@ -41,21 +39,22 @@ def test_builds_are_byte_identical_across_folders_and_hash_seeds(tiny_book, tiny
     seed = "2" if os.environ.get("PYTHONHASHSEED") == "1" else "1"  # not this process's seed
     out = tmp_path / "b" / "out"
     assert _cli_build(out, seed, tiny_book.root).returncode == 0
-    assert _tree(out) == _tree(tiny_site)
+    assert tree(out) == tree(tiny_site)
 
 
+@pytest.mark.slow
 def test_computing_from_nothing_is_deterministic_across_hash_seeds(tiny_book, tiny_site, tmp_path):
     """The tiny book (a scene of every model family, an ODE among them) computed from nothing under
     another hash seed, in another process whose work runs in two worker processes, gives the bytes of the
     session's build (in one process)."""
     done = _cli_build(tmp_path / "cold", "3", tiny_book.root, "--no-cache", "--jobs", "2")
     assert done.returncode == 0, done.stderr
-    assert _tree(tmp_path / "cold") == _tree(tiny_site)
+    assert tree(tmp_path / "cold") == tree(tiny_site)
 
 
 def test_output_holds_no_absolute_paths_or_dates(built_site):
     """Nothing in build/ mentions the machine's folders or a timestamp."""
-    for name, data in _tree(built_site).items():
+    for name, data in tree(built_site).items():
         if name.endswith((".html", ".css", ".js")):
             text = data.decode()
             assert str(ROOT) not in text and str(built_site) not in text, name
@@ -130,10 +129,7 @@ def test_cli_reports_author_errors_without_traceback(tmp_path, capsys):
     """`sitegen build` on a broken book prints file:line errors, exits 1 and keeps quiet about Python."""
     from sitegen.cli import main
 
-    content = tmp_path / "content"
-    content.mkdir()
-    (content / "index.md").write_text('+++\ntitle = "Book"\n+++\n\n```scene\nmodel: colision\n```\n')
-    (tmp_path / "book.toml").write_text("")
+    write_book(tmp_path, {"index": '+++\ntitle = "Book"\n+++\n\n```scene\nmodel: colision\n```\n'})
     assert main(["build", "--root", str(tmp_path)]) == 1
     stderr = capsys.readouterr().err
     assert "content/index.md:6: scene 'colision': unknown model 'colision'" in stderr

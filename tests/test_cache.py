@@ -6,12 +6,11 @@ import shutil
 from pathlib import Path
 
 import pytest
+from helpers import tree, write_book
 
 from sitegen.build import BuildConfig, build
 from sitegen.compute import cache as cache_module
 from sitegen.compute import sources
-
-HOME_PAGE = '+++\ntitle = "Mechanics, interactively"\n+++\n\nThe home page of a test book.\n'  # links nowhere
 
 ROOT = Path(__file__).resolve().parents[1]
 CHAPTER = "newtons-laws.md"
@@ -39,26 +38,17 @@ slider e: 0..1 step 0.25 default 1
 """
 
 
-def _write_book(root: Path) -> BuildConfig:
-    """A small book (home page and a page with two scenes) at `root`, with its own cache."""
-    content = root / "content"
-    content.mkdir()
-    (content / "index.md").write_text(HOME_PAGE)
-    (content / CHAPTER).write_text(PAGE)
-    return BuildConfig(root, content, root / "build", cache=root / ".cache")
-
-
 @pytest.fixture
 def book(tmp_path) -> BuildConfig:
     """The small book, never built: an empty cache."""
-    return _write_book(tmp_path)
+    return write_book(tmp_path, {CHAPTER.removesuffix(".md"): PAGE}, cache=True)
 
 
 @pytest.fixture(scope="module")
 def first_build(tmp_path_factory) -> Path:
     """The small book after its first build (from an empty cache), once for the module."""
     root = tmp_path_factory.mktemp("first")
-    build(_write_book(root), progress=None)
+    build(write_book(root, {CHAPTER.removesuffix(".md"): PAGE}, cache=True), progress=None)
     return root
 
 
@@ -160,9 +150,7 @@ def test_cached_and_uncached_builds_are_byte_identical(built, tmp_path):
     none = BuildConfig(built.root, built.content, tmp_path / "none", cache=None)
     build(warm, progress=None)
     build(none, progress=None)
-    for path in sorted(p for p in built.out.rglob("*") if p.is_file()):
-        relative = path.relative_to(built.out)
-        assert (warm.out / relative).read_bytes() == path.read_bytes() == (none.out / relative).read_bytes(), relative
+    assert tree(warm.out) == tree(built.out) == tree(none.out)
 
 
 def test_cache_writes_leave_no_temporary_files(built):

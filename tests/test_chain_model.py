@@ -166,7 +166,7 @@ def test_chain_converges_to_the_string_as_a_squared():
     ids=lambda v: None,
 )
 def test_deviation_from_the_string_matches_measured_table(n, t, measured, unit):
-    """max|u_DST − u_c|/A at σ = 0.05 equals physics.md §11.1 to within one unit of its last printed digit."""
+    """max|u_DST − u_c|/A at σ = 0.05 equals docs/physics/chain.md to within one unit of its last printed digit."""
     assert abs(deviation(n, 0.05, t, RIGHT_MOVING) - measured) <= unit
 
 
@@ -337,7 +337,8 @@ def test_heavily_overdamped_chain_stays_finite_at_long_times():
     ],
 )
 def test_effects_vanish_in_their_limit(terms, bound):
-    """γ → 0 and ω0 → 0 recover the bare chain: N = 64, t = 2, |Δu| ≤ bound × max|u0| (the change is O(γt), O(ω0²t²))."""
+    """γ → 0 and ω0 → 0 recover the bare chain: N = 64, t = 2, |Δu| ≤ bound × max|u0| (the change is O(γt),
+    O(ω0²t²))."""
     bare, _ = chain_motion(64, 0.05, 2.0, RIGHT_MOVING, amplitude=1.0)
     with_term, _ = chain_motion(64, 0.05, 2.0, RIGHT_MOVING, terms, amplitude=1.0)
     assert np.max(np.abs(with_term - bare)) <= bound
@@ -402,7 +403,7 @@ def test_damped_energy_decays_monotonically():
     ids=lambda v: v if isinstance(v, str) and not v[0].isdigit() else None,
 )
 def test_defaults_display_the_specified_readouts(output, expected):
-    """At N = 64, σ = 0.05, t = 0.5 the page shows physics.md's values."""
+    """At N = 64, σ = 0.05, t = 0.5 the page shows docs/physics/chain.md's values."""
     value = float(_evaluate([output])[output])
     assert fmt(value, Chain.output(output).decimals) == expected
 

@@ -73,6 +73,7 @@ def test_builds_side_by_side_in_threads_give_it_back_when_the_last_ends(own_thre
     assert gc.get_threshold() == PROCESS_THRESHOLDS and gc.get_freeze_count() == 0
 
 
+@pytest.mark.slow
 def test_a_watcher_keeps_nothing_of_its_earlier_builds(tiny_book, own_thresholds):
     """Rebuild after rebuild, the watcher's process holds as many objects as after the first ones: what each
     build left in reference cycles is freed (it held a few hundred more per rebuild when it was not)."""

@@ -398,7 +398,7 @@ def test_restitution_of_the_contact_is_its_closed_form(zeta):
 
 @pytest.mark.parametrize("zeta", [1e-12, 1e-9, 1e-6, 1e-3, 1e-2], ids=lambda z: f"zeta={z}")
 def test_restitution_tends_to_one_as_damping_vanishes(zeta):
-    """Vanishing limit (§13, ζ → 0 ⇒ e → 1): 0 ≤ 1 − e ≤ πζ/√(1 − ζ²), and the final velocities approach
+    """Vanishing limit (ζ → 0 ⇒ e → 1): 0 ≤ 1 − e ≤ πζ/√(1 − ζ²), and the final velocities approach
     the elastic law's within w·Δ·(1 − e)."""
     mu, k = 2.0 / 3.0, 1e4
     c = zeta * 2 * np.sqrt(k * mu)
@@ -535,7 +535,8 @@ def test_restitution_above_one_needs_the_explosive_effect(e):
 
 @pytest.mark.parametrize("e", [1.25, 2.0], ids=["e=1.25", "e=2"])
 def test_explosive_collision_gains_energy_and_keeps_momentum(e):
-    """e > 1: momentum conserved (4ε), K_lost = −½μ(e² − 1)Δ² < 0 (8ε rel), velocities from the same law (exact rationals)."""
+    """e > 1: momentum conserved (4ε), K_lost = −½μ(e² − 1)Δ² < 0 (8ε rel), velocities from the same law (exact
+    rationals)."""
     m1, m2, v1i, v2i, _ = _random_approaching(12, n=300, e=0.0)
     out = Collision().evaluate(
         {"m1": m1, "m2": m2, "v1i": v1i, "v2i": v2i, "e": e},

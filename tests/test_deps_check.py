@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_author_errors import _BareFigure, build_errors, make_book
+from helpers import build_errors, write_book
+from test_author_errors import _BareFigure
 
 from sitegen.build import build
 from sitegen.physics import Model, Output, Param
@@ -47,7 +48,10 @@ class Lamp(Model):
         return {name: values[name]() for name in wanted}
 
 
-PAGE = '+++\ntitle = "Lamp"\n+++\n\n```scene\nmodel: lamp\n{effects}slider a: 0..2 step 1 default 1\n{more}readouts: {readouts}\n```\n'
+PAGE = (
+    '+++\ntitle = "Lamp"\n+++\n\n```scene\nmodel: lamp\n{effects}slider '
+    "a: 0..2 step 1 default 1\n{more}readouts: {readouts}\n```\n"
+)
 LINES = {o.name: o.where[1] for o in Lamp.outputs}
 
 
@@ -64,14 +68,14 @@ def test_right_deps_build_with_and_without_the_effect(tmp_path, lamp):
     """y declares b only while the glow is on, and c is left alone: both scenes build."""
     (tmp_path / "off").mkdir()
     (tmp_path / "on").mkdir()
-    build(make_book(tmp_path / "off", {"lamp": _page("y")}), progress=None)
-    build(make_book(tmp_path / "on", {"lamp": _page("y", "glow", "slider b: 0..2 step 1 default 1\n")}), progress=None)
+    build(write_book(tmp_path / "off", {"lamp": _page("y")}), progress=None)
+    build(write_book(tmp_path / "on", {"lamp": _page("y", "glow", "slider b: 0..2 step 1 default 1\n")}), progress=None)
 
 
 def test_a_parameter_an_effect_brings_must_be_declared_for_that_effect(tmp_path, lamp):
     """With the glow on, z reads b, which its deps leave out (it would need deps_with=(("glow", ("b",)),))."""
     page = _page("z", "glow", "slider b: 0..2 step 1 default 1\n")
-    assert build_errors(make_book(tmp_path, {"lamp": page})) == [
+    assert build_errors(write_book(tmp_path, {"lamp": page})) == [
         f"content/lamp.md:5: scene 'lamp': {HERE}/test_deps_check.py:{LINES['z']}: output 'z' changes with 'b' "
         "(2.000 → 1.000 as b goes 1 → 0, at a=1) but its deps leave 'b' out; add 'b' to its deps"
     ]
@@ -80,7 +84,7 @@ def test_a_parameter_an_effect_brings_must_be_declared_for_that_effect(tmp_path,
 def test_a_parameter_an_effect_replaces_must_not_change_the_output(tmp_path, lamp):
     """With the glow on, c is replaced (its deps drop it) but w still reads it: moved across its domain
     (it has no slider), it changes w."""
-    assert build_errors(make_book(tmp_path, {"lamp": _page("w", "glow")})) == [
+    assert build_errors(write_book(tmp_path, {"lamp": _page("w", "glow")})) == [
         f"content/lamp.md:5: scene 'lamp': {HERE}/test_deps_check.py:{LINES['w']}: output 'w' changes with 'c' "
         "(3.000 → 3.164 as c goes 2 → 2.16418, at a=1) but its deps leave 'c' out; add 'c' to its deps"
     ]
@@ -96,7 +100,7 @@ class _CurveFigure(_BareFigure):
 def test_a_vector_output_names_the_element_that_changed(tmp_path, register):
     """v's last element reads d, a parameter without a slider, moved across its domain: the error names element 2."""
     register({"lamp": Lamp}, {"lamp": _CurveFigure()})
-    assert build_errors(make_book(tmp_path, {"lamp": _page("y")})) == [
+    assert build_errors(write_book(tmp_path, {"lamp": _page("y")})) == [
         f"content/lamp.md:5: scene 'lamp': {HERE}/test_deps_check.py:{LINES['v']}: output 'v' (element 2) changes "
         "with 'd' (4.000 → 2.536 as d goes 3 → 1.53588, at a=1) but its deps leave 'd' out; add 'd' to its deps"
     ]

@@ -9,6 +9,9 @@ import sys
 from pathlib import Path
 
 import pytest
+from helpers import tree, write_book
+
+pytestmark = pytest.mark.slow  # bubble books built in other processes, beside spinning CPUs
 
 ROOT = Path(__file__).resolve().parents[1]
 BOOK = """+++
@@ -59,10 +62,7 @@ A page with no scene.
 def _book(folder: Path, compiled: Path = ROOT / ".cache" / "compiled") -> Path:
     """A book of two small bubble scenes and a page of text, whose compiled code is kept in `compiled` (by
     default the project's, shared) and whose tables are its own."""
-    (folder / "content").mkdir(parents=True)
-    (folder / "content" / "index.md").write_text(BOOK)
-    (folder / "content" / "notes.md").write_text(NOTES)
-    (folder / "book.toml").write_text("")
+    write_book(folder, {"index": BOOK, "notes": NOTES})
     (folder / ".cache").mkdir()
     compiled.mkdir(parents=True, exist_ok=True)
     (folder / ".cache" / "compiled").symlink_to(compiled)
@@ -79,10 +79,6 @@ def _build(root: Path, out: Path, *options: str, **env: str) -> str:
     )
     assert done.returncode == 0, done.stderr
     return done.stdout
-
-
-def _tree(folder: Path) -> dict[str, bytes]:
-    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
 @pytest.fixture(scope="module")
@@ -105,7 +101,7 @@ def test_a_build_beside_a_busy_cpu_is_byte_identical_to_a_quiet_one(quiet, tmp_p
         for spinner in spinners:
             spinner.kill()
             spinner.wait()
-    assert _tree(tmp_path / "busy") == _tree(root.parent / "site")
+    assert tree(tmp_path / "busy") == tree(root.parent / "site")
 
 
 def test_kernels_compiled_for_the_host_cpu_show_the_same_bytes_as_the_portable_ones(quiet, tmp_path):
@@ -127,4 +123,4 @@ def test_kernels_compiled_for_the_host_cpu_show_the_same_bytes_as_the_portable_o
     assert "compile   bubble: its first stop in" in host, host
     assert any(p.name.startswith("kernel_march.") for p in (tmp_path / "compiled").rglob("*")), "not compiled there"
     assert not (home / ".cache" / "sitegen").exists(), sorted(str(p) for p in home.rglob("*"))
-    assert _tree(tmp_path / "host") == _tree(root.parent / "site")
+    assert tree(tmp_path / "host") == tree(root.parent / "site")

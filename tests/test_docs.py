@@ -1,7 +1,8 @@
-"""The README and docs/ name only what exists: every file path in backticks or in a link is a file or
-folder of this repository (or, for a path inside a book, of the book `sitegen new` writes); every
+"""The README, CONTRIBUTING.md and docs/ name only what exists: every file path in backticks is a file or
+folder of this repository (or, for a path inside a book, of the book `sitegen new` writes), every relative
+link resolves from the folder of the file that holds it (as a reader's browser resolves it); every
 `sitegen ...` command is a real subcommand with real options; every `make ...` is a Makefile target.
-Nothing points outside the repository (`../`, absolute machine paths)."""
+Nothing points outside the repository (`../` past its root, absolute machine paths)."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ from sitegen.cli import command_parser
 from sitegen.newbook import STARTER
 
 ROOT = Path(__file__).resolve().parents[1]
-DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+DOCS = [ROOT / "README.md", *ROOT.glob("CONTRIBUTING.md"), *sorted((ROOT / "docs").rglob("*.md"))]
 # Where a relative path may be found: the repository, a book made by `sitegen new`, and the plugin book of the tests.
 PLACES = (ROOT, STARTER, ROOT / "tests" / "plugins" / "book")
 MADE_BY_TOOLS = (
@@ -60,15 +61,24 @@ def _looks_like_path(span: str) -> bool:
 
 
 def _named_paths(text: str) -> list[str]:
+    """The paths a text names in code spans (from the repository's root)."""
     spans, _ = _code(text)
-    paths = [s.strip() for s in spans if _looks_like_path(s.strip()) or s.strip().startswith(("../", "/"))]
+    return [s.strip() for s in spans if _looks_like_path(s.strip()) or s.strip().startswith(("../", "/"))]
+
+
+def _links(text: str) -> list[str]:
+    """The relative links of a text's prose, without their #fragments."""
     prose = CODE_SPAN.sub("", FENCED.sub("", text))
-    paths += [
-        link.split("#")[0]
-        for link in LINK.findall(prose)
-        if "://" not in link and not link.startswith(("#", "mailto:"))
-    ]
-    return [p for p in paths if p]
+    links = [link.split("#")[0] for link in LINK.findall(prose) if "://" not in link and not link.startswith("mailto:")]
+    return [link for link in links if link]
+
+
+def _link_problem(doc: Path, link: str) -> str | None:
+    """Why a relative link in `doc` is wrong, or None."""
+    target = (doc.parent / link).resolve()
+    if link.startswith(("/", "~")) or not target.is_relative_to(ROOT):
+        return "points outside the repository"
+    return None if target.exists() else "does not exist"
 
 
 def _subcommands() -> dict[str, set[str]]:
@@ -117,6 +127,12 @@ def test_every_named_path_exists(doc):
 
 
 @pytest.mark.parametrize("doc", DOCS, ids=lambda p: p.relative_to(ROOT).as_posix())
+def test_every_link_resolves(doc):
+    problems = [f"{link}: {why}" for link in _links(doc.read_text()) if (why := _link_problem(doc, link))]
+    assert not problems, "\n".join(problems)
+
+
+@pytest.mark.parametrize("doc", DOCS, ids=lambda p: p.relative_to(ROOT).as_posix())
 def test_every_command_is_real(doc):
     subcommands, targets = _subcommands(), _make_targets()
     problems = [
@@ -134,7 +150,11 @@ def test_the_checker_catches_what_it_should():
     assert _path_problem("../notes/physics.md") == "points outside the repository"
     assert _path_problem("/home/someone/node_modules") == "points outside the repository"
     assert _path_problem("models/pendulum/model.py") is None and _path_problem("src/sitegen/cli.py") is None
-    assert _named_paths("see `docs/nothing.md` and [x](docs/gone.md)") == ["docs/nothing.md", "docs/gone.md"]
+    assert _named_paths("see `docs/nothing.md` and [x](docs/gone.md)") == ["docs/nothing.md"]
+    assert _links("see `[y](z.md)` and [x](docs/gone.md#part)") == ["docs/gone.md"]
+    assert _link_problem(ROOT / "docs" / "physics" / "README.md", "../models.md") is None
+    assert _link_problem(ROOT / "docs" / "physics" / "README.md", "models.md") == "does not exist"
+    assert _link_problem(ROOT / "docs" / "architecture.md", "../../elsewhere.md") == "points outside the repository"
     assert _command_problems("sitegen preview", subcommands, targets) == [
         "'sitegen preview' is no subcommand (" + ", ".join(subcommands) + ")"
     ]

@@ -1,10 +1,10 @@
-"""Effects (physics.md §0.4, §13): a scene names the effects it shows and the model composes only those.
+"""Effects (docs/physics/README.md): a scene names the effects it shows and the model composes only those.
 
 An effect the scene does not name is never evaluated (spies on the bubble's terms, the chain's damping
 and boundary, the collision's contact and the impulse's pulse shapes), effect-dependent dependencies
 are what the tabulation uses, and enabling or disabling an effect changes the cache key of that scene
-only. The vanishing limits of the effects are in test_properties.py (§0.4 rule 2) and in the models'
-own test files.
+only. The vanishing limits of the effects are in test_properties.py (docs/physics/README.md, effects, rule 2) and in
+the models' own test files.
 """
 
 from __future__ import annotations
@@ -15,12 +15,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import resolved_scene, write_book
 
 from sitegen.build import BuildConfig, build, needed_outputs
 from sitegen.compute.cache import scene_key
-from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import plan_scene, tabulate_scene
-from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import SourceLoc
 from sitegen.models.bubble import kernel_terms as kernel_terms
 from sitegen.models.bubble import model as bubble
@@ -33,20 +32,14 @@ from sitegen.models.impulse import pulses
 from sitegen.physics import contact
 from sitegen.registry import builtin_registry
 
-HOME_PAGE = '+++\ntitle = "Mechanics, interactively"\n+++\n\nThe home page of a test book.\n'  # links nowhere
-
 MODELS = builtin_registry().models
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def _scene(block: str):
-    """A resolved scene from the lines of a scene block (no errors allowed)."""
-    spec, errors = parse_scene_block(block.strip().splitlines(), SourceLoc("content/effects.md", 1))
-    assert not errors
-    scene, errors = resolve_scene(spec, MODELS)
-    assert not errors, [str(e) for e in errors]
-    return scene
+    """A resolved scene from the lines of a scene block (no errors allowed), at content/effects.md."""
+    return resolved_scene(block.strip(), where=SourceLoc("content/effects.md", 1))
 
 
 class Counter:
@@ -83,7 +76,8 @@ def shape_spy(monkeypatch) -> Counter:
 
 
 def test_pulse_shapes_are_never_evaluated_without_the_shape_effect(shape_spy):
-    """Asked for hann through its parameter but without `shape`, the model draws the triangle and never calls another shape."""
+    """Asked for hann through its parameter but without `shape`, the model draws the triangle and never calls another
+    shape."""
     model = MODELS["impulse"]()
     out = model.evaluate({"shape": 1.0, "v0": 0.5}, wanted=["J", "pulse_F", "v_curve"], effects=("initial_velocity",))
     assert all(shape_spy.calls[f"{name}-{kind}"] == 0 for name in OTHER_SHAPES for kind in ("force", "rise"))
@@ -190,7 +184,8 @@ def test_chain_scene_evaluates_an_effect_only_when_it_names_it(chain_spy, effect
     assert chain_spy.calls[counted] > 0
 
 
-# --- the bubble's terms ------------------------------------------------------------------------------------------------
+# --- the bubble's terms
+# ------------------------------------------------------------------------------------------------
 
 # The statements that evaluate each term (the start of each, as written there), in scipy's right-hand
 # side (make_rhs) and in the compiled one (kernel_terms.rhs).
@@ -322,7 +317,8 @@ def test_bubble_initial_state_never_reads_a_parameter_of_an_effect_left_out(monk
     assert param in reads  # the spy sees the parameter once the effect is named
 
 
-# --- effect-dependent dependencies -------------------------------------------------------------------------------------
+# --- effect-dependent dependencies
+# -------------------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize(
@@ -410,11 +406,7 @@ def test_toggling_an_effect_changes_the_key_of_that_scene_only():
 @pytest.fixture
 def book(tmp_path) -> BuildConfig:
     """A small book with the two-scene page and its own cache."""
-    content = tmp_path / "content"
-    content.mkdir()
-    (content / "index.md").write_text(HOME_PAGE)
-    (content / "page.md").write_text(PAGE.format(effects=""))
-    return BuildConfig(tmp_path, content, tmp_path / "build", cache=tmp_path / ".cache")
+    return write_book(tmp_path, {"page": PAGE.format(effects="")}, cache=True)
 
 
 def test_enabling_an_effect_recomputes_only_that_scene(book):

@@ -124,13 +124,14 @@ def _absolute_pressure_difference(dx_l: float) -> float:
     return (P_AMBIENT + P * np.cos(phi - k * dx / 2)) - (P_AMBIENT + P * np.cos(phi + k * dx / 2))
 
 
-# physics.md measured these relative errors of the absolute-pressure difference (0 dB SPL, 1 kHz).
+# docs/physics/euler_slab.md measured these relative errors of the absolute-pressure difference (0 dB SPL, 1 kHz).
 NAIVE_MEASURED = [(1e-3, 6.8e-5), (1e-4, 7.5e-4), (1e-6, 1.7e-2)]
 
 
 @pytest.mark.parametrize("dx_l, measured", NAIVE_MEASURED, ids=["dx/lambda=1e-3", "dx/lambda=1e-4", "dx/lambda=1e-6"])
 def test_absolute_pressure_difference_loses_digits_as_physics_md_measured(dx_l, measured):
-    """The naive difference is off by physics.md's measured rel error (within a factor 10); the product form is not."""
+    """The naive difference is off by docs/physics/euler_slab.md's measured rel error (within a factor 10); the product
+    form is not."""
     exact = _d_net_force(0.0, dx_l, 90.0)
     naive = _rel(_absolute_pressure_difference(dx_l), exact)
     product = _rel(float(_evaluate(["net_force"], spl=0.0, dx_l=dx_l, phi=90.0)["net_force"]), exact)
@@ -139,13 +140,15 @@ def test_absolute_pressure_difference_loses_digits_as_physics_md_measured(dx_l, 
 
 
 def test_absolute_pressure_difference_returns_zero_for_the_thinnest_slab():
-    """At Δx = 1e−8 λ and 0 dB the two absolute pressures round to the same float: the naive force is 0 (100 % error)."""
+    """At Δx = 1e−8 λ and 0 dB the two absolute pressures round to the same float: the naive force is 0 (100 %
+    error)."""
     assert _absolute_pressure_difference(1e-8) == 0.0
     assert float(_evaluate(["net_force"], spl=0.0, dx_l=1e-8, phi=90.0)["net_force"]) > 0.0
 
 
 def test_difference_of_perturbations_is_far_less_accurate_than_the_product():
-    """p′(x₀) − p′(x₀ + Δx) without p₀ still loses digits: worst rel error over [1e−8, 0.5] is ≥ 1e−11 (product ≤ 1e−14)."""
+    """p′(x₀) − p′(x₀ + Δx) without p₀ still loses digits: worst rel error over [1e−8, 0.5] is ≥ 1e−11 (product ≤
+    1e−14)."""
     P, k = np.sqrt(2.0) * 20e-6, 2.0 * np.pi / C_AIR * 1000.0
     worst = 0.0
     for dx_l in np.logspace(-8, np.log10(0.5), 60):
@@ -442,7 +445,7 @@ def test_absorption_at_one_kilohertz():
     ids=["P", "wavelength", "net_force", "slab_mass", "a_slab", "a_point", "sinc", "U", "xi", "mach", "shock_distance"],
 )
 def test_defaults_display_physics_md_values(output, expected):
-    """At 94 dB, 1 kHz, Δx/λ = 0.05, φ = 90° the page shows physics.md's values in the chosen units."""
+    """At 94 dB, 1 kHz, Δx/λ = 0.05, φ = 90° the page shows docs/physics/euler_slab.md's values in the chosen units."""
     value = float(EulerSlab().evaluate(EulerSlab.defaults(), wanted=[output])[output])
     assert fmt(value, EulerSlab.output(output).decimals) == expected
 

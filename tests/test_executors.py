@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import tree
 
 from sitegen.build import BuildConfig, build
 from sitegen.compute.executors import InProcess, executor_for, worker_count
@@ -61,10 +62,6 @@ def _book(tmp_path: Path, name: str, page: str = PAGE, **options) -> BuildConfig
     return BuildConfig(tmp_path, content, tmp_path / name, cache=None, **options)
 
 
-def _tree(folder: Path) -> dict[str, bytes]:
-    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
-
-
 @pytest.mark.parametrize("jobs", [2, "auto"])
 def test_process_pool_gives_the_bytes_of_the_build_in_process(tmp_path, jobs):
     """`--jobs 2` and `--jobs auto` (local processes) build the same tree, byte for byte, as a build in this process."""
@@ -72,9 +69,10 @@ def test_process_pool_gives_the_bytes_of_the_build_in_process(tmp_path, jobs):
     pooled = _book(tmp_path, "pooled", jobs=jobs)
     build(here, progress=None)
     build(pooled, progress=None)
-    assert _tree(here.out) == _tree(pooled.out)
+    assert tree(here.out) == tree(pooled.out)
 
 
+@pytest.mark.slow
 def test_the_command_with_jobs_gives_the_bytes_of_the_build_in_process(tmp_path, bubble_kernels):
     """`sitegen build --jobs 1` and `--jobs 2` in a process of their own give the tree of `build()` here, bubble
     scene (compiled code, loaded by the workers) included."""
@@ -86,7 +84,7 @@ def test_the_command_with_jobs_gives_the_bytes_of_the_build_in_process(tmp_path,
         command = [sys.executable, "-m", "sitegen.cli", "build", "--root", str(tmp_path), "--out", str(out)]
         done = subprocess.run([*command, "--no-cache", "--jobs", jobs], capture_output=True, text=True, timeout=600)
         assert done.returncode == 0, done.stderr
-        assert _tree(out) == _tree(here.out), jobs
+        assert tree(out) == tree(here.out), jobs
 
 
 def test_in_process_work_runs_when_its_result_is_asked_for():
@@ -118,6 +116,7 @@ def test_a_pool_leaves_no_process_behind():
     assert multiprocessing.active_children() == []
 
 
+@pytest.mark.slow
 def test_dask_cluster_gives_the_serial_bytes(tmp_path):
     """The same build on a Dask LocalCluster on 127.0.0.1, through its executor, gives the same bytes."""
     distributed = pytest.importorskip("distributed", reason="the Dask extra is part of the test install")
@@ -128,7 +127,7 @@ def test_dask_cluster_gives_the_serial_bytes(tmp_path):
     ) as cluster:
         report = build(_book(tmp_path, "dask", scheduler=cluster.scheduler_address), progress=None)
     assert report.computed == report.scenes == 2
-    assert _tree(serial.out) == _tree(tmp_path / "dask")
+    assert tree(serial.out) == tree(tmp_path / "dask")
 
 
 def _every_output_per_stop(monkeypatch) -> None:
@@ -144,7 +143,7 @@ def test_chunked_scene_gives_the_same_tables(tmp_path, monkeypatch):
     monkeypatch.setattr(Collision, "chunk_stops", 1000)
     report = build(_book(tmp_path, "chunked", jobs=2), progress=None)
     assert report.evaluations > 10  # the collision's 60,500 stops went out in many blocks
-    assert _tree(serial.out) == _tree(tmp_path / "chunked")
+    assert tree(serial.out) == tree(tmp_path / "chunked")
 
 
 def test_plan_splits_only_heavy_models(tmp_path, monkeypatch):
@@ -179,7 +178,10 @@ class _Explodes(Model):
 def test_worker_failure_comes_back_as_an_author_error(tmp_path, register):
     """An error inside a worker process reaches the author as `file:line: scene '...': ...`."""
     register({"explodes": _Explodes}, {"explodes": type(builtin_registry().figures["impulse"])(), "bare": _Bare()})
-    page = '+++\ntitle = "Boom"\n+++\n\n```scene\nmodel: explodes\nslider x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n'
+    page = (
+        '+++\ntitle = "Boom"\n+++\n\n```scene\nmodel: explodes\nslider '
+        "x: 0..1 step 0.25 default 0\nreadouts: y\nfigure: bare\n```\n"
+    )
 
     with pytest.raises(BuildFailed) as failure:
         build(_book(tmp_path, "out", page=page, jobs=2), progress=None)
@@ -273,6 +275,7 @@ _COMPILING_BOOK = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
 def test_sigterm_stops_a_build_and_its_workers(tmp_path, bubble_kernels):
     """SIGTERM (a service manager, `kill`) on a build whose workers are tabulating: the build stops as after Ctrl-C,
@@ -384,4 +387,4 @@ def test_a_cluster_without_the_book_builds_its_own_models_to_the_local_bytes(tmp
         report = build(replace(config, out=tmp_path / "dask", scheduler=address), progress=None)
     assert report.computed == report.scenes
     assert any("pendulum#" in line for line in report.scene_lines)
-    assert _tree(tmp_path / "dask") == _tree(config.out)
+    assert tree(tmp_path / "dask") == tree(config.out)

@@ -13,11 +13,13 @@ import re
 import tempfile
 from pathlib import Path
 
+import pytest
 from examples import examples
+from helpers import write_book
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from sitegen.build import BuildConfig, build
+from sitegen.build import build
 from sitegen.compute.scenes import resolve_scene
 from sitegen.content.pages import read_page
 from sitegen.content.scenes import KEYS, parse_scene_block
@@ -324,6 +326,7 @@ def test_scene_block_parser_never_crashes(request):
     _report(request, "parser", count)
 
 
+@pytest.mark.slow
 def test_scene_resolution_never_crashes(request):
     """Parsed blocks checked against the real models and figures: resolved, or author errors."""
     count = 0
@@ -488,6 +491,7 @@ def _cheap(body: list[str]) -> bool:
     return states <= 400
 
 
+@pytest.mark.slow
 def test_build_of_fuzzed_books_succeeds_or_reports_author_errors(request, tmp_path):
     """A book of a home page and a fuzzed page (front matter, prose, mutated scene blocks) builds,
     or fails with BuildFailed whose every error points into content/; nothing else escapes,
@@ -506,12 +510,7 @@ def test_build_of_fuzzed_books_succeeds_or_reports_author_errors(request, tmp_pa
         assume(all(_cheap(b) for b in bodies))
         count += 1
         root = Path(tempfile.mkdtemp(dir=folder))
-        content = root / "content"
-        content.mkdir()
-        (content / "index.md").write_text('+++\ntitle = "Book"\n+++\n\nHome.\n', encoding="utf-8")
-        page = "\n\n".join([front, text, *(_block(b) for b in bodies)]) + "\n"
-        (content / "page.md").write_text(page, encoding="utf-8")
-        config = BuildConfig(root, content, root / "build")
+        config = write_book(root, {"page": "\n\n".join([front, text, *(_block(b) for b in bodies)]) + "\n"})
         try:
             report = build(config, progress=None)
         except BuildFailed as failure:

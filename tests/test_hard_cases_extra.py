@@ -1,5 +1,5 @@
-"""Hard cases of physics.md §14 that no model test covered: K4 resonance foldover, and K2's quantile default
-never touching NumPy's random streams. Tolerances are physics.md's (§12 for the foldover)."""
+"""Hard cases of docs/physics/ that no model test covered: K4 resonance foldover, and K2's quantile default
+never touching NumPy's random streams. Tolerances are those of docs/physics/ (README.md for the foldover)."""
 
 from __future__ import annotations
 
@@ -8,32 +8,27 @@ import math
 
 import numpy as np
 import pytest
+from helpers import resolved_scene
 
 from sitegen.build import needed_outputs
 from sitegen.compute.quantize import quantize
-from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
-from sitegen.content.scenes import parse_scene_block
-from sitegen.errors import SourceLoc
 from sitegen.models.bubble.model import Bubble
 from sitegen.models.bubble.point import compose
 from sitegen.models.bubble.solve import integrate
 from sitegen.models.kinetic.model import Kinetic
 from sitegen.models.kinetic.walls import QUANTILE, RANDOM, molecules
-from sitegen.registry import builtin_registry
 
-MODELS = builtin_registry().models
-
-# --- K4 resonance foldover (physics.md §12, §14 "Branches and non-events") ----------------------------------
+# --- K4 resonance foldover (docs/physics/bubble.md, hard cases) ----------------------------------
 #
 # Near its linear resonance a weakly driven bubble's steady response is not a smooth function of f: R_max/R0
-# jumps between adjacent points of a fine log-f grid (physics.md measured 0.168 at 328 kHz; here, with the
+# jumps between adjacent points of a fine log-f grid (docs/physics/README.md: 0.168 at 328 kHz; here, with the
 # model's argon bubble, vdW core and Keller–Miksis, f0 = 378.9 kHz and the jump is 0.092 at 362–365 kHz).
 # Interpolating across it does not converge, so the rule is: tabulate at slider stops only, never interpolate.
 
 FOLD_EFFECTS = ("gas", "vdw_hard_core", "surface_tension", "viscosity", "drive", "keller_miksis")
 FOLD_POINT = {"R0": 10.0, "p_a": 0.05}  # 10 µm, p_a = 0.05 p0
-CYCLES = 40  # from rest, as physics.md §12 ran it
+CYCLES = 40  # from rest, as docs/physics/README.md ran it
 # Three adjacent points of a 129-point log grid over 200–500 kHz, 200·2.5^(i/128) for i = 83, 84, 85.
 FINE = [200.0 * 2.5 ** (i / 128) for i in (83, 84, 85)]
 DISPLAY_RESOLUTION = 0.5e-4  # R_max/R0 is shown with 4 decimals
@@ -48,6 +43,7 @@ def _steady_r_max(f_khz: float, rtol: float) -> float:
     return max([r for _, r in run.maxima] + [1.0])
 
 
+@pytest.mark.slow
 def test_resonance_response_jumps_between_adjacent_frequencies_so_interpolation_fails():
     """The hazard: across 362.3, 364.9, 367.5 kHz (one 129-point log-f step apart) R_max/R0 = 1.1564, 1.2489,
     1.2711: a jump of 0.092 (> 0.05), and the middle one interpolated from its neighbours misses by 0.035,
@@ -73,13 +69,7 @@ readouts: driven_R_max
 
 
 def _scene():
-    spec, errors = parse_scene_block(
-        FOLD_SCENE.format(effects=" ".join(FOLD_EFFECTS)).splitlines(), SourceLoc("test.md", 1)
-    )
-    assert not errors, errors
-    scene, errors = resolve_scene(spec, MODELS)
-    assert not errors, errors
-    return scene
+    return resolved_scene(FOLD_SCENE.format(effects=" ".join(FOLD_EFFECTS)))
 
 
 def test_resonance_readout_is_tabulated_at_every_stop_never_interpolated():
@@ -102,7 +92,7 @@ def test_resonance_readout_is_tabulated_at_every_stop_never_interpolated():
 
 
 def test_quantile_default_never_draws_from_numpys_generators(monkeypatch):
-    """physics.md K2: generator streams are not stable across NumPy versions, so the default sampling is the
+    """docs/physics/kinetic.md: generator streams are not stable across NumPy versions, so the default sampling is the
     quantile sample. With np.random.default_rng made to raise, every readout at the defaults still evaluates
     (bitwise as before), while random mode does reach the generator (so the patch is not vacuous)."""
     assert Kinetic.param("sampling").default == QUANTILE

@@ -185,7 +185,8 @@ def test_out_of_domain_input_raises_naming_the_parameter(inputs):
         Impulse().evaluate(inputs)
 
 
-# --- effect `shape`: the four pulses of physics.md I1 -------------------------------------------------------------
+# --- effect `shape`: the four pulses of docs/physics/impulse.md
+# -------------------------------------------------------------
 
 from sitegen.models.collision.model import Collision  # noqa: E402
 from sitegen.models.impulse.pulses import SHAPES, shaped_force  # noqa: E402
@@ -203,7 +204,7 @@ def _shaped(shape: str, wanted, effects=("shape",), **inputs):
 @pytest.mark.parametrize("shape", SHAPES)
 @pytest.mark.parametrize("F_pk, tau, m", POSITIVE)
 def test_quadrature_of_each_shape_agrees_with_its_closed_form_impulse(F_pk, tau, m, shape):
-    """scipy.integrate.quad of the shape's F(t) over [0, τ] equals the model's closed-form J to ≤ 1e−12 rel (§13)."""
+    """scipy.integrate.quad of the shape's F(t) over [0, τ] equals the model's closed-form J to ≤ 1e−12 rel."""
     area, _ = quad(shaped_force, 0.0, tau, args=(F_pk, tau, shape), points=[tau / 2], epsabs=0.0, epsrel=1e-13)
     J = float(_shaped(shape, ["J"], F_pk=F_pk, tau=tau, m=m)["J"])
     assert abs(area - J) <= 1e-12 * J
@@ -212,7 +213,8 @@ def test_quadrature_of_each_shape_agrees_with_its_closed_form_impulse(F_pk, tau,
 
 @pytest.mark.parametrize("shape", SHAPES)
 def test_each_shape_has_the_same_peak_at_half_the_duration(shape):
-    """The drawn samples include t = τ/2 exactly, where the force is F_pk (every shape is symmetric with its peak there)."""
+    """The drawn samples include t = τ/2 exactly, where the force is F_pk (every shape is symmetric with its peak
+    there)."""
     out = _shaped(shape, ["pulse_t", "pulse_F", "t_apex", "F_max"], F_pk=37.5, tau=0.73)
     at_half = out["pulse_t"] == 0.5 * 0.73
     assert np.any(at_half) and np.all(out["pulse_F"][at_half] == 37.5)
@@ -276,7 +278,8 @@ def test_velocity_curve_is_the_running_integral_of_the_force(shape, v0):
 
 @pytest.mark.parametrize("F_pk, tau, m", STOPS)
 def test_velocity_curve_of_the_triangle_is_the_piecewise_quadratic(F_pk, tau, m):
-    """For the default triangle the v(t) layer is physics.md's piecewise quadratic (`velocity`) within 4ε of its scale."""
+    """For the default triangle the v(t) layer is docs/physics/impulse.md's piecewise quadratic (`velocity`) within 4ε
+    of its scale."""
     out = Impulse().evaluate(
         {"F_pk": F_pk, "tau": tau, "m": m, "v0": 1.5}, wanted=["pulse_t", "v_curve"], effects=("initial_velocity",)
     )

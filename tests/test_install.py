@@ -15,6 +15,7 @@ import zipfile
 from pathlib import Path
 
 import pytest
+from helpers import names
 from scipy.integrate import quad
 
 from sitegen.content import math as tex
@@ -56,7 +57,8 @@ def test_the_browser_build_run_by_node_gives_the_packages_mathml():
     ours, _ = tex.convert_math([MathItem(t, d, SourceLoc("x.md", 1)) for t, d in FORMULAS])
     script = (
         "const t = require('temml'); const f = JSON.parse(require('fs').readFileSync(0, 'utf8'));"
-        "process.stdout.write(JSON.stringify(f.map(([x, d]) => t.renderToString(x, {displayMode: d, throwOnError: true, annotate: false}))));"
+        "process.stdout.write(JSON.stringify(f.map(([x, d]) => t.renderToString(x, "
+        "{displayMode: d, throwOnError: true, annotate: false}))));"
     )
     done = subprocess.run(
         ["node", "-e", script],
@@ -95,8 +97,9 @@ def source_copy(tmp_path_factory) -> Path:
     return copy
 
 
-def _tree(folder: Path) -> list[str]:
-    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*"))
+def _listing(copy: Path) -> tuple[list[str], list[str]]:
+    """Every path (files and folders) under the copy's build/, and under the whole copy."""
+    return names(copy / "build", folders=True), names(copy, folders=True)
 
 
 def _pip(*args: str) -> None:
@@ -110,16 +113,17 @@ def wheel(source_copy, tmp_path_factory) -> dict:
     """sitegen's wheel, built once with `pip wheel .` from the source copy, and the copy's build/ and
     whole tree just before and just after."""
     out = tmp_path_factory.mktemp("wheel")
-    before = (_tree(source_copy / "build"), _tree(source_copy))
+    before = _listing(source_copy)
     _pip("wheel", "--no-deps", "--no-build-isolation", "-w", str(out), str(source_copy))
     return {
         "path": next(out.glob("sitegen-*.whl")),
         "before": before,
-        "after": (_tree(source_copy / "build"), _tree(source_copy)),
+        "after": _listing(source_copy),
     }
 
 
 @pytest.mark.parametrize("command", ["wheel", "install"])
+@pytest.mark.slow
 def test_installing_writes_nothing_into_build(source_copy, tmp_path, request, command):
     """After a site is built into build/, `pip wheel .` and `pip install .` leave build/ as it was (and
     the source tree gains no egg-info or build folder of theirs)."""
@@ -127,13 +131,14 @@ def test_installing_writes_nothing_into_build(source_copy, tmp_path, request, co
         built = request.getfixturevalue("wheel")
         before, after = built["before"], built["after"]
     else:
-        before = (_tree(source_copy / "build"), _tree(source_copy))
+        before = _listing(source_copy)
         _pip("install", "--no-deps", "--no-build-isolation", "--target", str(tmp_path / "target"), str(source_copy))
-        after = (_tree(source_copy / "build"), _tree(source_copy))
+        after = _listing(source_copy)
     assert after[0] == before[0]
     assert after[1] == before[1]
 
 
+@pytest.mark.slow
 def test_the_wheel_carries_temml_templates_and_assets(wheel):
     """What a build needs besides Python code is inside the wheel."""
     names = zipfile.ZipFile(wheel["path"]).namelist()
@@ -178,6 +183,7 @@ def installed(wheel, tmp_path_factory) -> dict:
     return {"sitegen": str(env_dir / "bin" / "sitegen"), "python": str(python), "env": env}
 
 
+@pytest.mark.slow
 def test_the_installed_wheel_builds_a_book_elsewhere(installed, tmp_path):
     """The installed tool builds the plugin book in a folder of its own, with no node_modules anywhere
     near; an edit to the book's model changes the page and recomputes that model's scene only."""
@@ -198,6 +204,7 @@ def test_the_installed_wheel_builds_a_book_elsewhere(installed, tmp_path):
     assert not any(p.name == "node_modules" for p in book.parents) and not (book / "node_modules").exists()
 
 
+@pytest.mark.slow
 def test_a_new_book_builds_and_previews_with_the_installed_tool(installed, tmp_path, chromium):
     """`sitegen new mybook && cd mybook && sitegen build` with the installed wheel makes pages whose
     scene shows the book's own model; its test passes; `sitegen serve --watch` there shows a prose

@@ -22,6 +22,7 @@ import time
 from pathlib import Path
 
 import pytest
+from helpers import tree, write_book
 
 from sitegen import cli
 from sitegen.site import writer
@@ -50,16 +51,6 @@ def _book(title: str, masses: str) -> dict[str, str]:
 OLD, NEW = _book("Old title", "1..3"), _book("New title", "1..4")
 
 
-def write_book(root: Path, pages: dict[str, str]) -> None:
-    """Put the book's pages in ROOT/content (and its book.toml beside them)."""
-    content = root / "content"
-    shutil.rmtree(content, ignore_errors=True)
-    content.mkdir(parents=True)
-    for name, text in pages.items():
-        (content / f"{name}.md").write_text(text, encoding="utf-8")
-    (root / "book.toml").write_text("")  # a book with every default
-
-
 def sitegen(root: Path, point: str = "none", output=subprocess.PIPE) -> subprocess.Popen:
     """`sitegen build --root ROOT` in a subprocess, armed to die at `point` (see interrupt.py)."""
     env = {**os.environ, "PYTHONUNBUFFERED": "1", "OPENBLAS_NUM_THREADS": "1"}
@@ -80,13 +71,6 @@ def build_here(root: Path) -> subprocess.CompletedProcess:
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         code = cli.main(["build", "--root", str(root)])
     return subprocess.CompletedProcess(["sitegen", "build"], code, out.getvalue(), err.getvalue())
-
-
-def tree(folder: Path) -> dict[str, bytes]:
-    """Every file under `folder`, by relative path, with its bytes ({} when there is no folder)."""
-    if not folder.is_dir():
-        return {}
-    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
 def which(found: dict[str, bytes], old: dict[str, bytes], new: dict[str, bytes]) -> str:
@@ -163,6 +147,7 @@ def assert_next_build_recovers(root: Path, versions) -> None:
     [(f"file:{CHAPTERS // 2}", "old"), ("swapped", "new"), ("cleanup", "new")],
     ids=["mid-write", "just-swapped", "deleting-the-old-tree"],
 )
+@pytest.mark.slow  # builds a book in another process and kills it
 def test_kill_during_write_leaves_old_or_new_tree(book, versions, point, expected):
     """SIGKILL at a point of the write: build/ is wholly the old tree before the swap and wholly
     the new one after it; the next build cleans up and succeeds."""
@@ -172,6 +157,7 @@ def test_kill_during_write_leaves_old_or_new_tree(book, versions, point, expecte
     assert_next_build_recovers(book, versions)
 
 
+@pytest.mark.slow  # builds a book in another process and kills it
 def test_kill_while_caching_a_table(book, versions):
     """Killed with half a cache entry on disk: build/ is the old tree, and the next build
     neither trusts nor stumbles on the broken write."""
@@ -181,6 +167,7 @@ def test_kill_while_caching_a_table(book, versions):
     assert_next_build_recovers(book, versions)
 
 
+@pytest.mark.slow  # builds a book in another process and kills it
 def test_kill_between_fallback_renames_is_repaired(book, versions):
     """Without an atomic exchange, a kill between the two renames leaves the old tree aside;
     the next build (or any writer) puts it back before doing anything else."""
@@ -192,6 +179,7 @@ def test_kill_between_fallback_renames_is_repaired(book, versions):
     assert_next_build_recovers(book, versions)
 
 
+@pytest.mark.slow  # builds a book in another process and kills it
 def test_kills_at_increasing_delays(book, projects, versions):
     """Killed from outside: once early (while it starts and reads), then 0, 1, 5 and 20 ms
     after its staging folder appears (it is writing): each time build/ is the old tree or the new

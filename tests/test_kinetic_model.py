@@ -77,7 +77,7 @@ DEFAULT_READOUTS = {
 
 @pytest.mark.parametrize("output, expected", DEFAULT_READOUTS.items(), ids=list(DEFAULT_READOUTS))
 def test_defaults_display_the_listed_readouts(output, expected):
-    """At the defaults the page shows the values physics.md lists."""
+    """At the defaults the page shows the values docs/physics/kinetic.md lists."""
     value = float(_evaluate([output])[output])
     assert fmt(value, Kinetic.output(output).decimals) == expected
 
@@ -344,7 +344,8 @@ def test_same_inputs_give_bitwise_the_same_outputs():
         assert np.array_equal(first[name], second[name], equal_nan=True), name
 
 
-# --- effects -----------------------------------------------------------------------------------------------------------
+# --- effects
+# -----------------------------------------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize("dim, factor", [(0, 1), (1, 2), (2, 3)], ids=["1D", "2D", "3D"])
@@ -438,7 +439,8 @@ def test_maxwell_wall_path_does_not_depend_on_the_windows_asked_for():
     assert alone.hits == together.hits and np.array_equal(alone.impulse, together.impulse)
 
 
-# --- invalid input -------------------------------------------------------------------------------------------------------
+# --- invalid input
+# -------------------------------------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize(

@@ -100,7 +100,8 @@ def test_every_scene_shows_its_whole_figure(page, case):
     problems = figure_problems(page)
     assert not problems, "\n".join(problems[:15])
     variants = page.evaluate("""() => [...document.querySelectorAll('svg.scene-svg')]
-        .filter(s => s.getBoundingClientRect().width > 0).map(s => s.classList.contains('narrow') ? 'narrow' : 'wide')""")
+        .filter(s => s.getBoundingClientRect().width > 0)
+          .map(s => s.classList.contains('narrow') ? 'narrow' : 'wide')""")
     assert set(variants) <= ({"narrow"} if case.width < 480 else {"wide"}), variants
 
 
@@ -155,7 +156,8 @@ def test_the_checks_find_what_they_look_for(page_at):
             and overflow_problems(page)
         )
         page.evaluate("""() => { const texts = document.querySelectorAll('#scene-collision svg.wide text');
-            texts[1].setAttribute('x', texts[0].getAttribute('x')); texts[1].setAttribute('y', texts[0].getAttribute('y')); }""")
+            texts[1].setAttribute('x', texts[0].getAttribute('x'));
+            texts[1].setAttribute('y', texts[0].getAttribute('y')); }""")
         assert text_collision_problems(page)
     finally:
         page.reload(wait_until="load")

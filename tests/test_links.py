@@ -1,7 +1,8 @@
 """Every internal link, anchor and asset reference of the built site resolves.
 
 The checker reads the built files (no browser): in HTML every `href`, `src`, the search box's
-`data-index` (the script it loads when first used) and SVG `url(#…)` reference, in CSS every `url(…)`. A reference must name a file inside the site (not a folder:
+`data-index` (the script it loads when first used) and SVG `url(#…)` reference, in CSS every `url(…)`. A reference must
+name a file inside the site (not a folder:
 from file:// a folder shows a listing, not its index.html), and a `#fragment` must be an id
 in the target page. Pages make no request outside the site; only links a reader follows
 (`<a href>`) may point to the web, and those are not fetched.

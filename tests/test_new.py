@@ -7,9 +7,9 @@ from __future__ import annotations
 import re
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
+from helpers import names
 
 from sitegen.build import BuildConfig, build
 from sitegen.errors import SceneCrashed
@@ -18,17 +18,13 @@ from sitegen.newbook import STARTER, starter_files
 NEW = [sys.executable, "-m", "sitegen.cli", "new"]
 
 
-def _tree(folder: Path) -> list[str]:
-    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file())
-
-
 def test_new_writes_the_starter_book(tmp_path):
     """Every starter file, byte for byte (the package's gitignore as .gitignore), into a folder it makes."""
     done = subprocess.run([*NEW, "mybook"], cwd=tmp_path, capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr
     book = tmp_path / "mybook"
     expected = {(".gitignore" if p.as_posix() == "gitignore" else p.as_posix()): p for p in starter_files()}
-    assert _tree(book) == sorted(expected)
+    assert names(book) == sorted(expected)
     for name, source in expected.items():
         assert (book / name).read_bytes() == (STARTER / source).read_bytes(), name
     assert {
@@ -59,10 +55,10 @@ def test_new_refuses_a_folder_that_is_not_empty(tmp_path, existing):
     done = subprocess.run([*NEW, str(folder)], capture_output=True, text=True, timeout=60)
     assert done.returncode == 2 and "Traceback" not in done.stderr
     assert (
-        f"{folder} is not empty (it holds {existing.split('/')[0]}); sitegen new writes a book into a new or empty folder"
-        in done.stderr
+        f"{folder} is not empty (it holds {existing.split('/')[0]}); "
+        "sitegen new writes a book into a new or empty folder" in done.stderr
     )
-    assert _tree(folder) == [existing] and (folder / existing).read_text() == "mine\n"
+    assert names(folder) == [existing] and (folder / existing).read_text() == "mine\n"
 
 
 def test_new_refuses_a_file(tmp_path):

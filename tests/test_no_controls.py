@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 from browser import logged_page
-from test_author_errors import make_book
+from helpers import write_book
 
 from sitegen.build import build
 
@@ -15,7 +15,7 @@ MOVING = '+++\ntitle = "Moving"\n+++\n\n```scene\nmodel: impulse\nslider F_pk: 0
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
-    config = make_book(tmp_path_factory.mktemp("controls"), {"still": STILL, "moving": MOVING})
+    config = write_book(tmp_path_factory.mktemp("controls"), {"still": STILL, "moving": MOVING})
     build(config, progress=None)
     return config.out
 

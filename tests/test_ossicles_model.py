@@ -81,7 +81,7 @@ DEFAULT_READOUTS = [
     "output, load, expected", DEFAULT_READOUTS, ids=[f"{o}-{LOAD_IDS[load]}" for o, load, _ in DEFAULT_READOUTS]
 )
 def test_defaults_display_the_spec_readouts(output, load, expected):
-    """At the defaults (55 mm², 3.2 mm², ℓ = 1.3, 60 dB) the page shows physics.md's values (T in %)."""
+    """At the defaults (55 mm², 3.2 mm², ℓ = 1.3, 60 dB) the page shows docs/physics/ossicles.md's values (T in %)."""
     value = float(_evaluate([output], **{**Ossicles.defaults(), "load": load})[output])
     assert fmt(value, Ossicles.output(output).decimals) == expected
 
@@ -127,7 +127,7 @@ def test_acoustic_impedance_transforms_by_one_over_G_squared(A_TM, A_FP, ell, lo
 
 
 def test_measured_cochlea_load_is_about_67500_at_the_default_footplate():
-    """Z_c = 21.1 GΩ × 3.2 mm² = 6.752e4 Pa·s/m (physics.md: 6.75e4)."""
+    """Z_c = 21.1 GΩ × 3.2 mm² = 6.752e4 Pa·s/m (docs/physics/ossicles.md: 6.75e4)."""
     assert float(_evaluate(["Z_c"], load=COCHLEA, A_FP=3.2)["Z_c"]) == pytest.approx(67520.0, rel=1e-15)
 
 
@@ -146,7 +146,8 @@ def test_no_output_adds_the_pressure_gain_to_a_power_transmission(A_TM, A_FP, el
 
 
 def test_the_transformer_lifts_water_transmission_from_minus_29_5_to_minus_15_dB():
-    """Water load at the defaults: 10 log T goes −29.52 → −14.96 dB, a 14.56 dB power gain — not the 26.98 dB of G_dB."""
+    """Water load at the defaults: 10 log T goes −29.52 → −14.96 dB, a 14.56 dB power gain — not the 26.98 dB of
+    G_dB."""
     out = _evaluate(["T0_dB", "T1_dB", "G_dB"], load=WATER)
     lift = float(out["T1_dB"] - out["T0_dB"])
     assert fmt(lift, 2) == "14.56" and abs(lift - float(out["G_dB"])) > 12

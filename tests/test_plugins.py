@@ -168,7 +168,8 @@ def test_adding_a_model_recomputes_nothing(book):
     ids=["collision", "chain", "bubble"],
 )
 def test_a_built_in_model_key_covers_its_own_files_and_no_other_model(model, own, others):
-    """The built-in model's key is made of the modules it imports: its plugin's, the framework's, never another model's."""
+    """The built-in model's key is made of the modules it imports: its plugin's, the framework's, never another
+    model's."""
     modules = source_hashes(frozenset({builtin_registry().models[model].__module__}))
     assert own in modules and "sitegen.physics.base" in modules, sorted(modules)
     assert not [name for name in modules for other in others if f".{other}." in f"{name}."], sorted(modules)
@@ -202,7 +203,8 @@ def test_an_import_error_in_a_book_model_is_reported_at_its_line_and_at_the_scen
     with pytest.raises(BuildFailed) as failure:
         build(book, progress=None)
     assert [str(e) for e in failure.value.errors] == [
-        f"content/index.md:{PENDULUM_SCENE_LINE}: scene 'pendulum': model 'pendulum' could not be loaded: see the error "
+        f"content/index.md:{PENDULUM_SCENE_LINE}: scene 'pendulum': "
+        "model 'pendulum' could not be loaded: see the error "
         "at models/pendulum/model.py:4",
         "models/pendulum/model.py:4: models/pendulum (the book) cannot be loaded: ImportError: cannot import name "
         f"'periodd' from 'sitegen_book_models.pendulum.swing_time' ({model.parent / 'swing_time.py'})",
@@ -229,8 +231,8 @@ def test_a_model_missing_a_declaration_is_an_error_at_its_class(book):
     with pytest.raises(BuildFailed) as failure:
         build(book, progress=None)
     assert (
-        "models/pendulum/model.py:7: models/pendulum (the book): model Pendulum declares no outputs (see the Model class)"
-        in [str(e) for e in failure.value.errors]
+        "models/pendulum/model.py:7: models/pendulum (the book): "
+        "model Pendulum declares no outputs (see the Model class)" in [str(e) for e in failure.value.errors]
     )
 
 

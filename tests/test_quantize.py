@@ -1,4 +1,4 @@
-"""Display formatting (spec §0.3): integer quanta, unsigned zero, U+2212 minus, exact round trip."""
+"""Display formatting (docs/physics/README.md): integer quanta, unsigned zero, U+2212 minus, exact round trip."""
 
 from __future__ import annotations
 

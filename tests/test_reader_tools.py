@@ -64,7 +64,8 @@ def shared(chromium, built_site):
 
 def _in_view(page, dom_id: str) -> bool:
     return page.evaluate(
-        "id => { const r = document.getElementById(id).getBoundingClientRect(); return r.top >= -2 && r.top < innerHeight; }",
+        "id => { const r = document.getElementById(id).getBoundingClientRect(); "
+        "return r.top >= -2 && r.top < innerHeight; }",
         dom_id,
     )
 
@@ -202,7 +203,8 @@ def test_every_page_links_to_its_neighbours_and_the_whole_book(shared, name):
     assert headings and all(href == f"#{anchor}" for anchor, href in headings), headings
     sections = {h for h, _ in links if h.startswith("#")}
     prose = page.evaluate(
-        "() => [...document.querySelectorAll('article h2[id], article h3[id]')].filter(h => !h.closest('nav')).map(h => h.id)"
+        "() => [...document.querySelectorAll('article h2[id], article "
+        "h3[id]')].filter(h => !h.closest('nav')).map(h => h.id)"
     )
     assert sections == {f"#{anchor}" for anchor in prose}, "the current page's sections in the contents"
 

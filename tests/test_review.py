@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import write_book
 
 from sitegen.cli import main
 from sitegen.review import review_builds
@@ -206,6 +207,7 @@ def constant_review(two_builds, tmp_path_factory):
     return review_builds(*two_builds, out, "before", "after", render=False), out
 
 
+@pytest.mark.slow  # the tiny book built again in another process (two_builds)
 def test_changed_constant_changes_exactly_that_scene(constant_review):
     """Only the ossicles scene changed: no other scene, no page text, no other file."""
     review, _ = constant_review
@@ -217,6 +219,7 @@ def test_changed_constant_changes_exactly_that_scene(constant_review):
     assert review.files == []
 
 
+@pytest.mark.slow  # the tiny book built again in another process (two_builds)
 def test_changed_constant_changes_the_outputs_that_depend_on_it(constant_review):
     """Exactly the outputs computed from the constant changed, each with its size and place."""
     (scene,) = constant_review[0].scenes()
@@ -229,6 +232,7 @@ def test_changed_constant_changes_the_outputs_that_depend_on_it(constant_review)
     assert "power in, no transformer T0" in changed_readouts
 
 
+@pytest.mark.slow  # the tiny book built again in another process (two_builds)
 def test_changed_constant_changes_the_figure(constant_review):
     """The figure differs in its moving bars."""
     (scene,) = constant_review[0].scenes()
@@ -236,6 +240,7 @@ def test_changed_constant_changes_the_figure(constant_review):
 
 
 @pytest.mark.browser
+@pytest.mark.slow  # the tiny book built again in another process (two_builds)
 def test_changed_figure_rendered_differs_in_some_but_few_pixels(two_builds, tmp_path):
     """Rendered by Chromium, the changed figure differs in some but few pixels."""
     review = review_builds(*two_builds, tmp_path, "before", "after")
@@ -248,6 +253,7 @@ def test_changed_figure_rendered_differs_in_some_but_few_pixels(two_builds, tmp_
     assert pixels.old_png != pixels.new_png
 
 
+@pytest.mark.slow  # the tiny book built again in another process (two_builds)
 def test_report_lists_that_scene_and_nothing_else(constant_review):
     """The HTML report has one scene card, with its images inline; the summary names the outputs."""
     review, out = constant_review
@@ -262,6 +268,7 @@ def test_report_lists_that_scene_and_nothing_else(constant_review):
         assert f"| {other} |" not in summary and f'id="mechanics--{other}"' not in html
 
 
+@pytest.mark.slow  # the tiny book built again in another process (two_builds)
 def test_cli_exits_1_on_changes_and_0_on_identical_trees(two_builds, tmp_path, capsys):
     """The exit status gates CI: 1 when anything changed, 0 for byte-identical trees."""
     old, new = two_builds
@@ -281,6 +288,7 @@ def test_cli_says_what_is_wrong_with_its_arguments(tmp_path, capsys):
     assert "is not a built site" in capsys.readouterr().err
 
 
+@pytest.mark.slow  # the tiny book built again in another process (two_builds)
 def test_without_rendering_the_report_shows_the_svgs(two_builds, tmp_path):
     """--no-render: no pixels, the old and new figures shown as SVG images, and the reason said."""
     review = review_builds(*two_builds, tmp_path, render=False)
@@ -318,14 +326,13 @@ def _git(repo: Path, *args: str) -> str:
     return done.stdout
 
 
+@pytest.mark.slow
 def test_review_against_a_revision_builds_it_in_a_temporary_worktree(tmp_path, capsys):
     """`review --base HEAD`: identical when nothing changed, the changed scene when a default moved,
     and no worktree left behind."""
     repo = tmp_path / "repo"
-    (repo / "content").mkdir(parents=True)
-    (repo / "content" / "index.md").write_text(TINY_PAGE)
+    write_book(repo, {"index": TINY_PAGE})
     (repo / ".gitignore").write_text("/build/\n/.cache/\n")
-    (repo / "book.toml").write_text("")
     _git(repo, "init", "-q", "-b", "main")
     _git(repo, "add", "-A")
     _git(repo, "commit", "-q", "-m", "tiny book")

@@ -64,7 +64,8 @@ class Ties(Model):
     title = "Exact ties"
     params = (Param("s", "s", "", 0.0, 0.0, 1.0),)
     outputs = tuple(Output(n, n, "", ("s",), decimals=d) for n, (k, d) in FACTORS.items()) + tuple(
-        Output(n + "_x", n + " (closed form)", "", ("s",), decimals=d, structure=_linear(k)) for n, (k, d) in FACTORS.items()
+        Output(n + "_x", n + " (closed form)", "", ("s",), decimals=d, structure=_linear(k))
+        for n, (k, d) in FACTORS.items()
     )
 
     def _evaluate(self, x, wanted, effects):
@@ -106,7 +107,8 @@ def ties_site(tmp_path_factory) -> Path:
 
 def _readouts(page) -> dict[str, str]:
     return page.evaluate(
-        "() => Object.fromEntries([...document.querySelectorAll('[data-out]')].map(e => [e.dataset.out, e.textContent]))"
+        "() => Object.fromEntries([...document.querySelectorAll('[data-out]')].map(e "
+        "=> [e.dataset.out, e.textContent]))"
     )
 
 

@@ -11,7 +11,10 @@ import pytest
 from sitegen.cli import main
 
 # Prints whether the build loaded numpy (a full build does; a stamped no-op must not).
-_PROBE = "import sys; from sitegen.cli import main; code = main(sys.argv[1:]); print('numpy loaded:', 'numpy' in sys.modules); sys.exit(code)"
+_PROBE = (
+    "import sys; from sitegen.cli import main; code = main(sys.argv[1:]); "
+    "print('numpy loaded:', 'numpy' in sys.modules); sys.exit(code)"
+)
 
 
 def _build(root, *extra) -> str:

@@ -5,27 +5,19 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from helpers import resolved_scene
 
 from sitegen.compute.expression import shown
 from sitegen.compute.proof import proof_stops
-from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.structure import Structured
 from sitegen.compute.tabulate import tabulate_scene
-from sitegen.content.scenes import parse_scene_block
 from sitegen.errors import AuthorError, SourceLoc
 from sitegen.physics.base import Model, Output, Param
 from sitegen.physics.structure import Coord, Poly, param
-from sitegen.registry import builtin_registry
-
-MODELS = builtin_registry().models
 
 
-def _scene(lines: list[str], models=MODELS):
-    spec, errors = parse_scene_block(lines, SourceLoc("try.md", 10))
-    assert not errors, errors
-    scene, errors = resolve_scene(spec, models)
-    assert not errors, errors
-    return scene
+def _scene(lines: list[str], models=None):
+    return resolved_scene(lines, models, where=SourceLoc("try.md", 10))
 
 
 COLLISION = [
@@ -41,7 +33,7 @@ COLLISION = [
 
 
 def test_full_resolution_collision_ships_a_few_hundred_values():
-    """The collision at physics.md resolution (1.03e10 states) ships expressions of at most a few
+    """The collision at docs/physics/ resolution (1.03e10 states) ships expressions of at most a few
     hundred node values each and one coordinate table of 199 entries along m1 + m2."""
     scene = _scene(COLLISION)
     assert np.prod([a.count for a in scene.axes]) == 100 * 100 * 101 * 101 * 101

@@ -1,5 +1,5 @@
 """I3 (work of a spring vs drag, direct vs arc): closed forms against exact rationals and Gauss–Legendre line
-integrals, the hard cases of physics.md I3 and §11.4, the effects' vanishing limits, and the figure's shapes."""
+integrals, the hard cases of docs/physics/work.md, the effects' vanishing limits, and the figure's shapes."""
 
 from __future__ import annotations
 
@@ -8,12 +8,10 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+from helpers import resolved_scene
 
 from sitegen.compute.quantize import fmt
-from sitegen.compute.scenes import resolve_scene
 from sitegen.compute.tabulate import tabulate_scene
-from sitegen.content.scenes import parse_scene_block
-from sitegen.errors import SourceLoc
 from sitegen.models.work.model import CONSERVATIVE, PATH_DEPENDENT, QUADRATIC, Work
 from sitegen.models.work.paths import (
     ARC,
@@ -30,7 +28,6 @@ from sitegen.models.work.shapes import ARROW_MAX, DRAG_SPACING, GRID_X, GRID_Y, 
 from sitegen.registry import builtin_registry
 from sitegen.site.assemble import readout_text
 
-MODELS = builtin_registry().models
 FIGURES = builtin_registry().figures
 
 EPS = np.finfo(float).eps
@@ -80,7 +77,8 @@ def _rest_length_effects(ell0):
     ids=["W-spring", "dU-spring", "W-spring-arc", "W-drag-direct", "W-drag-arc", "W_drag-arc", "dU-drag"],
 )
 def test_defaults_display_the_seed_readouts(inputs, output, expected):
-    """Defaults: W = 0.000 J and U(A)−U(B) = 0.000 J; drag gives −2.000 J direct, −3.142 J over the arc, and no U ("—")."""
+    """Defaults: W = 0.000 J and U(A)−U(B) = 0.000 J; drag gives −2.000 J direct, −3.142 J over the arc, and no U
+    ("—")."""
     value = float(_evaluate([output], **inputs)[output])
     shown = Work.output(output).special if not np.isfinite(value) else fmt(value, 3)
     assert shown == expected
@@ -129,7 +127,8 @@ def test_potential_drop_beyond_the_endpoints(x_c, ell0):
     assert abs(Fraction(value) - _exact_potential_drop(2.0, x_c, ell0)) <= Fraction(4 * EPS * scale)
 
 
-# --- §11.4: the Gauss–Legendre error table -----------------------------------------------------------------
+# --- docs/physics/work.md: the Gauss–Legendre error table
+# -----------------------------------------------------------------
 
 
 def _quadrature_error(path, ell0, n, split=True) -> float:
@@ -157,8 +156,8 @@ def _quadrature_error(path, ell0, n, split=True) -> float:
     ],
 )
 def test_gauss_legendre_converges_where_physics_md_says(path, ell0, n, split, tolerance):
-    """§11.4 (x_c = 0.5): ℓ0 = 0 exact for n ≥ 2 direct, 3e−15 at n = 8 on the arc; ℓ0 = 0.5 arc 4e−16 at n = 32;
-    split at the anchor, the chord is exact at n = 4."""
+    """docs/physics/work.md (x_c = 0.5): ℓ0 = 0 exact for n ≥ 2 direct, 3e−15 at n = 8 on the arc; ℓ0 = 0.5 arc 4e−16
+    at n = 32; split at the anchor, the chord is exact at n = 4."""
     assert _quadrature_error(path, ell0, n, split) <= tolerance
 
 
@@ -185,7 +184,7 @@ CLOSE_IDS = ["h=1-x_c=0.8", "h=2-x_c=0.8", "h=0.05-x_c=-0.35", "h=0.01-x_c=0.5",
 
 @pytest.mark.parametrize("h, x_c", CLOSE_PASSES, ids=CLOSE_IDS)
 def test_fixed_32_nodes_fail_where_the_arc_passes_close_to_the_anchor(h, x_c):
-    """Beyond physics.md's table: with ℓ0 = 0.5 an arc that passes within ~0.2 m of the anchor brings the
+    """Beyond docs/physics/work.md's table: with ℓ0 = 0.5 an arc that passes within ~0.2 m of the anchor brings the
     complex singularity near, and 32 nodes (even split at the nearest point) miss by more than 1e−12."""
     work = line_integral_work(SPRING, ARC, h, k=2.5, x_c=x_c, ell0=0.5)
     assert abs(Fraction(work) - _exact_potential_drop(2.5, x_c, 0.5)) > Fraction(1e-12)
@@ -216,7 +215,8 @@ def test_arc_length_at_tiny_sagitta_is_exactly_the_chord():
 
 
 def _series_arc_length(h: float) -> Fraction:
-    """c θ / sin θ for small h from series in exact rationals: θ = 2 arctan h, θ/sin θ = 1 + θ²/6 + 7θ⁴/360 + 31θ⁶/15120."""
+    """c θ / sin θ for small h from series in exact rationals: θ = 2 arctan h, θ/sin θ = 1 + θ²/6 + 7θ⁴/360 +
+    31θ⁶/15120."""
     x = Fraction(h)
     theta = 2 * (x - x**3 / 3 + x**5 / 5 - x**7 / 7)
     return 2 * (1 + theta**2 / 6 + 7 * theta**4 / 360 + 31 * theta**6 / 15120)
@@ -277,7 +277,8 @@ def test_drag_verdict_comes_from_the_force_not_from_comparing_paths(h):
     "x_c, ell0", [(0.5, None), (-0.35, 0.5), (0.8, 1.3)], ids=["x_c=0.5", "x_c=-0.35-l0=0.5", "x_c=0.8-l0=1.3"]
 )
 def test_spring_work_is_the_same_on_both_paths(h, x_c, ell0):
-    """Spring: |W_arc − W_dir| ≤ 1e−12 J by (adaptive) quadrature, the readouts are bitwise equal, the verdict is yes."""
+    """Spring: |W_arc − W_dir| ≤ 1e−12 J by (adaptive) quadrature, the readouts are bitwise equal, the verdict is
+    yes."""
     arc = line_integral_work(SPRING, ARC, h, k=2.5, x_c=x_c, ell0=ell0, tol=1e-15)
     direct = line_integral_work(SPRING, DIRECT, h, k=2.5, x_c=x_c, ell0=ell0, tol=1e-15)
     assert abs(arc - direct) <= 1e-12
@@ -334,7 +335,8 @@ def test_zero_work_is_shown_unsigned(value):
 
 @pytest.mark.parametrize("h", [0.05, 0.25, 1.0, 2.0, 4.0], ids=["h=0.05", "h=0.25", "h=1", "h=2", "h=4"])
 def test_arc_is_the_circle_through_a_and_b_with_sagitta_h(h):
-    """Arc points: A at λ = 0, B at λ = 1, apex h at λ = ½, all on the circle of radius R = (1 + h²)/(2h) about (0, h − R)."""
+    """Arc points: A at λ = 0, B at λ = 1, apex h at λ = ½, all on the circle of radius R = (1 + h²)/(2h) about (0, h −
+    R)."""
     lam = np.linspace(0.0, 1.0, 101)
     x, y = arc_points(h, lam)
     radius = (1.0 + h * h) / (2.0 * h)
@@ -406,7 +408,8 @@ def test_quadratic_drag_matches_linear_at_equal_force(path):
 @pytest.mark.parametrize("output", ["W", "dU", "W_drag"])
 @pytest.mark.parametrize("m_g", [0.0, 0.1, 50.0], ids=["m=0", "m=0.1", "m=50"])
 def test_gravity_does_no_net_work_between_a_and_b(force, output, m_g):
-    """gravity: A and B are at one height, so W, U(A) − U(B) and W_drag are unchanged (to the display digit: exactly)."""
+    """gravity: A and B are at one height, so W, U(A) − U(B) and W_drag are unchanged (to the display digit:
+    exactly)."""
     with_gravity = float(_evaluate([output], ("gravity",), force=force, path=ARC, m_g=m_g, **POINT)[output])
     without = float(_evaluate([output], (), force=force, path=ARC, **POINT)[output])
     if output == "dU" and force == DRAG:  # drag alone has no potential ("—"); gravity's drop A -> B is 0
@@ -529,10 +532,7 @@ def _scene():
         "slider s: 0.5..1.5 step 0.5 default 1",
         "readouts: W dU W_drag verdict",
     ]
-    spec, errors = parse_scene_block(lines, SourceLoc("try.md", 1))
-    assert not errors
-    scene, errors = resolve_scene(spec, MODELS)
-    assert not errors
+    scene = resolved_scene(lines)
     figure = FIGURES["work"]
     names = sorted({o.name for o in scene.readouts} | {n for layer in figure.layers(scene) for n in layer.outputs()})
     return scene, tabulate_scene(scene, names)

@@ -1,4 +1,5 @@
-"""The `sitegen` command: new, build, serve, review, bench, models, and accept-figures/check-figures for the figure goldens."""
+"""The `sitegen` command: new, build, serve, review, bench, models, and accept-figures/check-figures for the figure
+goldens."""
 
 from __future__ import annotations
 
@@ -142,7 +143,8 @@ def _build_options(command) -> None:
     command.add_argument(
         "--no-cache",
         action="store_true",
-        help="compute every scene; neither read nor write tables in .cache/ (compiled code is still kept in .cache/compiled/)",
+        help="compute every scene; neither read nor write tables in "
+        ".cache/ (compiled code is still kept in .cache/compiled/)",
     )
 
 

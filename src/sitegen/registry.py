@@ -222,7 +222,8 @@ def _output_problems(model: type[Model], plugin: Plugin, book: BookConfig | None
         for effect in [output.effect] * bool(output.effect) + [e for e, _ in output.deps_with]:
             if effect not in model.effects:
                 wrong.append(
-                    f"its effect '{effect}' is not one the model offers{did_you_mean(effect, model.effects)} Effects: {', '.join(model.effects) or 'none'}"
+                    f"its effect '{effect}' is not one the model offers{did_you_mean(effect, model.effects)} "
+                    f"Effects: {', '.join(model.effects) or 'none'}"
                 )
         if output.why_from and output.why_from not in outputs:
             wrong.append(f"its why_from '{output.why_from}' is no output{did_you_mean(output.why_from, outputs)}")

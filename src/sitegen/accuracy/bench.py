@@ -126,7 +126,8 @@ def summary_lines(results: dict) -> list[str]:
         data = scene.get("data") or {"raw": 0, "gzip": 0}
         lines.append(
             f"  {name:<40} {scene['seconds']:8.3f} s over {scene['repeats']} run(s), {scene['stops']:>17,} states, "
-            f"{scene.get('stored_values', 0):>10,} values, {data['raw'] / 1024:7.1f} KiB raw {data['gzip'] / 1024:6.1f} KiB gzip"
+            f"{scene.get('stored_values', 0):>10,} values, "
+            f"{data['raw'] / 1024:7.1f} KiB raw {data['gzip'] / 1024:6.1f} KiB gzip"
         )
     for name, page in results["build"]["pages"].items():
         lines.append(

@@ -1,4 +1,4 @@
-"""Grid resolution against interpolation error against bytes (physics.md §12).
+"""Grid resolution against interpolation error against bytes (docs/physics/README.md).
 
 For a few outputs of the tabulated scenes, each along one slider with the others at their
 defaults: store the output at a few nodes of some axis (linear, logarithmic, or a coordinate in
@@ -46,7 +46,7 @@ def _stops(lo: float, hi: float, step: float) -> np.ndarray:
     return np.round(lo + step * np.arange(round((hi - lo) / step) + 1), 10)
 
 
-# physics.md §12, on the slider ranges of physics.md I1, I2 and I4.
+# docs/physics/README.md, on the slider ranges of the impulse, collision and lever scenes.
 LINES = {
     "v1f": Line(
         "I2 v₁f(m₁), m₂ = 2 kg",
@@ -126,7 +126,7 @@ AXIS_TEXT = {
     "per stop": "every stop",
 }
 
-# (line, axis, node counts): physics.md §12's rows.
+# (line, axis, node counts): the rows of the table in docs/physics/README.md.
 CASES = (
     ("v1f", "linear", (17, 33, 65)),
     ("v1f", "log", (17, 33, 65)),
@@ -147,7 +147,7 @@ def json_gzip_bytes(values: np.ndarray, decimals: int) -> int:
 
 
 def resolution_experiment(scenes=None) -> list[dict]:
-    """Every §12 row, then one 'every stop' row per output (what the page ships, no interpolation); only the
+    """Every row of the resolution table (docs/physics/README.md), then one 'every stop' row per output (what the page ships, no interpolation); only the
     outputs of `scenes` ("page#id") when given (a book without those scenes has no rows)."""
     lines = {key: line for key, line in LINES.items() if scenes is None or line.scene in scenes}
     rows = []

@@ -151,7 +151,8 @@ def tolerance_error(scene: ResolvedScene, checked: Checked) -> AuthorError:
         remedy = "choose another method"
     where = scene.spec.loc_of("numerics")
     message = (
-        f"measured error {written(record.error, '.1e')} ({record.metric}, against {record.reference}) at {checked.worst} "
+        f"measured error {written(record.error, '.1e')} ({record.metric}, "
+        f"against {record.reference}) at {checked.worst} "
         f"exceeds the declared tolerance {written(settings.tolerance)} of '{settings.text()}'; "
         f"{remedy} or loosen the tolerance on the scene's 'numerics:' line"
     )

@@ -4,8 +4,8 @@ A scene tabulates each output only over the sliders in its deps, so a parameter 
 freeze that slider's effect and ship a wrong number at every other stop. When a scene is tabulated, each
 output is evaluated at the scene's defaults and at a stop seeded from the scene's key, and again with each
 parameter of the scene moved — to both ends of its slider and a seeded stop, or to seeded values of its
-domain near its fixed value — all in one call of the model. An output that changes with a parameter its deps leave out is an error
-naming its `Output(...)` line, the parameter and the values. The finding is remembered under the scene's
+domain near its fixed value — all in one call of the model. An output that changes with a parameter its deps leave out
+is an error naming its `Output(...)` line, the parameter and the values. The finding is remembered under the scene's
 key: a warm build reads it back and evaluates nothing.
 
 The other way round is read from the tables themselves, at no cost: a declared dep whose slider leaves a

@@ -30,7 +30,8 @@ def quantize(values, decimals: int, special: bool = False) -> np.ndarray:
 # (0.125 to two decimals, 19.375 to two, -0.5625 to three) away from zero. "Half-way" is judged to 12 significant
 # digits: a double computed from decimal inputs is off by about 1e-16, so 47.5 × 0.23 / 2, stored as
 # 5.46250000000000036, and the same value interpolated by the page a few units of its last place below 5.4625,
-# both read 5.463, as the exact 5.4625 does; 1.005, stored as 1.00499999999999989, reads 1.01. Tables are rounded here; the page's script rounds an expression's value by the same steps in
+# both read 5.463, as the exact 5.4625 does; 1.005, stored as 1.00499999999999989, reads 1.01. Tables are rounded here;
+# the page's script rounds an expression's value by the same steps in
 # the same order (sitegen.js toQuantum), and the build's checks of displayed digits compare by this rule.
 
 TIE = 1e-12  # relative: a value this close to half a digit is half-way

@@ -270,7 +270,10 @@ def _range_problem(s: SliderSpec, model: Model, effects: frozenset[str]) -> str 
     if not (s.lo <= s.default <= s.hi) or k.denominator != 1:
         below = max(0, min(int(k), int(count)))
         near = sorted({below, min(below + 1, int(count))})
-        return f"default {s.default} is not a stop of {s.lo}..{s.hi} step {s.step}; nearest stops: {', '.join(_stop(s, n) for n in near)}"
+        return (
+            f"default {s.default} is not a stop of {s.lo}..{s.hi} step "
+            f"{s.step}; nearest stops: {', '.join(_stop(s, n) for n in near)}"
+        )
     return None
 
 

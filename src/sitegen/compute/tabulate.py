@@ -177,7 +177,8 @@ def _finish_table(scene: ResolvedScene, axes: tuple[int, ...], name: str, array:
 
 
 def _ragged_lengths(scene: ResolvedScene, axes, output, present: np.ndarray) -> np.ndarray:
-    """Length of each vector: its elements before the first NaN (`present` false there), which must be padding to the end."""
+    """Length of each vector: its elements before the first NaN (`present` false there), which must be padding to the
+    end."""
     lengths = present.sum(axis=-1)
     padded_at_end = np.arange(output.size) < lengths[..., None]
     if not np.array_equal(present, padded_at_end):

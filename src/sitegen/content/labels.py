@@ -70,10 +70,16 @@ def check_references(pages: list[Page], index: dict[str, Target]) -> list[Author
                 continue
             if len(places.get(name, [])) > 1:
                 where = ", ".join(str(p) for p in places[name])
-                message = f"reference (@{name}) is ambiguous: scenes with id '{name}' are at {where}; give them ids of their own"
+                message = (
+                    f"reference (@{name}) is ambiguous: scenes with id "
+                    f"'{name}' are at {where}; give them ids of their own"
+                )
             else:
                 hint = did_you_mean(name, index, "(@", ")")
-                message = f"reference (@{name}) names no label{hint}; labels are {{#eq-…}}, {{#fig-…}}, {{#tbl-…}}, {{#sec-…}} or a scene's id"
+                message = (
+                    f"reference (@{name}) names no label{hint}; labels are "
+                    "{#eq-…}, {#fig-…}, {#tbl-…}, {#sec-…} or a scene's id"
+                )
             errors.append(AuthorError(loc, message))
     return errors
 

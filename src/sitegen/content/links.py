@@ -56,7 +56,8 @@ def _problem(link: Link, page: Page, slugs, anchors, content: Path, existing, re
     if parts.scheme or parts.netloc:
         if link.image:
             return (
-                f"image '{link.target}' is outside the book: a page loads nothing from the web; save it next to the page",
+                f"image '{link.target}' is outside the book: a page "
+                "loads nothing from the web; save it next to the page",
                 None,
             )
         return None, None

@@ -227,7 +227,8 @@ class _SlotPreprocessor(Preprocessor):
                 self.found.errors.append(
                     AuthorError(
                         loc,
-                        f"{kind} block is not closed: line {line} opens another block; end this one with a line '```' before it",
+                        f"{kind} block is not closed: line {line} opens another "
+                        "block; end this one with a line '```' before it",
                     )
                 )
                 return None

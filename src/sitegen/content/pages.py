@@ -82,7 +82,8 @@ def _front_matter(lines: list[str], source: str) -> tuple[dict | None, int | Non
             [
                 AuthorError(
                     top,
-                    f"a page starts with TOML front matter between '{FRONT_MATTER}' lines, e.g. title = \"Newton's laws\"",
+                    "a page starts with TOML front matter between "
+                    f"'{FRONT_MATTER}' lines, e.g. title = \"Newton's laws\"",
                 )
             ],
         )

@@ -164,7 +164,7 @@ class Model:
     # Models that are costly per point (an ODE solve each) set this: their grids are split into
     # blocks of at most this many points, so that parallel builds can spread one scene's work.
     chunk_stops: ClassVar[int | None] = None
-    # A model that computes by a numerical method declares its default settings (physics.md §11),
+    # A model that computes by a numerical method declares its default settings (docs/physics/),
     # the methods a scene may choose with the settings each takes, and the error its check measures.
     numerics: ClassVar[Numerics | None] = None
     methods: ClassVar[dict[str, dict[str, object]]] = {}  # method: the settings it takes, at their defaults

@@ -2,8 +2,8 @@
 
 A kernel is a function decorated with `kernel`: numba's `njit` with `cache=True`, error_model="numpy" (a
 division by zero gives inf or NaN, as in numpy, instead of raising; the steppers reject such a step) and
-nogil (a long solve leaves the preview's server thread free to answer). Kernels live in files named `kernel_*.py` beside their model, and only numba's documented settings
-are used, each set in the environment before numba is imported:
+nogil (a long solve leaves the preview's server thread free to answer). Kernels live in files named `kernel_*.py`
+beside their model, and only numba's documented settings are used, each set in the environment before numba is imported:
 
 - NUMBA_CPU_NAME=generic and no CPU features: every kernel is compiled for a generic x86-64 CPU (no FMA,
   no vector extensions the host happens to have) and never with fastmath, so the numbers it computes do not

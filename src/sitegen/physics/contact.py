@@ -8,7 +8,7 @@ with the reduced mass μ = m1 m2/(m1 + m2), ω_n = √(k_c/μ), ζ = c_d/(2√(k
 The force on body 2 is F = k_c δ + c_d δ' = −μ δ''.
 
 Criterion: **the contact ends when the overlap closes, δ = 0** (not when F = 0). Just before that the
-dashpot pulls (F < 0: the contact is briefly tensile, as physics.md I2 notes); ending at F = 0
+dashpot pulls (F < 0: the contact is briefly tensile, as docs/physics/collision.md notes); ending at F = 0
 instead would give a different restitution. With this criterion, for ζ < 1,
 
     t_c = π/ω_d,   e = −δ'(t_c)/Δ = exp(−ζπ/√(1 − ζ²))   exactly,

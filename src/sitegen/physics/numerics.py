@@ -1,7 +1,7 @@
 """Numerical settings: which method computes a model's numbers, how tightly, and the error it may carry.
 
 A model that computes anything by a numerical method (an ODE solve, a quadrature, a transform)
-declares its default `Numerics`, chosen from the measured work–precision front (physics.md §11),
+declares its default `Numerics`, chosen from the measured work–precision front (docs/physics/),
 and the methods a scene may choose instead, with the settings each takes. The build checks every
 such scene against the model's reference and fails when the measured error exceeds `tolerance`.
 """

@@ -1,6 +1,6 @@
 """How an output is built from a few exact pieces instead of a value per slider stop.
 
-A model declares, next to an output, the mathematical form it has (physics.md §0.2): a
+A model declares, next to an output, the mathematical form it has (docs/physics/README.md): a
 polynomial of known degree in some coordinates, a branch chosen by a threshold, a ratio. The
 build turns the declaration into small tables (polynomial nodes, one coordinate table) and
 proves it against the model at sampled stops. These classes are pure mathematics: nothing here

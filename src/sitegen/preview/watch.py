@@ -171,7 +171,8 @@ def attempt(config: BuildConfig, registry: Registry, progress) -> tuple[object |
 class BookWatcher:
     """Batches of the book's changed files: its content, theme and models folders (each watched with
     all it holds, where it exists) and, in the book's own folder, book.toml, the bibliography and
-    citation style it names, and those folders coming or going. The book's folder itself is not watched deeply: it holds the output, .cache and more."""
+    citation style it names, and those folders coming or going. The book's folder itself is not watched deeply: it
+    holds the output, .cache and more."""
 
     def __init__(self, book: BookConfig, stop: threading.Event):
         self.book, self.stop = book, stop

@@ -118,20 +118,27 @@ def _ref_problem(ref, wanted: str, scene: ResolvedScene) -> str | None:
         return (
             None
             if name in params
-            else f"reads '{ref}', which is no parameter of model '{model.name}'{did_you_mean(name, params)} Its parameters: {', '.join(params)}"
+            else f"reads '{ref}', which is no parameter of model "
+            f"'{model.name}'{did_you_mean(name, params)} Its parameters: {', '.join(params)}"
         )
     outputs = {o.name: o for o in model.outputs if not o.effect or o.effect in scene.effects}
     fitting = [n for n, o in outputs.items() if bool(o.size) == (wanted == "vector") and (written or not o.digits)]
     what = "vector outputs" if wanted == "vector" else "scalar outputs"
     if name not in outputs:
-        return f"reads '{ref}', which is no output of model '{model.name}' in this scene{did_you_mean(name, fitting)} Its {what}: {', '.join(fitting) or 'none'}"
+        return (
+            f"reads '{ref}', which is no output of model '{model.name}' in this "
+            f"scene{did_you_mean(name, fitting)} Its {what}: {', '.join(fitting) or 'none'}"
+        )
     output = outputs[name]
     if output.digits and not written:
         return f"reads '{ref}', which is shown to significant digits; give the layer an output of its own with decimals"
     if bool(output.size) != (wanted == "vector"):
         shape = f"a vector of {output.size}" if output.size else "one number"
         use = "xs/ys" if output.size else "a vertex"
-        return f"reads '{ref}' as {'a vector' if wanted == 'vector' else 'one number'}, but it is {shape} (for {use}){did_you_mean(name, fitting)} Its {what}: {', '.join(fitting) or 'none'}"
+        return (
+            f"reads '{ref}' as {'a vector' if wanted == 'vector' else 'one number'}, but it is {shape} "
+            f"(for {use}){did_you_mean(name, fitting)} Its {what}: {', '.join(fitting) or 'none'}"
+        )
     return None
 
 

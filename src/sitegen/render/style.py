@@ -8,11 +8,6 @@ matplotlib.use("svg")
 
 import matplotlib.pyplot as plt
 
-from . import (
-    shared_measures,  # noqa: F401  (figures share matplotlib's text measurements)
-    tick_copies,  # noqa: F401  (an axis' new ticks are copies of one made matplotlib's way)
-)
-
 INK = "#1d2430"
 MUTED = "#5b6472"
 GRID = "#d9dde3"

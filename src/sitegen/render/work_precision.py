@@ -90,7 +90,8 @@ def work_precision_figure(panels: list[Panel], xlabel: str, ylabel: str, note: s
 
 
 def resolution_figure(panels: list[Panel], note: str, narrow: bool = False) -> plt.Figure:
-    """A 2-column grid of panels (one column when `narrow`): interpolation error (in display digits) against bytes stored."""
+    """A 2-column grid of panels (one column when `narrow`): interpolation error (in display digits) against bytes
+    stored."""
     columns = 1 if narrow else 2
     rows = (len(panels) + columns - 1) // columns
     with plt.rc_context(s.RC):

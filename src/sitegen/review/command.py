@@ -1,4 +1,5 @@
-"""`sitegen review`, `sitegen accept-figures` and `sitegen check-figures`: argument checks, progress lines and exit codes."""
+"""`sitegen review`, `sitegen accept-figures` and `sitegen check-figures`: argument checks, progress lines and exit
+codes."""
 
 from __future__ import annotations
 
@@ -59,7 +60,8 @@ def run_accept(build: Path, goldens: Path) -> int:
         for name in names:
             _say(f"{word:<8} {goldens / name}.svg")
     _say(
-        f"goldens: {len(done.new)} new, {len(done.changed)} changed, {len(done.removed)} removed, {done.unchanged} unchanged"
+        f"goldens: {len(done.new)} new, {len(done.changed)} changed, "
+        f"{len(done.removed)} removed, {done.unchanged} unchanged"
     )
     return 0
 

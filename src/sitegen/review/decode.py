@@ -11,6 +11,7 @@ import numpy as np
 from ..compute.expression import shown
 from ..compute.structure import Structured
 from ..compute.table import Table
+from ..site import vlq
 
 
 @dataclass(frozen=True)
@@ -74,7 +75,7 @@ def decode(data: dict, name: str) -> Decoded | None:
     if "expr" in entry:
         return _evaluated(data, entry)
     params = tuple(data["sliders"][a]["param"] for a in entry["axes"])
-    shape, d, q = tuple(entry["shape"]), entry["d"], entry["q"]
+    shape, d, q = tuple(entry["shape"]), entry["d"], listed(entry)
     delta = entry.get("enc") == "delta"
     if entry.get("sum"):  # stored along the sum of its axes' stops: spread it over the grid
         counts = tuple(data["sliders"][a]["count"] for a in entry["axes"])
@@ -94,6 +95,17 @@ def decode(data: dict, name: str) -> Decoded | None:
         return Decoded(params, values.reshape(shape + (width,)) / 10.0**d, d, False, True)
     values = _numbers(np.cumsum(np.asarray(q, dtype=np.int64)) if delta else q)
     return Decoded(params, values.reshape(shape) / 10.0**d, d, False, False)
+
+
+def listed(entry: dict) -> list:
+    """A table's entries as lists (as JSON writes them): its VLQ text read, a vector's cut into rows."""
+    if not isinstance(entry["q"], str):
+        return entry["q"]
+    numbers = vlq.loads(entry["q"])
+    if "len" not in entry:
+        return numbers
+    ends = np.cumsum(vlq.loads(entry["len"])).tolist()
+    return [numbers[start:end] for start, end in zip([0, *ends[:-1]], ends)]
 
 
 def _numbers(row) -> np.ndarray:
@@ -142,7 +154,7 @@ def _leaves(expr, key: str) -> set:
 
 def _as_table(name: str, entry: dict) -> Table:
     """A scalar table of the page's data as the build held it (differences summed)."""
-    quanta = np.asarray(entry["q"], dtype=float if entry.get("raw") else np.int64)
+    quanta = np.asarray(listed(entry), dtype=float if entry.get("raw") else np.int64)
     if entry.get("enc") == "delta":
         quanta = np.cumsum(quanta)
     return Table(

@@ -165,7 +165,8 @@ def _table_rows(review: Review) -> list[str]:
             continue
         stops = f"{table.changed:,} of {table.stops:,}"
         rows.append(
-            f"| {scene.id} | {table.output} | {stops} | {_md(_extreme(table.largest_abs))} | {_md(_extreme(table.largest_rel))} |"
+            f"| {scene.id} | {table.output} | {stops} | "
+            f"{_md(_extreme(table.largest_abs))} | {_md(_extreme(table.largest_rel))} |"
         )
     return rows + _more(len(changes), "outputs")
 

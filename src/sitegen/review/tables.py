@@ -132,7 +132,8 @@ def _grid_notes(a: Decoded, b: Decoded, axes_old, axes_new) -> list[str]:
         ao, an = axes_old.get(p), axes_new.get(p)
         if ao and an and ao.keys != an.keys:
             notes.append(
-                f"stops of {p} changed ({len(ao.keys)} → {len(an.keys)}); compared at the {len(set(ao.keys) & set(an.keys))} both have"
+                f"stops of {p} changed ({len(ao.keys)} → {len(an.keys)}); "
+                f"compared at the {len(set(ao.keys) & set(an.keys))} both have"
             )
     return notes
 

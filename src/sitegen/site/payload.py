@@ -1,8 +1,10 @@
 """The data a scene's script selects from: its tables, slider grids, readouts and layer recipes as JSON
-(inline in the page, inside a <script> element), each table in the smaller of two encodings as sent."""
+(inline in the page, inside a <script> element). A table's integers are one string of VLQ text (vlq.py),
+as values or as differences between neighbours, whichever is the smaller as sent."""
 
 from __future__ import annotations
 
+import functools
 import itertools
 import json
 import re
@@ -15,7 +17,7 @@ from ..compute.scenes import ResolvedScene
 from ..compute.structure import Structured
 from ..compute.table import Table
 from ..render.layers import Layer
-from . import intjson
+from . import intjson, vlq
 from .assemble import fixed_text, slider_text
 from .sizes import gzip_bytes
 
@@ -105,17 +107,32 @@ def _table_json(table: Table, unit: str, encoded: list[str]) -> dict:
         out["sum"] = 1
     if table.raw:  # the values themselves (a coordinate of an expression), not counts of a digit
         out["raw"] = 1
-    rows_json = intjson.dumps(values, table.lengths, nulls)
-    deltas = None if table.special or table.labels or table.raw else intjson.dumps(_deltas(values), table.lengths)
-    if deltas is not None and gzip_bytes(deltas.encode()) < gzip_bytes(rows_json.encode()):  # the smaller as sent
+    if table.raw or not vlq.fits(values):  # the values themselves, or integers too large: as JSON
+        dump = functools.partial(intjson.dumps, lengths=table.lengths)
+    else:  # as VLQ text, and a vector's entries (cut to their lengths) in one run, with the lengths beside
+        dump = functools.partial(_packed, lengths=table.lengths)
+        if values.ndim == 2:
+            lengths = np.full(len(values), values.shape[1]) if table.lengths is None else table.lengths
+            out["len"] = vlq.dumps(np.asarray(lengths, dtype=np.int64))
+    rows = dump(values, nulls=nulls)
+    deltas = None if table.special or table.labels or table.raw else dump(_deltas(values))
+    if deltas is not None and gzip_bytes(deltas.encode()) < gzip_bytes(rows.encode()):  # the smaller as sent
         out.update(q=_placeholder(deltas, encoded), enc="delta")
     else:
-        out["q"] = _placeholder(rows_json, encoded)
+        out["q"] = _placeholder(rows, encoded)
     if table.labels:
         out["labels"] = list(table.labels)
     if table.special:
         out["special"] = table.special
     return out
+
+
+def _packed(values: np.ndarray, lengths: np.ndarray | None = None, nulls: np.ndarray | None = None) -> str:
+    """A table's integers as a JSON string of VLQ text: a vector's rows cut to `lengths`, one after another."""
+    if values.ndim == 2 and lengths is not None:
+        inside = np.arange(values.shape[1]) < lengths[:, None]
+        values = values[inside]
+    return f'"{vlq.dumps(values, nulls)}"'
 
 
 def _written_json(table: Table, unit: str, nulls: np.ndarray | None) -> tuple[np.ndarray, dict]:

@@ -69,7 +69,8 @@ def weight_warnings(weights: list[PageWeight], budget_kb: float, records) -> lis
         )
         advice = (
             f" Its heaviest scenes: {named}. Fewer stops on those sliders, fewer decimals, or an exact form "
-            "(structure=) for an output that has one would shrink them; a scene split in two loads only what each shows."
+            "(structure=) for an output that has one would shrink "
+            "them; a scene split in two loads only what each shows."
             if heavy
             else ""
         )

@@ -1,4 +1,4 @@
-"""The bubble's own bench experiments: the three regimes of physics.md §11.2 (every solver over the rtol
+"""The bubble's own bench experiments: the three regimes of docs/physics/bubble.md (every solver over the rtol
 ladder against a closed form or a tight reference), and the sweep of the book's bubble scenes (sweep.py).
 
 The generic experiment measures the scenes' methods at their check stops; these measure scipy's solvers
@@ -24,7 +24,7 @@ QUICK_METHODS = ("DOP853", "LSODA", "compiled-DOP853")
 EXPLICIT = ("RK45", "DOP853")
 BENCH_CAPS = Caps(max_nfev=3_000_000)  # generous: the bench measures, the build guards
 
-PRESETS = {  # name: (effects, parameters that differ from the defaults), physics.md K4 and §11.2
+PRESETS = {  # name: (effects, parameters that differ from the defaults), docs/physics/bubble.md
     "A": (("inertia", "vapour", "step"), {"R0": 1000.0, "p_inf": 1.0}),
     "B": (
         ("gas", "vdw_hard_core", "surface_tension", "viscosity", "drive", "keller_miksis"),
@@ -38,8 +38,8 @@ PRESETS = {  # name: (effects, parameters that differ from the defaults), physic
 }
 
 
-# §11.2's case C is the model's "stiff" preset (the viscous micro-bubble); B and C run one
-# acoustic period, as in physics.md (the page's scenes run two).
+# The accuracy section's case C is the model's "stiff" preset (the viscous micro-bubble); B and C run one
+# acoustic period, as docs/physics/bubble.md says (the page's scenes run two).
 CASES = {
     "A": {
         "preset": "A",
@@ -76,7 +76,7 @@ def preset_of(case: str, defaults: dict) -> Problem:
 
 
 def bubble_problem(case: str, defaults: dict) -> Problem:
-    """The nondimensional problem of a §11.2 case (B and C cut to one acoustic period)."""
+    """The nondimensional problem of an accuracy case (B and C cut to one acoustic period)."""
     pb = preset_of(case, defaults)
     periods = CASES[case]["periods"]
     return replace(pb, tau_end=periods * 2.0 * math.pi / pb.omega) if periods else pb
@@ -90,7 +90,7 @@ def solve_case(pb: Problem, method: str, rtol: float) -> Run:
 
 
 def skip_reason(case: str, method: str, rtol: float) -> str | None:
-    """Why a combination is not run (hopeless or minutes long, physics.md §11.2), or None."""
+    """Why a combination is not run (hopeless or minutes long, docs/physics/bubble.md), or None."""
     if case == "C" and method in EXPLICIT and rtol not in (1e-3, 1e-6):
         return (
             "stability-limited: 3e5–4e5 evaluations and 3–10 s per solve at every rtol (measured at 1e-3 "
@@ -184,7 +184,7 @@ def finite(value) -> float | None:
 
 
 class Regime(BenchExperiment):
-    """Every solver × rtol on one §11.2 case (some skipped, with the reason), against its reference."""
+    """Every solver × rtol on one accuracy case (some skipped, with the reason), against its reference."""
 
     def __init__(self, case: str):
         self.case = case

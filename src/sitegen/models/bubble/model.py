@@ -1,6 +1,6 @@
 """K4: Rayleigh–Plesset bubble dynamics, composed from the effects a scene names.
 
-Three presets (presets.py) are three scenes of this one model (physics.md K4), one per pressure history:
+Three presets (presets.py) are three scenes of this one model (docs/physics/bubble.md), one per pressure history:
 A `step`, the Rayleigh collapse (analytic when only inertia and vapour act); B `drive`, a driven
 bubble with Keller–Miksis compressibility; C `ramp`, a nucleus under a ramped tension (Blake
 threshold). The dynamic outputs of each history carry its prefix (collapse_, driven_, ramp_) and
@@ -287,7 +287,7 @@ class Bubble(Model):
     chunk_stops = 64
     # The bench at the scenes' stops: `auto` at its own rule, the compiled solvers over rtol 1e-6 … 1e-10 (a scipy
     # solver costs 20–200 times as much, and an explicit one seconds a stop where the terms are stiff: those are
-    # compared on the three regimes of physics.md §11.2 instead, and the sweep puts every stop's digits against time).
+    # compared on the three regimes of docs/physics/bubble.md instead, and the sweep puts every stop's digits against time).
     ladders = {"rtol": (1e-6, 1e-7, 1e-8, 1e-9, 1e-10), AUTO: {"rtol": ()}, **{name: {"rtol": ()} for name in SOLVERS}}
     experiments = {**{f"bubble-{case}": Regime(case) for case in "ABC"}, "settings": DigitSweep()}
 

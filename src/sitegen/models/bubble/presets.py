@@ -1,4 +1,4 @@
-"""The bubble's presets (physics.md K4 and §11.2), for the tests and the accuracy report."""
+"""The bubble's presets (docs/physics/bubble.md), for the tests and the accuracy report."""
 
 from __future__ import annotations
 

@@ -52,16 +52,17 @@ from .terms import (
 
 COMPILED = {"compiled-DOP853": DOP853_METHOD, "compiled-Radau": RADAU_METHOD}  # the same steppers, compiled
 ANALYTIC = "analytic"
-STIFF = 1e3  # 4µT/(ρR0²) above which explicit methods are stability-limited (physics.md §11.2 C)
+STIFF = 1e3  # 4µT/(ρR0²) above which explicit methods are stability-limited (docs/physics/bubble.md)
 EXPLICIT, IMPLICIT = "compiled-DOP853", "compiled-Radau"  # what `auto` picks off and on stiff terms
 # rtol of `auto`: the loosest at which every readout of the book's bubble scenes shows the digits of a
-# tight reference at every stop (the sweep on the accuracy page; physics.md §11.2 chose 1e-6 for 1e-3 R0).
+# tight reference at every stop (the sweep on the accuracy page; DOP853 at 1e-6 gives 1e-3 R0 on the driven bubble).
 EXPLICIT_RTOL, IMPLICIT_RTOL = 1e-8, 1e-8
 AUTO = "auto"  # the method setting that lets the composed terms choose (analytic, compiled DOP853 or Radau)
 REFERENCE_RTOL, REFERENCE_STIFF = 1e-12, 1e-10  # the check's tight solutions (non-stiff, stiff)
 ATOL_PER_RTOL = 1e-3  # nondimensional: atol = 1e-3 rtol on r ~ 1 and ṙ ~ 1
 # ... but on stiff terms, for `auto` and the references, never below 1e-11: in a quasi-static stretch of
-# a stiff run ṙ ≈ 0, its round-off exceeds a smaller atol and the step size collapses (Radau at rtol 1e-10 ran into 3e6 evaluations on a 0.1 µm
+# a stiff run ṙ ≈ 0, its round-off exceeds a smaller atol and the step size collapses (Radau at rtol 1e-10 ran into 3e6
+# evaluations on a 0.1 µm
 # nucleus with atol 1e-13, scipy's and the compiled one alike, and at 2 stops of the Blake scene with
 # 1e-12; with 1e-11 every stop of R0 ≤ 1 µm takes at most 1.3e4).
 ATOL_FLOOR = 1e-11
@@ -78,7 +79,7 @@ def stiff_atol(pb: Problem, rtol: float) -> float | None:
 
 
 def choose_method(pb: Problem) -> tuple[str, float]:
-    """The solver and rtol the composed terms call for (physics.md §11.2 verdicts)."""
+    """The solver and rtol the composed terms call for (the verdicts of docs/physics/bubble.md)."""
     if pb.is_rayleigh:
         return ANALYTIC, 0.0
     if pb.stiffness > STIFF:

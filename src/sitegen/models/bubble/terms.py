@@ -3,7 +3,7 @@
 Variables: r = R/R_i (R_i the radius at rest at t = 0), speed in U = sqrt(p0/ρ), time in R_i/U,
 pressure in p0. In these units ρ = 1, R_i = 1 and every state component is of order one, so the
 solver's absolute tolerance means the same thing for a 0.1 µm nucleus and a 10 mm cavity (in SI,
-atol = 1e-6 m is 0.2 R0 for R0 = 4.5 µm; physics.md K4).
+atol = 1e-6 m is 0.2 R0 for R0 = 4.5 µm; docs/physics/bubble.md).
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The chain's own bench experiment (physics.md §11.1): the integrators it keeps for comparison against the exact
+"""The chain's own bench experiment (docs/physics/chain.md): the integrators it keeps for comparison against the exact
 DST solution, on a right-moving Gaussian pulse over one round trip.
 
 The page never uses the integrators, so they are no method a scene may choose: the generic experiment measures

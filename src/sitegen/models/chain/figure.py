@@ -22,7 +22,8 @@ class ChainFigure:
     label = (
         "Left: displacement of each mass of the chain (dots) and of the continuous string (dashed line) "
         "between two fixed walls. Right: on log-log axes, the frequency of each normal mode of the chain "
-        "against its wavenumber, with the straight line ω = ck of the string and, shaded, the wavenumbers the pulse contains."
+        "against its wavenumber, with the straight line ω = ck of "
+        "the string and, shaded, the wavenumbers the pulse contains."
     )
 
     def describe(self, scene) -> str:

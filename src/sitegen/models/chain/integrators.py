@@ -2,7 +2,7 @@
 
 The page never uses them: the exact solution is cheaper by 25–4000× and has no step error, and
 velocity Verlet at the "magic" step c·Δt = a would silently replace the chain's dispersion by the
-continuum's exact transport (physics.md I5, hard cases).
+continuum's exact transport (docs/physics/chain.md, hard cases).
 """
 
 from __future__ import annotations

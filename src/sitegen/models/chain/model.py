@@ -145,7 +145,7 @@ class Chain(Model):
         Output("wall_right", "figure: outer face of the right wall", "m", ("ends",), decimals=3, effect="boundary"),
     )
     effects = ("boundary", "onsite_damping", "onsite_spring")
-    # physics.md §11.1: the exact modal solution beats every integrator by 25–4000×; time steppers are
+    # docs/physics/chain.md: the exact modal solution beats every integrator by 25–4000×; time steppers are
     # kept for comparison only (integrators.py). Its error is the rounding of the transforms.
     numerics = Numerics("DST", tolerance=1e-9)
     methods = {"DST": {}}

@@ -97,7 +97,8 @@ def evolve(u0: np.ndarray, v0: np.ndarray, t, terms: Terms = BARE, velocity: boo
     a, b = _forward(u0, terms.ends), _forward(v0, terms.ends)
     omega = mode_frequencies(n, terms)
     cos, sine = _oscillation(omega, terms.gamma, t)
-    # Each mode obeys ä + γȧ + ω²a = 0: a C + (b + γa/2) S, and its velocity, from C' = −(γ/2)C − ω_d²S, S' = C − (γ/2)S.
+    # Each mode obeys ä + γȧ + ω²a = 0: a C + (b + γa/2) S, and its velocity, from C' = −(γ/2)C − ω_d²S, S' = C −
+    # (γ/2)S.
     half = terms.gamma / 2
     u = a * cos + (b + half * a) * sine
     if not velocity:
@@ -107,7 +108,8 @@ def evolve(u0: np.ndarray, v0: np.ndarray, t, terms: Terms = BARE, velocity: boo
 
 
 def chain_motion(n: int, sigma, t, launch, terms: Terms = BARE, amplitude: float = AMPLITUDE, velocity: bool = True):
-    """u_j(t) and u̇_j(t) (None unless `velocity`) of an N-mass chain released as the Gaussian pulse, for arrays of (σ, t, launch)."""
+    """u_j(t) and u̇_j(t) (None unless `velocity`) of an N-mass chain released as the Gaussian pulse, for arrays of (σ,
+    t, launch)."""
     sigma, t, launch = np.broadcast_arrays(*(np.asarray(v, float) for v in (sigma, t, launch)))
     u0, v0 = initial_state(positions(n, terms.ends), sigma[..., None], launch[..., None], amplitude)
     return evolve(u0, v0, t, terms, velocity)

@@ -1,6 +1,6 @@
 """I2: a 1-D collision with restitution, in the cancellation-safe centre-of-mass form.
 
-Effects (physics.md I2): `restitution_law`, the instantaneous law v2f − v1f = −e(v2i − v1i), is the
+Effects (docs/physics/collision.md): `restitution_law`, the instantaneous law v2f − v1f = −e(v2i − v1i), is the
 default; `contact_spring_dashpot` replaces it by a finite contact (contact.py: a spring k_c and a
 dashpot c_d, ending when the overlap closes) whose restitution e = exp(−ζπ/√(1 − ζ²)) then enters
 the same centre-of-mass formulas in place of the `e` slider; `explosive` allows e > 1 (the bodies
@@ -28,7 +28,7 @@ def _law(form):
     return lambda effects: None if CONTACT in effects else form
 
 
-# --- exact forms for the page (physics.md I2 "structure") -----------------------------------
+# --- exact forms for the page (docs/physics/collision.md) -------------------------------------
 # With s = 1/(m1 + m2) as a coordinate every output is a polynomial of low degree in
 # (m1, m2, v1i, v2i, e, s): v_f = s (m1 v1i + m2 v2i ∓ e m2,1 Δ) is multilinear. s depends on the
 # masses only through their sum, so its table is one row along m1 + m2.

@@ -22,14 +22,14 @@ import numpy as np
 from ...physics.base import Model, Output, Param
 from ...physics.structure import Coord, Poly
 
-RHO_AIR = 1.204  # kg/m³, air at 20 °C (physics.md §0.1)
+RHO_AIR = 1.204  # kg/m³, air at 20 °C (docs/physics/README.md)
 C_AIR = 343.2  # m/s
 GAMMA_AIR = 1.4
 P_AMBIENT = 101_325.0  # Pa
 P_REF = 20e-6  # Pa rms, the SPL reference
-G = 9.81  # m/s², the book's value (§0.1)
+G = 9.81  # m/s², the book's value (docs/physics/README.md)
 BETA_AIR = (GAMMA_AIR + 1.0) / 2.0  # coefficient of nonlinearity of an ideal gas
-# Transport properties of air at 20 °C for the classical absorption; §0.1 does not list them.
+# Transport properties of air at 20 °C for the classical absorption (docs/physics/euler_slab.md).
 VISCOSITY_AIR = 1.813e-5  # Pa·s
 CONDUCTIVITY_AIR = 0.02514  # W/(m·K)
 CP_AIR = 1005.0  # J/(kg·K)

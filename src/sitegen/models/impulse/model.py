@@ -1,6 +1,6 @@
 """I1: the impulse of a force pulse on a mass m; by default a symmetric triangle, J = F_pk tau / 2 (closed form).
 
-Effects (physics.md I1): `shape` picks the pulse (triangle, Hann, half-sine or rectangle, each with
+Effects (docs/physics/impulse.md): `shape` picks the pulse (triangle, Hann, half-sine or rectangle, each with
 its closed-form J); `initial_velocity` adds v0 and the velocity v(t) of the mass; and
 `contact_from_collision` replaces the pulse by the force of a spring–dashpot contact (contact.py):
 a body of mass m_hit runs into m at the approach speed Δ, and J = μ(1 + e)Δ. The pulses themselves
@@ -26,7 +26,7 @@ def _with_effects(base: tuple[str, ...], shape: bool = True, contact_deps: tuple
     return ((("shape", ("shape",)),) if shape else ()) + ((CONTACT, contact_deps),)
 
 
-# --- exact forms for the page (physics.md I1 "structure"), for the pulse shapes (not the contact) ----
+# --- exact forms for the page (docs/physics/impulse.md), for the pulse shapes (not the contact) ----
 # J = area F_pk τ is trilinear in (F_pk, τ, area of the shape), Δv = J (1/m) adds the axis 1/m, and the
 # drawn pulse scales with F_pk (forces) and τ (times): a handful of nodes reproduce every stop.
 _FRACTIONS = np.sort(np.concatenate([np.arange(SAMPLES + 1) / SAMPLES, [0.5]]))  # as ShapedPulse samples

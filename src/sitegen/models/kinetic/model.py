@@ -155,7 +155,7 @@ class Kinetic(Model):
         ),
     )
     effects = ("dimension", "contact_duration", "wall_law")
-    # physics.md §11.3: exact unfolded counting dominates time stepping (no trade-off to expose); the
+    # docs/physics/kinetic.md: exact unfolded counting dominates time stepping (no trade-off to expose); the
     # build checks it against a replay of each molecule's hits, one flight after another.
     numerics = Numerics("exact-counting", tolerance=1e-12)
     methods = {"exact-counting": {}}

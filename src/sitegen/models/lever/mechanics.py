@@ -9,7 +9,8 @@ import math
 import numpy as np
 from scipy.special import ellipkinc
 
-G = 9.81  # physics.md §0.1 requires 9.81: the seed's 2 kg · 9.81 m/s² · 1 m = 19.62 N·m (9.80665 shows 19.61)
+# the book needs 9.81 (docs/physics/README.md): the seed's 2 kg · 9.81 m/s² · 1 m = 19.62 N·m (9.80665 shows 19.61)
+G = 9.81
 LENGTH = 2.0  # ℓ, the bar's length (m)
 BALANCED, TIPS_LEFT, TIPS_RIGHT = 0, 1, 2
 STATES = ("balanced", "tips left", "tips right")

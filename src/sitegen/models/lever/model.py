@@ -1,6 +1,6 @@
 """I4: torques on a bar with a mass at each end, resting on a pivot (closed form).
 
-Sign convention (physics.md I4): a torque is positive when it turns the bar counter-clockwise,
+Sign convention (docs/physics/lever.md): a torque is positive when it turns the bar counter-clockwise,
 i.e. when it pushes the left end down. The mechanics (torques, balance, the rotation to the stop) are
 in mechanics.py; this module declares the outputs, their exact forms and the figure's geometry.
 """
@@ -48,7 +48,7 @@ _ROTATION = _POSITION + ("theta_s",)
 _BAR_TURNS_TOO = (("bar_mass", ("m_b",)),)  # with bar_mass the rotation feels the bar's weight and inertia
 
 
-# --- exact forms for the page (physics.md I4 "structure") -----------------------------------
+# --- exact forms for the page (docs/physics/lever.md) ----------------------------------------
 # Torques are multilinear in (m_L, m_R, x_p). With s = 1/(m_L + m_R) as a coordinate (one table
 # along m_L + m_R) the balance point x* = ℓ m_R s is bilinear, and the state is a threshold on
 # (x_p − x*)/tolerance. The drawn tilt is one of three polynomials chosen by that state.
@@ -147,7 +147,8 @@ class Lever(Model):
             0.005,
             lo=0.0,
             hi=0.25 * LENGTH,
-            description="how far the pivot may sit from the balance point and still count as balanced: half the pivot slider's step",
+            description="how far the pivot may sit from the balance point and "
+            "still count as balanced: half the pivot slider's step",
         ),
         Param("m_b", "m<sub>b</sub>", "kg", 1.0, lo=0.0, description="mass of the bar (uniform)").with_effect(
             "bar_mass"

@@ -25,7 +25,7 @@ LOADS = ("water", "cochlea")
 WATER, COCHLEA = 0, 1
 
 
-# --- exact forms for the page (physics.md §12: "3 separable 1-D dB tables") --------------------
+# --- exact forms for the page (docs/physics/ossicles.md: three separable 1-D dB tables)----------------
 # With all three effects on, every output over more than two sliders is a low-degree polynomial in
 # small one- or two-slider coordinate tables: decibels add, and the load referred to the eardrum is
 # a product u Z_a with u = (Z_c A_FP / Z_a) (1/ℓ²) (1/A_TM), so T₁ = 4u/(1 + u)² is a ratio of two

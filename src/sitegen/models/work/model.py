@@ -43,7 +43,7 @@ CONSERVATIVE, PATH_DEPENDENT = 0, 1
 CLOSED_FORM = "closed-form"  # the only method: every readout is exact
 
 
-# --- exact forms for the page (physics.md I3 "structure"), for the base law without effects --------
+# --- exact forms for the page (docs/physics/work.md), for the base law without effects --------
 # The spring's work 2 k x_c is bilinear (|x_c| <= c/2 on the slider); drag's is -b s L, bilinear in s
 # and the path length L, which one small table over (path, h) provides.
 PATH_LENGTH = Coord("path_length", ("path", "h"), lambda path, h: path_length(path == ARC, h))
@@ -166,7 +166,7 @@ class Work(Model):
     effects = ("spring_rest_length", "drag_law", "gravity")
     # The readouts are closed forms (exact, and bitwise the same on both paths): no numerical method
     # computes them. The build still checks them against the line integral by Gauss–Legendre,
-    # n = 32 per smooth piece (physics.md I3), so that a wrong closed form cannot reach a page.
+    # n = 32 per smooth piece (docs/physics/work.md), so that a wrong closed form cannot reach a page.
     numerics = Numerics(CLOSED_FORM, tolerance=1e-12)
     methods = {CLOSED_FORM: {}}
     error_metric = "|ΔW| in J"

@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import numpy as np
 
-G = 9.81  # m/s², the book's value (physics.md §0.1)
+G = 9.81  # m/s², the book's value (docs/physics/README.md)
 HALF_CHORD = 1.0  # A = (-1, 0), B = (1, 0): both on the line y = 0
 CHORD = 2.0 * HALF_CHORD
-H_MAX = 2.0 * CHORD  # beyond this the arc nearly closes (sin θ -> 0); physics.md clamps h <= 2c
+H_MAX = 2.0 * CHORD  # beyond this the arc nearly closes (sin θ -> 0); so h is kept <= 2c
 SPRING, DRAG = 0, 1
 DIRECT, ARC = 0, 1
-GAUSS_NODES = 32  # per smooth piece; 16 is not enough near the rest-length singularity (physics.md I3)
+GAUSS_NODES = 32  # per smooth piece; 16 is not enough near the rest-length singularity (docs/physics/work.md)
 ARC_POINTS = 33  # at h = 2 the polygon strays 3 mm (a quarter pixel) from the circle
 
 

@@ -107,7 +107,8 @@ def _parts_from_bench(bench: dict, parts: list[str], models: Mapping, reports: M
 
 
 def resolution_part(context: ReportContext) -> str:
-    """Interpolation error against bytes for the §12 outputs, and what the page ships instead."""
+    """Interpolation error against bytes for the outputs of the resolution table (docs/physics/README.md), and what the
+    page ships instead."""
     if not context.bench:
         return MISSING
     rows = context.bench["resolution"]

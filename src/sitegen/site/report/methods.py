@@ -56,7 +56,7 @@ def _diagram(context, name: str, data: dict, label: str, caption: str) -> str:
     def draw(narrow):
         return work_precision_figure(
             [_panel(panel, data) for panel in data["panels"]],
-            data.get("work", "median wall time of the scene's outputs at the checked stops (ms)"),
+            data.get("work", "median time, checked stops (ms)"),
             data["metric"].split(" over")[0],
             data.get("note", "labels: rtol = 10⁻ⁿ, or the value of the method's setting; ▲: error above the plot"),
             narrow,
@@ -120,7 +120,7 @@ def _runs_table(name: str, data: dict) -> str:
     for panel in data["panels"]:
         front, picked = {id(r) for r in summary.pareto(panel["runs"])}, summary.chosen(panel)
         for r in panel["runs"]:
-            cells = [escape(summary.panel_title(panel))] if several else []
+            cells = [escape(panel.get("title") or panel["scene"])] if several else []
             cells += [escape(r["method"]), escape(summary.setting_text(r) or "—")]
             if r.get("status", "ok") != "ok" or r.get("time_s") is None:
                 reason = r.get("skipped") or r.get("status", "")

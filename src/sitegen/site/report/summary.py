@@ -163,8 +163,8 @@ def experiments(bench: dict) -> list[tuple[str, str, dict]]:
 
 
 def panel_title(panel: dict) -> str:
-    """A panel's title: the experiment's own, or the scene it measured."""
-    return panel.get("title") or f"{panel['scene']} ({panel['stops']} stops)"
+    """A panel's title: the experiment's own, or the scene it measured (its id: the page is named in the table)."""
+    return panel.get("title") or f"{panel['scene'].split('#')[-1]} ({panel['stops']} stops)"
 
 
 def dominated_lines(bench: dict) -> list[str]:

@@ -903,6 +903,7 @@ _DB = lambda d, x, ref: 9.0 * abs(d) + (1e-13 * (1.0 + np.abs(ref)) if d else 0.
 _GAIN_COMPARE = (
     Compare("G", "G", _rel(3.0)),
     Compare("G_dB", "G_dB", _DB),
+    Compare("L_OW", "L_OW", _DB),  # SPL + G_dB: moves with the gain, within the same decibel bound
     Compare("p_OW", "p_OW", _rel(3.0)),
     Compare("Z_ref", "Z_ref", _rel(3.0)),
     Compare("T1", "T1", _rel(3.0)),

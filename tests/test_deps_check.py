@@ -116,3 +116,26 @@ def test_a_books_test_finds_the_same_mistakes(lamp):
         "output 'w'",
         "output 'z'",
     ]
+
+
+def test_a_parameter_one_output_declares_is_still_moved_for_another(tmp_path, lamp):
+    """y declares b under the glow and z does not: shown together, b is still moved, and z is caught."""
+    page = _page("y, z", "glow", "slider b: 0..2 step 1 default 1\n")
+    assert [e.split(": ", 3)[3].split(" (")[0] for e in build_errors(write_book(tmp_path, {"lamp": page}))] == [
+        "output 'z' changes with 'b'"
+    ]
+
+
+class _SolvedLamp(Lamp):
+    """The lamp as if each of its stops were an ODE solve (it declares chunk_stops): fewer moves, the same finding."""
+
+    chunk_stops = 64
+
+
+def test_a_model_solved_per_stop_still_has_its_fixed_parameters_moved(tmp_path, register):
+    """With one value from each stop for a parameter without a slider, w's reading of c is still found."""
+    register({"lamp": _SolvedLamp}, {"lamp": _BareFigure()})
+    assert build_errors(write_book(tmp_path, {"lamp": _page("w", "glow")})) == [
+        f"content/lamp.md:5: scene 'lamp': {HERE}/test_deps_check.py:{LINES['w']}: output 'w' changes with 'c' "
+        "(3.000 → 3.164 as c goes 2 → 2.16418, at a=1) but its deps leave 'c' out; add 'c' to its deps"
+    ]

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import difflib
+import functools
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -37,10 +39,17 @@ def caller_line(frame, own_file: str) -> tuple[str, int] | None:
 
 def code_loc(file: str, line: int, root: Path | None = None) -> SourceLoc:
     """A line of code as the author sees it: its path relative to the book's folder `root` when inside it."""
+    return SourceLoc(_shown_path(file, root, os.getcwd()), line)
+
+
+@functools.lru_cache(maxsize=1024)
+def _shown_path(file: str, root: Path | None, cwd: str) -> str:
+    """A source file's path as `code_loc` shows it (relative paths read from `cwd`), resolved once per file and
+    book: a build names the `Output(...)` line of every output it checks, most of them in a few files."""
     path = Path(file).resolve()
     if root is not None and path.is_relative_to(root.resolve()):
         path = path.relative_to(root.resolve())
-    return SourceLoc(path.as_posix(), line)
+    return path.as_posix()
 
 
 @dataclass(eq=False)  # not frozen: the exception machinery sets attributes such as __cause__

@@ -8,6 +8,11 @@ domain near its fixed value — all in one call of the model. An output that cha
 is an error naming its `Output(...)` line, the parameter and the values. The finding is remembered under the scene's
 key: a warm build reads it back and evaluates nothing.
 
+What the probe evaluates is kept to what can find a mistake: a parameter every probed output declares is not moved
+(no move of it could show an undeclared dependency), and a model whose every stop is an ODE solve (one that declares
+`chunk_stops`) has each parameter without a slider moved to one value from each stop rather than two. Its
+stops on the sliders are stops the build has just tabulated, which such a model keeps solved.
+
 The other way round is read from the tables themselves, at no cost: a declared dep whose slider leaves a
 table the same at every stop (at the digits shown) is a note with the factor of stops it costs. A book's
 tests run the same probe across the model's whole domain (`check_model`, through sitegen.testing), where a
@@ -71,7 +76,7 @@ def verify_scene_deps(scene: ResolvedScene, names, remember=compute_now, root: P
 
 def check_scene(scene: ResolvedScene, names, root: Path | None = None) -> Checked:
     """Probe a scene's outputs `names` at seeded stops of its sliders."""
-    probe = scene_probe(scene, _seed(scene, names))
+    probe = scene_probe(scene, _seed(scene, names), names)
     return check(scene.model, names, scene.effects, probe, root, _stop_text(scene))
 
 
@@ -124,24 +129,28 @@ def check(model, names, effects, probe: Probe, root=None, where=None) -> Checked
         output = type(model).output(name)
         deps = set(type(model).deps_of(name, effects))
         changes = _changes(output, results[name], probe)
-        declared = _declared_at(model, output, root)
         for param in (p.name for p in model.params):
             change = changes.get(param)
             if param not in deps and change is not None:
-                errors.append(f"{declared}: {_undeclared(output, param, change, probe, where)}")
+                errors.append(
+                    f"{_declared_at(model, output, root)}: {_undeclared(output, param, change, probe, where)}"
+                )
             elif param in deps and change is None and param in probe.noted:
-                notes.append(f"{declared}: {_inert(output, param, probe)}")
+                notes.append(f"{_declared_at(model, output, root)}: {_inert(output, param, probe)}")
     return Checked(tuple(errors), tuple(notes))
 
 
 # --- the points ----------------------------------------------------------------------------------------------
 
 
-def scene_probe(scene: ResolvedScene, seed: int) -> Probe:
+def scene_probe(scene: ResolvedScene, seed: int, names=None) -> Probe:
     """The scene's defaults and seeded stops, each with every parameter of the scene moved: to other stops of
     its slider, or to values near its fixed value in its domain (a parameter replaced by one of the scene's
-    effects too: it must change nothing)."""
+    effects too: it must change nothing). With `names`, only the parameters some output among them leaves out
+    of its deps are moved (the others' values are drawn all the same: every other point stays where it was)."""
     rng = np.random.default_rng(seed)
+    left_out = _left_out(scene, names)
+    fixed_moves = 1 if scene.model.chunk_stops else MOVES  # each stop an ODE solve: one seeded value per stop
     counts = [axis.count for axis in scene.axes]
     stops = [scene.default_stops]
     for _ in range(4 * BASE_STOPS):
@@ -164,12 +173,24 @@ def scene_probe(scene: ResolvedScene, seed: int) -> Probe:
                 others = _other_stops(axis.count, stops[b][index], rng)
                 new = [float(axis.values()[k]) for k in others]
             else:
-                new = _near(param.under(scene.effects), values[param.name], rng)
+                new = _near(param.under(scene.effects), values[param.name], rng)[:fixed_moves]
+            if param.name not in left_out:
+                continue
             for value in new:
                 points.append({**values, param.name: value})
                 base_of.append(b)
                 moved.append(param.name)
     return _probe(scene.model, points, base_of, moved)  # (an idle dep of a scene is read from its tables)
+
+
+def _left_out(scene: ResolvedScene, names) -> set[str]:
+    """The parameters that some output among `names` (all of the model's, if None) leaves out of its deps."""
+    model = type(scene.model)
+    every = {p.name for p in model.params}
+    if names is None:
+        return every
+    declared = [set(model.deps_of(name, scene.effects)) for name in names]
+    return {param for param in every if not all(param in deps for deps in declared)}
 
 
 def model_probe(model, effects: frozenset[str], points: int, seed: int, moves: int = MOVES) -> Probe:

@@ -21,7 +21,6 @@ ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build-bench"
 sys.path.insert(0, str(ROOT / "src"))
 
-from sitegen.accuracy.build_costs import page_bytes  # noqa: E402
 from sitegen.build import BuildConfig, build  # noqa: E402
 
 
@@ -91,42 +90,73 @@ def rebuild_times(runs: int = 3) -> dict:
 def deps_probe_cost(pairs: int = 3) -> dict:
     """Cold builds of the book with and without the deps probe, in interleaved pairs (so that the machine's load
     falls on both alike; each pair in the other order than the one before, after a build that loads what the
-    first build of a process loads): min, median and max seconds of each, and the probe's share of the median."""
+    first build of a process loads): min, median and max seconds of each, and the probe's share of the median.
+    In the builds with it, the probe's own CPU seconds (and the page-weight summary's) against the build's: a
+    share that the machine's load moves far less than the difference of two builds."""
+    import sitegen.build as built
     import sitegen.phases.scenes as scenes
 
-    checked, seconds = scenes.verify_scene_deps, {"with": [], "without": []}
+    checked, weighed = scenes.verify_scene_deps, built.page_weights
+    seconds, own = {"with": [], "without": []}, []
     with tempfile.TemporaryDirectory() as tmp:
         build(BuildConfig.at(ROOT, Path(tmp) / "warm", cache=None), progress=None)  # imports and compiled code loaded
         for pair in range(pairs):
             for side in ("with", "without") if pair % 2 == 0 else ("without", "with"):
-                scenes.verify_scene_deps = checked if side == "with" else (lambda *args, **kwargs: [])
+                spent = {"probe": 0.0, "weights": 0.0}
+                scenes.verify_scene_deps = _cpu_timed(checked, spent, "probe") if side == "with" else _no_findings
+                built.page_weights = _cpu_timed(weighed, spent, "weights")
                 try:
-                    start = time.perf_counter()
+                    start, cpu = time.perf_counter(), time.process_time()
                     build(BuildConfig.at(ROOT, Path(tmp) / side, cache=None), progress=None)
                     seconds[side].append(time.perf_counter() - start)
+                    if side == "with":
+                        own.append({"build_cpu_s": time.process_time() - cpu, **spent})
                 finally:
-                    scenes.verify_scene_deps = checked
-    spread = {side: {"min_s": min(t), "median_s": statistics.median(t), "max_s": max(t)} for side, t in seconds.items()}
+                    scenes.verify_scene_deps, built.page_weights = checked, weighed
+    spread = {side: _spread(t) for side, t in seconds.items()}
     share = spread["with"]["median_s"] / spread["without"]["median_s"] - 1
-    return {"pairs": pairs, **spread, "share": share}
+    shares = {part: _spread([run[part] / run["build_cpu_s"] for run in own], "") for part in ("probe", "weights")}
+    cpu = {part: _spread([run[part] for run in own]) for part in ("build_cpu_s", "probe", "weights")}
+    return {"pairs": pairs, **spread, "share": share, "own_cpu_s": cpu, "own_share": shares}
 
 
-def page_sizes(site: Path) -> dict:
-    """Raw and gzip bytes of each page and of everything it loads."""
-    return {page.name: page_bytes(site, page) for page in sorted(site.glob("*.html"))}
+def _cpu_timed(function, spent: dict, part: str):
+    """`function`, adding the CPU seconds of each call to spent[part]."""
+
+    def timed(*args, **kwargs):
+        start = time.process_time()
+        try:
+            return function(*args, **kwargs)
+        finally:
+            spent[part] += time.process_time() - start
+
+    return timed
+
+
+def _no_findings(*args, **kwargs) -> list:
+    return []
+
+
+def _spread(values, unit: str = "_s") -> dict:
+    return {f"min{unit}": min(values), f"median{unit}": statistics.median(values), f"max{unit}": max(values)}
+
+
+def page_sizes(report) -> dict:
+    """Raw and gzip bytes of each page and of everything it loads, as the build's summary measured them."""
+    return {weight.page: weight.sizes() for weight in report.weights}
 
 
 def main() -> int:
     """Run every benchmark, print a summary and write build-bench/report.json."""
     OUT.mkdir(exist_ok=True)
     site = ROOT / "build"
-    build(BuildConfig.at(ROOT), progress=None)
+    built = build(BuildConfig.at(ROOT), progress=None)
     report = {
         "machine": {"python": platform.python_version(), "cpu_count": os.cpu_count(), "platform": platform.platform()},
         "build": build_times(),
         "rebuilds": rebuild_times(),
         "deps_probe": deps_probe_cost(),
-        "pages": page_sizes(site),
+        "pages": page_sizes(built),
     }
     latency_file = OUT / "latency.json"
     subprocess.run(
@@ -156,6 +186,12 @@ def main() -> int:
         f"{d['with']['max_s']:.2f}) with it, {d['without']['median_s']:.2f} s (min {d['without']['min_s']:.2f}, "
         f"max {d['without']['max_s']:.2f}) without, over {d['pairs']} interleaved pairs: {100 * d['share']:+.1f} %"
     )
+    for part, what in (("probe", "deps probe"), ("weights", "page weights")):
+        s, c = d["own_share"][part], d["own_cpu_s"][part]
+        print(
+            f"{what}: its own CPU {c['median_s']:.3f} s, {100 * s['median']:.2f} % of the cold build's "
+            f"(min {100 * s['min']:.2f} %, max {100 * s['max']:.2f} %)"
+        )
     for name, s in report["pages"].items():
         print(
             f"{name:<22} html {s['html_raw'] / 1024:7.1f} KB raw {s['html_gzip'] / 1024:6.1f} KB gzip | "

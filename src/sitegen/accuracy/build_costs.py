@@ -7,12 +7,12 @@ each timed run tabulates the scene from nothing, as a first build on a fresh che
 
 from __future__ import annotations
 
-import re
 import tempfile
 from pathlib import Path
 
 from ..build import BuildConfig, build, resolve_book, tabulate_book
-from ..site.sizes import gzip_bytes
+from ..compute.cache import compute_now
+from ..site.weight import page_weights
 from .experiments import clear_model_caches
 from .timing import time_medians
 
@@ -46,30 +46,18 @@ def _tabulate_cold(book, config: BuildConfig) -> int:
 
 
 def site_sizes(root: Path) -> tuple[dict[str, dict], dict[str, dict]]:
-    """The book built once: raw and gzip bytes of each page (alone and with every asset it loads),
-    and of each scene's inline data by "page#scene"."""
+    """The book built once: raw and gzip bytes of each page (alone and with every asset it loads, as the
+    build's summary measured them), and of each scene's inline data by "page#scene"."""
     with tempfile.TemporaryDirectory() as folder:
-        site = Path(folder) / "build"
-        report = build(BuildConfig.at(root, site), progress=None)
-        pages = {page.name: page_bytes(site, page) for page in sorted(site.glob("*.html"))}
+        report = build(BuildConfig.at(root, Path(folder) / "build"), progress=None)
+        pages = {weight.page: weight.sizes() for weight in report.weights}
         data = {name: {"raw": raw, "gzip": packed} for name, (raw, packed) in report.data_bytes.items()}
         return pages, data
 
 
 def page_bytes(site: Path, page: Path) -> dict:
-    """Raw and gzip bytes of a built page, alone and with every asset it loads (the stylesheet's
-    font included)."""
-    html = page.read_text()
-    assets = set(
-        re.findall(r'(?:href|src|data-index)="(assets/[^"]+)"', html)
-    )  # data-index: the search script, loaded on first use
-    for sheet in [a for a in assets if a.endswith(".css")]:
-        assets |= {f"assets/{u}" for u in re.findall(r'url\("?([^")]+)"?\)', (site / sheet).read_text())}
-    files = [page, *(site / a for a in sorted(assets) if (site / a).is_file())]
-    packed = [gzip_bytes(f.read_bytes()) for f in files]
-    return {
-        "html_raw": page.stat().st_size,
-        "html_gzip": packed[0],
-        "total_raw": sum(f.stat().st_size for f in files),
-        "total_gzip": sum(packed),
-    }
+    """Raw and gzip bytes of a page of a built site, alone and with every asset it loads (the stylesheet's
+    font included), measured as a build's summary measures them."""
+    assets = sorted(f for f in (site / "assets").rglob("*") if f.is_file())
+    files = {page.name: page.read_bytes()} | {f.relative_to(site).as_posix(): f.read_bytes() for f in assets}
+    return page_weights(files, (), compute_now)[0].sizes()

@@ -5,43 +5,82 @@ from __future__ import annotations
 
 import hashlib
 import math
+import re
 from dataclasses import dataclass
 
 from .sizes import gzip_bytes
 
 HEAVIEST = 3  # scenes a warning names
 TABLES = 2  # of each, the largest tables it names
+LOADING = (b"href", b"src", b"data-index")  # the attributes by which a page loads an asset
 
 
 @dataclass(frozen=True)
 class PageWeight:
-    """One page: its HTML raw and gzip, what it loads with it (gzip), and its scenes' inline data (raw bytes)."""
+    """One page: its HTML raw and gzip, what it loads with it (raw and gzip), and its scenes' inline data (raw
+    bytes)."""
 
     page: str
     raw: int
     gzip: int
     loaded_gzip: int  # the HTML and every asset it loads (script, stylesheet, math font, search), gzip
     scenes: tuple[tuple[str, int], ...]  # ("page#scene", raw bytes of its inline tables), heaviest first
+    loaded_raw: int = 0  # the same, raw
+
+    def sizes(self) -> dict[str, int]:
+        """The page's bytes as the accuracy report and the benches list them."""
+        return {
+            "html_raw": self.raw,
+            "html_gzip": self.gzip,
+            "total_raw": self.loaded_raw,
+            "total_gzip": self.loaded_gzip,
+        }
 
 
 def page_weights(files: dict[str, bytes], records, cached) -> list[PageWeight]:
     """The weight of every page among `files` (name: bytes, the built site's), with its scenes from `records`.
-    Each gzip size is cached by the file's digest: a rebuild compresses only what changed."""
+    Each file is compressed once, and its gzip size is cached by its digest: a rebuild compresses only what
+    changed."""
+    packed: dict[str, int] = {}
 
-    def packed(data: bytes) -> int:
-        key = hashlib.sha256(data).hexdigest()
-        return int(cached("page-gzip", key, lambda: str(gzip_bytes(data)).encode()))
+    def gzip_size(name: str) -> int:
+        if name not in packed:
+            data = files[name]
+            key = hashlib.sha256(data).hexdigest()
+            packed[name] = int(cached("page-gzip", key, lambda: str(gzip_bytes(data)).encode()))
+        return packed[name]
 
-    assets = sum(packed(data) for name, data in sorted(files.items()) if name.startswith("assets/"))
     weights = []
     for name, data in sorted(files.items()):
         if name.endswith(".html") and "/" not in name:
             scenes = sorted(
                 ((r.name, r.data_bytes[0]) for r in records if r.page.output_name == name), key=lambda s: -s[1]
             )
-            html = packed(data)
-            weights.append(PageWeight(name, len(data), html, html + assets, tuple(scenes)))
+            loaded = [name, *loaded_assets(data, files)]
+            weights.append(
+                PageWeight(
+                    name,
+                    len(data),
+                    gzip_size(name),
+                    sum(gzip_size(n) for n in loaded),
+                    tuple(scenes),
+                    sum(len(files[n]) for n in loaded),
+                )
+            )
     return weights
+
+
+def loaded_assets(html: bytes, files: dict[str, bytes]) -> list[str]:
+    """The assets among `files` a page loads: what it links and its scripts (the search script by its
+    data-index, loaded on first use), and the fonts its stylesheets name."""
+    assets = {  # found by the literal ="assets/ (a fast scan of a page of megabytes), then the attribute's name
+        m[1].decode()
+        for m in re.finditer(rb'="(assets/[^"]+)"', html)
+        if any(html.endswith(attribute, 0, m.start()) for attribute in LOADING)
+    }
+    for sheet in sorted(a for a in assets if a.endswith(".css") and a in files):
+        assets |= {f"assets/{u.decode()}" for u in re.findall(rb'url\("?([^")]+)"?\)', files[sheet])}
+    return sorted(a for a in assets if a in files)
 
 
 def weight_lines(weights: list[PageWeight]) -> list[str]:

@@ -1,14 +1,18 @@
 """The phases that work on scenes, a page at a time: tabulate (from the cache or by the executor),
-check the numerics against each model's reference, and render each figure."""
+check (each closed form against its model at sampled stops, the numerics against each model's
+reference), and render each figure."""
 
 from __future__ import annotations
 
+import json
 import time
 from dataclasses import replace
 
+from ..compute.closed_form import verify_closed_forms
 from ..compute.deps import inert_deps_note, verify_scene_deps
 from ..compute.measure import measure_accuracy
 from ..compute.sources import digest, library_version, source_digest
+from ..compute.structure import Structured
 from ..compute.tabulate import assemble_tables, evaluate_timed, per_stop_outputs, plan_scene
 from ..errors import AuthorError
 from ..render.figures.base import scene_figures
@@ -22,6 +26,7 @@ from .run import PROGRESS_EVERY, BuildRun
 SAID_FROM = 0.1  # seconds: a model whose first stop takes this long (compiled code, mostly) gets a line
 # The code that turns a view's drawing into the page's SVG (followed through its imports, with the view's module).
 DRAWING = frozenset(f.__module__ for f in (figure_svg, laid_out, layer_points, scene_figures))
+CLOSED_FORM_CODE = frozenset({verify_closed_forms.__module__})
 
 
 def compile_first_stops(book: Book, run: BuildRun) -> Book:
@@ -164,17 +169,39 @@ def _noted(record: SceneRecord, run: BuildRun, cached: bool, seconds: float) -> 
 
 
 def check_scenes(book: Book, run: BuildRun) -> Book:
-    """Each numerically computed scene measured against its model's reference (over its tolerance: an error)."""
+    """Each scene's closed forms verified against its model at sampled stops, then each numerically computed
+    scene measured against its model's reference (a wrong closed form, or an error over the tolerance: an
+    author error)."""
     records = []
     for record in book.current():
         if record.tables is None:
             continue
         with run.scene(record, "checking its numerics"):
-            found, errors = measure_accuracy([record], run.cached, run.progress, shown=lambda _: record.outputs)
+            if errors := _closed_form_errors(record, run):
+                for error in errors:
+                    run.error(error)
+                records.append(replace(record, tables=None))
+                continue
+            measured, errors = measure_accuracy([record], run.cached, run.progress, shown=lambda _: record.outputs)
             for error in errors:
                 run.error(error)
-            records.append(replace(record, accuracy=found[0] if found else None))
+            records.append(replace(record, accuracy=measured[0] if measured else None))
     return book.with_records(records)
+
+
+def _closed_form_errors(record: SceneRecord, run: BuildRun) -> list[AuthorError]:
+    """The sampled check of the scene's closed forms (`verify_closed_forms`), its verdict cached under the key of
+    the scene's tables: a rebuild with the tables cached evaluates nothing."""
+    forms = [table for table in record.tables.values() if isinstance(table, Structured)]
+    if not forms:
+        return []
+    scene = record.scene
+    key = digest(record.key.digest, source_digest(CLOSED_FORM_CODE), "closed-forms")
+
+    def verify() -> bytes:
+        return json.dumps([error.message for error in verify_closed_forms(scene, forms)]).encode()
+
+    return [AuthorError(scene.spec.loc, text, scene.id) for text in json.loads(run.cached("closed-forms", key, verify))]
 
 
 def render_figures(book: Book, run: BuildRun) -> Book:

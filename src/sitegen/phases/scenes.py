@@ -55,15 +55,16 @@ def send_work(book: Book, run: BuildRun) -> Book:
     """Send the work of every table the cache lacks to the executor, each table once, in plan order."""
     if run.failed:
         return book
+    work = {}
     for record in book.scenes:
         digest = record.key.digest
-        if digest in run.work or (run.cache and run.cache.has(record.key)):
+        if digest in work or (run.cache and run.cache.has(record.key)):
             continue
         try:
-            run.work[digest] = _submitted(planned(record), run.executor)
+            work[digest] = _submitted(planned(record), run.executor)
         except AuthorError:  # reported when the scene is tabulated
             continue
-    return book
+    return replace(book, work=work)
 
 
 def _submitted(units: list, executor) -> tuple[list, list]:
@@ -72,12 +73,16 @@ def _submitted(units: list, executor) -> tuple[list, list]:
 
 
 def tabulate_scenes(book: Book, run: BuildRun) -> Book:
-    """Each scene's tables: from the cache when its key matches, else from the work sent out for it."""
-    records = []
+    """Each scene's tables: from the cache when its key matches, else from the work sent out for it (which
+    the book then no longer holds)."""
+    records, work = [], dict(book.work)
+    done = sum(1 for r in book.scenes if r.status)  # scenes tabulated before this page
     for record in book.current():
         with run.scene(record, "tabulating"):
-            records.append(_checked_deps(_tabulated(record, run), run))
-    return book.with_records(records)
+            record, seconds = _tabulated(record, work.pop(record.key.digest, None), run)
+            record = _noted(record, seconds, f"[{done + len(records) + 1}/{len(book.scenes)}]", run)
+            records.append(_checked_deps(record, run))
+    return replace(book.with_records(records), work=work)
 
 
 def _checked_deps(record: SceneRecord, run: BuildRun) -> SceneRecord:
@@ -89,17 +94,18 @@ def _checked_deps(record: SceneRecord, run: BuildRun) -> SceneRecord:
     return replace(record, tables=None) if errors else record
 
 
-def _tabulated(record: SceneRecord, run: BuildRun) -> SceneRecord:
-    found = run.cache.load(record.key) if run.cache else None
-    if found is not None:
-        return _noted(replace(record, tables=found), run, cached=True, seconds=0.0)
-    units, futures = run.work.pop(record.key.digest, None) or _submitted(planned(record), run.executor)
+def _tabulated(record: SceneRecord, work: tuple | None, run: BuildRun) -> tuple[SceneRecord, float]:
+    """The record with its tables, from the cache or folded from `work` (its units and their futures; sent
+    now when None), and the seconds the work took."""
+    tables = run.cache.load(record.key) if run.cache else None
+    if tables is not None:
+        return replace(record, tables=tables, cached=True), 0.0
+    units, futures = work or _submitted(planned(record), run.executor)
     results, seconds = _evaluated(record, units, map(_result, units, futures), run)
     tables = assemble_tables(record.scene, units, results, list(record.outputs))
-    run.report.evaluations += len(units)
     if run.cache:
         run.cache.store(record.key, tables)
-    return _noted(replace(record, tables=tables), run, cached=False, seconds=seconds)
+    return replace(record, tables=tables, evaluations=len(units)), seconds
 
 
 def _result(unit, future) -> tuple:
@@ -152,20 +158,17 @@ class _Pace:
             self.run.say(f"  {self.record.name:<40} {self.stops:>12,} of {self.total:,} stops, {rate:,.0f} stops/s")
 
 
-def _noted(record: SceneRecord, run: BuildRun, cached: bool, seconds: float) -> SceneRecord:
-    """Count the scene and log its line: name, stops, seconds, cached or computed and why."""
-    report = run.report
-    status = run.cache.explain(record.name, record.key, cached) if run.cache else "computed: no cache"
-    report.cached += cached
-    report.computed += not cached
-    line = f"[{report.cached + report.computed}/{report.scenes}] {record.name:<36} {record.stops:>14,} stops {seconds:7.2f} s  {status}"
-    report.scene_lines.append(line)
-    run.say(line)
-    stored = sum(t.stored_values() for t in record.tables.values())
+def _noted(record: SceneRecord, seconds: float, number: str, run: BuildRun) -> SceneRecord:
+    """The record with its status, the numbers its tables ship and its lines of the log (said): name, stops,
+    seconds, cached or computed and why, and a note on each declared dep that changes nothing."""
+    status = run.cache.explain(record.name, record.key, record.cached) if run.cache else "computed: no cache"
+    lines = [f"{number} {record.name:<36} {record.stops:>14,} stops {seconds:7.2f} s  {status}"]
+    run.say(lines[0])
     if note := inert_deps_note(record.scene, record.tables, run.config.root):
-        report.scene_lines.append(note)
+        lines.append(note)
         run.say(note)
-    return replace(record, status=status, stored_values=stored)
+    stored = sum(t.stored_values() for t in record.tables.values())
+    return replace(record, status=status, lines=tuple(lines), stored_values=stored)
 
 
 def check_scenes(book: Book, run: BuildRun) -> Book:

@@ -111,7 +111,8 @@ def test_false_claim_fails_the_build_at_the_scene():
 
 
 def test_sampled_check_covers_corners_edges_and_defaults():
-    """The sampled check's stops include every corner, every stop along each edge of the slider box, and the defaults."""
+    """The sampled check's stops include every corner, every stop along each edge of the slider box, and the
+    defaults."""
     scene = _scene([*SQUARE, "readouts: right"], {"square": _Square})
     stops = {tuple(s) for s in verified_stops(scene).tolist()}
     assert {(0, 0), (0, 99), (400, 0), (400, 99), scene.default_stops} <= stops

@@ -56,7 +56,8 @@ class SceneRecord:
         return count
 
     def finished(self) -> SceneRecord:
-        """The record once its page is written: what the accuracy report reads kept, the tables, figure and HTML let go."""
+        """The record once its page is written: what the accuracy report reads is kept; the tables, figure and
+        HTML are let go."""
         return replace(self, tables=None, figure=None, html="")
 
 

@@ -81,11 +81,11 @@ def tabulate_scenes(book: Book, run: BuildRun) -> Book:
         with run.scene(record, "tabulating"):
             record, seconds = _tabulated(record, work.pop(record.key.digest, None), run)
             record = _noted(record, seconds, f"[{done + len(records) + 1}/{len(book.scenes)}]", run)
-            records.append(_checked_deps(record, run))
+            records.append(_verified_deps(record, run))
     return replace(book.with_records(records), work=work)
 
 
-def _checked_deps(record: SceneRecord, run: BuildRun) -> SceneRecord:
+def _verified_deps(record: SceneRecord, run: BuildRun) -> SceneRecord:
     """The record, once its outputs are found to change only with what their deps declare (probed, or read
     back with its tables); each that does not is an author error, and the record keeps no tables."""
     errors = verify_scene_deps(record.scene, planned_outputs(record), run.cached, run.config.root)
@@ -179,7 +179,7 @@ def check_scenes(book: Book, run: BuildRun) -> Book:
     for record in book.current():
         if record.tables is None:
             continue
-        with run.scene(record, "checking its numerics"):
+        with run.scene(record, "checking its closed forms and numerics"):
             if errors := _closed_form_errors(record, run):
                 for error in errors:
                     run.error(error)

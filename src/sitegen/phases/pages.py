@@ -88,7 +88,9 @@ def _report_context(book: Book, run: BuildRun) -> ReportContext:
     records = tuple(r.accuracy for r in book.scenes if r.accuracy is not None)
     sizes = {r.name: r.data_bytes for r in book.scenes}
     bench = load_results(run.config.content / BENCH_NAME)
-    return ReportContext(bench, records, book.pages, book.scenes, sizes, run.cached, run.models, run.registry.reports)
+    return ReportContext(
+        bench, records, book.pages, book.scenes, sizes, run.cached, run.registry.models, run.registry.reports
+    )
 
 
 def write_assets(book: Book, run: BuildRun) -> Book:

@@ -90,16 +90,6 @@ class BuildRun:
         cache = TableCache(config.cache) if config.cache else None
         return cls(config, registry, progress, executor or InProcess(), cache)
 
-    @property
-    def models(self):
-        """The models the book may use, by name."""
-        return self.registry.models
-
-    @property
-    def figures(self):
-        """The figures the book may use, by name."""
-        return self.registry.figures
-
     def cached(self, kind: str, key: str, compute) -> bytes:
         """The value stored under (`kind`, `key`), else `compute()` (stored for next time when there is a cache)."""
         return self.cache.cached(kind, key, compute) if self.cache else compute()

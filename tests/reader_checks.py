@@ -20,8 +20,9 @@ On the tiny book (tests/book) and the project's own book, as the engine draws th
 One browser per module, one tab; a page stays loaded from one test to the next when they read the same
 document (each test puts its scene back on its defaults), and the tests are ordered so that the viewport
 changes its width rarely (a resize of a long page costs WebKit a second or two). Chromium's states and
-colours, the reference, come from a tab of their own. Each test records its engine's version, which
-conftest.py prints at the end of the run.
+colours, the reference, come from a tab of their own. Each test records its engine's version as its driver
+tells it (a property of the test in a JUnit XML report); conftest.py ends a run that drove a browser with a
+line naming each engine and its version.
 """
 
 from __future__ import annotations
@@ -112,7 +113,7 @@ def engine(request, chromium, tmp_path_factory):
 
 @pytest.fixture(autouse=True)
 def _engine_version(request, record_property):
-    """Every test carries its engine's version (conftest.py prints them at the end of the run)."""
+    """Every test carries its engine's version, as its driver tells it (a JUnit XML report shows it)."""
     record_property("browser", request.getfixturevalue("engine").version)
 
 

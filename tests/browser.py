@@ -218,7 +218,7 @@ def book(root: Path = ROOT) -> tuple[list[Page], list[BookScene]]:
     resolved = resolve_book(BuildConfig.at(root))
     pages = list(resolved.pages)
     scenes = [BookScene(item.page, item.scene) for item in resolved.scenes]
-    declared = sum(len(p.found.scenes) for p in pages)
+    declared = sum(len(p.extracted.scenes) for p in pages)
     assert len(scenes) == declared, f"{declared} scene blocks, {len(scenes)} resolved"
     return pages, scenes
 
@@ -520,7 +520,7 @@ def _evaluate_texts(scene: ResolvedScene, stops: tuple[int, ...]) -> dict[str, t
 def _roundings(value: float, decimals: int) -> list[str]:
     """The correct displays of a value: its rounding, and where the value sits on a rounding tie
     (to its own float error, e.g. K = 0.005 J at 2 decimals) also the neighbour on the other side.
-    An output the page computes from a proven expression may land on either side of a tie."""
+    An output the page computes from a verified expression may land on either side of a tie."""
     shown = fmt(value, decimals)
     scaled = value * 10.0**decimals
     if abs(abs(scaled - math.floor(scaled)) - 0.5) > 1e-9 * max(1.0, abs(scaled)):

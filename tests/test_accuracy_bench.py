@@ -387,8 +387,8 @@ def test_a_cold_timing_forgets_every_model_memo():
 
 
 def test_the_reports_diagrams_from_bench_alone_are_drawn_once_and_not_again_when_cached(tmp_path):
-    """`bench_figures` (what the build draws ahead, beside itself) gives every diagram of the report's parts that
-    needs only bench.json, by the key the page remembers it by; with those in the cache it draws none."""
+    """`bench_figures` (what the report draws from bench.json alone) gives every diagram of the report's parts that
+    needs only bench.json, by the key the page caches it under; with those in the cache it draws none."""
     from sitegen.compute.cache import TableCache
     from sitegen.site.report import ReportContext, bench_figures, report_part
     from sitegen.site.report.html import FIGURES_KIND
@@ -402,16 +402,16 @@ def test_the_reports_diagrams_from_bench_alone_are_drawn_once_and_not_again_when
 
     asked = {}
 
-    def remember(kind, key, compute):  # the page's own rendering, with this build's (empty) records
+    def cached(kind, key, compute):  # the page's own rendering, with this build's (empty) records
         asked[key] = compute()
         return asked[key]
 
-    context = ReportContext(bench, (), (), (), {}, remember, registry.models, registry.reports)
+    context = ReportContext(bench, (), (), (), {}, cached, registry.models, registry.reports)
     for part in parts:
         report_part(part, context)
     assert {key: asked[key] for key in drawn} == drawn
 
     cache = TableCache(tmp_path / "cache")
     for key, svg in drawn.items():
-        cache.remember(FIGURES_KIND, key, lambda svg=svg: svg)
+        cache.cached(FIGURES_KIND, key, lambda svg=svg: svg)
     assert bench_figures(bench, parts, registry.models, registry.reports, cache) == {}

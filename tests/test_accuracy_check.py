@@ -9,7 +9,7 @@ import pytest
 from helpers import resolved_scene, write_book
 
 from sitegen.build import build
-from sitegen.compute.check import caption_sentence, check_scenes, sample_stops
+from sitegen.compute.measure import caption_sentence, measure_accuracy, measured_stops
 from sitegen.errors import BuildFailed, SourceLoc
 from sitegen.models.bubble.model import Bubble
 from sitegen.models.bubble.point import SOLVER_LABELS
@@ -55,7 +55,7 @@ def _scene(text: str):
 
 def _record(text: str):
     """The accuracy record of one scene, checked afresh (no cache)."""
-    records, errors = check_scenes([SimpleNamespace(page=SimpleNamespace(slug="t"), scene=_scene(text))])
+    records, errors = measure_accuracy([SimpleNamespace(page=SimpleNamespace(slug="t"), scene=_scene(text))])
     return records[0], errors
 
 
@@ -64,7 +64,7 @@ def test_bubble_scene_error_is_measured_and_within_its_default_tolerance(text):
     """At the default settings each preset's measured error is a real, nonzero number below the declared tolerance."""
     record, errors = _record(text)
     assert 0.0 < record.error <= record.tolerance == Bubble.numerics.tolerance
-    assert not errors and record.stops_checked == 2 and record.evaluations > 0
+    assert not errors and record.stops_measured == 2 and record.evaluations > 0
 
 
 @pytest.mark.parametrize("text", BUBBLE_SCENES)
@@ -116,17 +116,17 @@ def test_checked_scene_caption_states_the_error_and_links_only_when_the_page_exi
 
 
 def test_no_op_rebuild_runs_no_check_solves(tmp_path):
-    """With a cache the second check measures nothing: every record comes from the remembered result."""
+    """With a cache the second check measures nothing: every record comes from the cached result."""
     from sitegen.compute.cache import TableCache
 
     cache, calls = TableCache(tmp_path), []
 
-    def remember(kind, key, compute):
-        return cache.remember(kind, key, lambda: calls.append(kind) or compute())
+    def cached(kind, key, compute):
+        return cache.cached(kind, key, lambda: calls.append(kind) or compute())
 
     items = [SimpleNamespace(page=SimpleNamespace(slug="t"), scene=_scene(DRIVEN))]
-    first, _ = check_scenes(items, remember)
-    second, _ = check_scenes(items, remember)
+    first, _ = measure_accuracy(items, cached)
+    second, _ = measure_accuracy(items, cached)
     assert calls == ["accuracy"] and first == second
 
 
@@ -136,8 +136,8 @@ def test_sample_is_deterministic_and_holds_defaults_and_corners():
         "model: chain\nslider N: 1, 2, 4, 8, 16 default 8\nslider t: 0..2 step "
         "0.1 default 0.5\nchoice launch: right-moving | split default split"
     )
-    stops = sample_stops(scene)
-    assert stops == sample_stops(scene) and len(stops) == len(set(stops)) == 16
+    stops = measured_stops(scene)
+    assert stops == measured_stops(scene) and len(stops) == len(set(stops)) == 16
     assert stops[:3] == [scene.default_stops, (0, 0, 0), (4, 20, 1)]
 
 

@@ -90,8 +90,8 @@ def test_the_finding_is_kept_with_the_scene_and_read_back(book, monkeypatch):
     )
     first = _errors(book)
     probes = []
-    check_scene = deps.check_scene
-    monkeypatch.setattr(deps, "check_scene", lambda *args: probes.append(args) or check_scene(*args))
+    probe_scene = deps.probe_scene
+    monkeypatch.setattr(deps, "probe_scene", lambda *args: probes.append(args) or probe_scene(*args))
     assert _errors(book) == first and probes == []
     assert _errors(BuildConfig.at(book.root, cache=None)) == first and len(probes) == 1  # without a cache: probed
 

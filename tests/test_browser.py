@@ -55,8 +55,8 @@ from browser import (
     stop_inputs,
 )
 
+from sitegen.compute.closed_form import verified_stops
 from sitegen.compute.grid import CHOICE, RANGE
-from sitegen.compute.proof import proof_stops
 from sitegen.compute.quantize import fmt
 from sitegen.compute.structure import structured_pieces
 
@@ -203,7 +203,7 @@ def test_built_site_matches_sources(built_site, loaded, name):
     page, _ = loaded(name, "file", javascript=False)
     scenes = [s for s in SCENES if s.page.output_name == name]
     source = next(p for p in PAGES if p.output_name == name)
-    assert len(scenes) == len(source.found.scenes)
+    assert len(scenes) == len(source.extracted.scenes)
     found = page.eval_on_selector_all("figure.scene", "els => els.map(e => [e.id, e.dataset.scene])")
     assert found == [[s.dom_id, s.scene.model.name] for s in scenes]
     for scene in scenes:
@@ -270,9 +270,9 @@ def test_page_loads_cleanly(built_site, loaded, site_server, name, transport):
 
     source = next(p for p in PAGES if p.output_name == name)
     maths = page.locator("math").count()
-    if source.found.maths:
-        assert maths >= len(source.found.maths), (
-            f"{len(source.found.maths)} formulas in the source, {maths} <math> elements"
+    if source.extracted.maths:
+        assert maths >= len(source.extracted.maths), (
+            f"{len(source.extracted.maths)} formulas in the source, {maths} <math> elements"
         )
         assert any(u.endswith("assets/latinmodern-math.woff2") for u in log.requests), "math font not requested"
         assert page.evaluate("""document.fonts.check('16px "Latin Modern Math"')""")
@@ -497,19 +497,19 @@ def test_random_scene_states(scene_page, scene, transport):
     assert not log.trouble_since(mark)
 
 
-# --- e2) outputs the page computes from proven expressions -------------------------------------------
+# --- e2) outputs the page computes from verified expressions -------------------------------------------
 
 STRUCTURED_SCENES = [s for s in SCENES if structured_pieces(s.scene, s.readout_names)]
 
 
 @pytest.mark.parametrize("scene,transport", _scene_params(STRUCTURED_SCENES, ("file",)))
-def test_expressions_at_the_proofs_stops(scene_page, scene, transport):
-    """The build's proof of each declared structure, repeated through the real script: at the slider
+def test_expressions_at_the_verified_stops(scene_page, scene, transport):
+    """The build's sampled check of each declared structure, repeated through the real script: at the slider
     box's corners, a spread of its edge stops and seeded random stops, every readout the script
     computes from an expression equals the model's value at display precision (a tie either way)."""
     page, log, mark = scene_page(scene, transport)
-    stops = proof_stops(scene.scene)
-    rng = random.Random(f"{scene.key}/proof")
+    stops = verified_stops(scene.scene)
+    rng = random.Random(f"{scene.key}/closed-form")
     chosen = [tuple(int(k) for k in s) for s in rng.sample(list(stops), min(300, len(stops)))]
     corners = [tuple(int(k) for k in s) for s in stops if all(k in (0, a.count - 1) for k, a in zip(s, scene.axes))]
     failures = []

@@ -181,7 +181,7 @@ def test_every_directive_and_math_feature_the_book_uses_is_explained():
 
     guide = (ROOT / "docs" / "writing-pages.md").read_text()
     pages = resolve_book(BuildConfig.at(ROOT)).pages
-    used = {key.split()[0] for page in pages for spec in page.found.scenes for key, _ in spec.lines}
+    used = {key.split()[0] for page in pages for spec in page.extracted.scenes for key, _ in spec.lines}
     assert {"slider", "choice", "animate", "caption"} <= used
     missing = [key for key in sorted(used) if f"| `{key} " not in guide and f"| `{key}:" not in guide]
     assert not missing, f"directives without a row in docs/writing-pages.md: {missing}"

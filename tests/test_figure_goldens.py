@@ -32,7 +32,7 @@ def _source_scenes() -> list[str]:
         page, _ = read_page(path, ROOT)
         if page is not None:
             names += [
-                f"{page.slug}/{spec.id}{variant}" for spec in page.found.scenes for variant in ("", NARROW_SUFFIX)
+                f"{page.slug}/{spec.id}{variant}" for spec in page.extracted.scenes for variant in ("", NARROW_SUFFIX)
             ]
     return names
 

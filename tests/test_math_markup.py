@@ -25,11 +25,11 @@ from sitegen.render.svg import dot_step, format_dots
 
 
 def _html(text: str) -> str:
-    found = Extracted()
-    html = markdown_to_html(text, "page.md", 1, found)
-    mathml, errors = convert_math(found.maths)
+    extracted = Extracted()
+    html = markdown_to_html(text, "page.md", 1, extracted)
+    mathml, errors = convert_math(extracted.maths)
     assert not errors, errors
-    return fill_slots(html, found, mathml, scenes=[])
+    return fill_slots(html, extracted, mathml, scenes=[])
 
 
 def _number_box(html: str) -> re.Match:

@@ -1,4 +1,4 @@
-"""Structure-aware tabulation: declared exact forms are compiled into small expressions, proven
+"""Structure-aware tabulation: declared exact forms are compiled into small expressions, verified
 against the model at build time, and a wrong claim fails the build at the scene's line."""
 
 from __future__ import annotations
@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from helpers import resolved_scene
 
+from sitegen.compute.closed_form import verified_stops
 from sitegen.compute.expression import shown
-from sitegen.compute.proof import proof_stops
 from sitegen.compute.structure import Structured
 from sitegen.compute.tabulate import tabulate_scene
 from sitegen.errors import AuthorError, SourceLoc
@@ -46,7 +46,7 @@ def test_full_resolution_collision_ships_a_few_hundred_values():
 
 def test_expression_matches_model_at_many_stops():
     """The script's arithmetic (mirrored in numpy) shows what the model gives at 50 000 random stops
-    besides the proof's own, except at exact rounding ties."""
+    besides the sampled check's own, except at exact rounding ties."""
     scene = _scene(COLLISION)
     tables = tabulate_scene(scene, ["v1f", "K_after"])
     stops = np.random.default_rng(7).integers(0, [a.count for a in scene.axes], size=(50_000, 5))
@@ -89,8 +89,8 @@ SQUARE = ["model: square", "id: sq", "slider x: -2..2 step 0.01 default 1", "sli
 
 
 @pytest.mark.parametrize("output", ["right", "per_mass"])
-def test_true_claims_are_proven(output):
-    """A correct degree-2 claim and a reparametrised 1/m axis compile and pass the proof."""
+def test_true_claims_are_verified(output):
+    """A correct degree-2 claim and a reparametrised 1/m axis compile and pass the sampled check."""
     scene = _scene([*SQUARE, f"readouts: {output}"], {"square": _Square})
     table = tabulate_scene(scene, [output])[output]
     assert isinstance(table, Structured)
@@ -98,7 +98,7 @@ def test_true_claims_are_proven(output):
 
 
 def test_false_claim_fails_the_build_at_the_scene():
-    """Declaring x² linear in x is caught by the proof: an author error at the scene's line that names
+    """Declaring x² linear in x is caught by the sampled check: an author error at the scene's line that names
     the output, a stop, and what the page would show against the model."""
     scene = _scene([*SQUARE, "readouts: wrong"], {"square": _Square})
     with pytest.raises(AuthorError) as caught:
@@ -107,9 +107,9 @@ def test_false_claim_fails_the_build_at_the_scene():
     assert message.startswith("try.md:10: scene 'sq': output 'wrong'") and "x=" in message and "model gives" in message
 
 
-def test_proof_covers_corners_edges_and_defaults():
-    """The proof's stops include every corner, every stop along each edge of the slider box, and the defaults."""
+def test_sampled_check_covers_corners_edges_and_defaults():
+    """The sampled check's stops include every corner, every stop along each edge of the slider box, and the defaults."""
     scene = _scene([*SQUARE, "readouts: right"], {"square": _Square})
-    stops = {tuple(s) for s in proof_stops(scene).tolist()}
+    stops = {tuple(s) for s in verified_stops(scene).tolist()}
     assert {(0, 0), (0, 99), (400, 0), (400, 99), scene.default_stops} <= stops
     assert all((k, 0) in stops and (k, 99) in stops for k in range(401))

@@ -7,7 +7,7 @@ longer than WIDTH_BUDGET characters or wider than its box, and every dash carrie
 (a tooltip, and text that screen readers read). Over the sweep, a one-signed number readout keeps its
 significant digits: their count varies by at most DIGIT_SPREAD (fixed decimals over values that span
 decades give "0.179 µm" and "1438.5919 µm"; integer counts are exact at every digit and exempt, and so
-are outputs the page computes from a proven expression, which keep fixed decimals). At the defaults and at a random
+are outputs the page computes from a verified expression, which keep fixed decimals). At the defaults and at a random
 stop, moving any slider from its first to its last stop changes something a reader sees: a readout, a layer of the
 figure, or a note under it (the scale of a normalised figure).
 """

@@ -1,7 +1,7 @@
 """What the pages show is exact to the displayed digit, against exact rationals: at every stop of
-small scenes, and for scenes of up to 10^10 stops (computed from proven expressions) at every
+small scenes, and for scenes of up to 10^10 stops (computed from verified expressions) at every
 corner and edge of the slider box plus a large random sample, drawn independently of the build's
-own proof."""
+own sampled check."""
 
 from __future__ import annotations
 

@@ -84,7 +84,7 @@ def _finish(run: BuildRun, book: Book) -> BuildReport:
     report.accuracy = [r.accuracy for r in book.scenes if r.accuracy is not None]
     report.data_bytes = {r.name: r.data_bytes for r in book.scenes}
     report.files = dict(sorted(run.tree.sizes.items()))
-    report.weights = page_weights(_site_files(run.config.out, report.files), book.scenes, run.remember)
+    report.weights = page_weights(_site_files(run.config.out, report.files), book.scenes, run.cached)
     report.warnings = weight_warnings(report.weights, run.config.book.page_budget_kb, book.scenes)
     for line in weight_lines(report.weights) + report.warnings:
         run.say(line)

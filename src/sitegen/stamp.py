@@ -74,7 +74,7 @@ def up_to_date(book: BookConfig, out: Path, inputs: str | None) -> dict | None:
 
 
 def write_stamp(book: BookConfig, out: Path, inputs: str | None, facts: dict) -> None:
-    """Remember a complete build of `out` made from `inputs` (the digest taken before it started)."""
+    """Record a complete build of `out` made from `inputs` (the digest taken before it started)."""
     if inputs is None:
         return
     path = _stamp_path(book, out)

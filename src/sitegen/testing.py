@@ -20,7 +20,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from .build import BuildConfig, resolve_book
-from .compute.deps import check_model, verify_scene_deps
+from .compute.deps import probe_model, verify_scene_deps
 from .config import read_book
 from .errors import BuildFailed
 from .phases.scenes import planned_outputs
@@ -53,8 +53,8 @@ def deps_problems(
     changes an output its deps leave out is a problem; so is (with `unused`) a declared dep that never
     changed it. `book`: paths are written relative to it (default: as they are)."""
     root = Path(book).resolve() if book is not None else None
-    checked = check_model(model, frozenset(effects), points, seed, root, moves)
-    return list(checked.errors) + (list(checked.notes) if unused else [])
+    found = probe_model(model, frozenset(effects), points, seed, root, moves)
+    return list(found.errors) + (list(found.notes) if unused else [])
 
 
 def scene_problems(book: Path | str = ".") -> list[str]:

@@ -13,7 +13,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 from ..build import BuildConfig, needed_outputs, resolve_book
-from ..compute.check import sample_stops
+from ..compute.measure import measured_stops
 from ..content.bench_results import SCHEMA
 from ..registry import load_registry
 from ..site.report import summary
@@ -40,7 +40,7 @@ def numerical_scenes(root: Path) -> tuple[dict[str, list], set[str]]:
         scene = record.scene
         if scene.model.settings is None or not scene.model.is_numerical(scene.effects):
             continue
-        item = bench_scene(record.name, scene, needed_outputs(scene, registry), sample_stops(scene))
+        item = bench_scene(record.name, scene, needed_outputs(scene, registry), measured_stops(scene))
         found.setdefault(scene.model.name, []).append(item)
     return found, {record.name for record in records}
 

@@ -22,11 +22,11 @@ class SceneAccuracy:
     error: float  # the largest error measured against the reference over the sampled stops
     metric: str  # what `error` is, e.g. "max |ΔR|/R₀ over one period"
     reference: str  # e.g. "Radau rtol 1e-12", "closed form"
-    stops_checked: int
+    stops_measured: int
     evaluations: int  # function evaluations (nfev) summed over the checked stops
     # Displayed values checked against the reference's at the sampled stops: the wrong ones and those
     # where the reference lies within the tolerance of a rounding boundary ("stop: output", listed).
-    digits_checked: bool = False  # whether the model compares displayed digits at all
+    digits_compared: bool = False  # whether the model compares displayed digits at all
     digits_wrong: tuple[str, ...] = ()
     near_boundary: tuple[str, ...] = ()
 

@@ -89,13 +89,13 @@ class TableCache:
         payload = _encode(tables)
         self._write(self._entry(key), hashlib.sha256(payload).hexdigest().encode() + b"\n" + payload)
 
-    def remembers(self, kind: str, key: str) -> bool:
-        """Whether `remember(kind, key, ...)` has an entry to read (not whether it is sound)."""
-        return self._remembered(kind, key).is_file()
+    def holds(self, kind: str, key: str) -> bool:
+        """Whether `cached(kind, key, ...)` has an entry to read (not whether it is sound)."""
+        return self._entry_path(kind, key).is_file()
 
-    def remember(self, kind: str, key: str, compute) -> bytes:
+    def cached(self, kind: str, key: str, compute) -> bytes:
         """Bytes derived from inputs summed up by `key` (e.g. a figure's SVG): cached, or computed once."""
-        path = self._remembered(kind, key)
+        path = self._entry_path(kind, key)
         try:
             checksum, _, payload = path.read_bytes().partition(b"\n")
             if checksum.decode() == hashlib.sha256(payload).hexdigest():
@@ -107,11 +107,11 @@ class TableCache:
         self._write(path, hashlib.sha256(payload).hexdigest().encode() + b"\n" + payload)
         return payload
 
-    def _remembered(self, kind: str, key: str) -> Path:
+    def _entry_path(self, kind: str, key: str) -> Path:
         return self.root / kind / key[:2] / f"{key}.bin"
 
     def explain(self, scene_name: str, key: CacheKey, cached: bool) -> str:
-        """Why a scene was computed (or that it was cached), remembering its key for next time."""
+        """Why a scene was computed (or that it was cached), keeping its key for next time."""
         index = self.root / "index" / f"{sha(scene_name)[:24]}.json"
         try:
             before = json.loads(index.read_text())
@@ -233,5 +233,5 @@ def _decode(payload: bytes) -> dict:
 
 
 def compute_now(kind: str, key: str, compute) -> bytes:
-    """What `TableCache.remember` does when there is no cache: compute."""
+    """What `TableCache.cached` does when there is no cache: compute."""
     return compute()

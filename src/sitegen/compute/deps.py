@@ -1,16 +1,16 @@
-"""Checking what an output declares it depends on (its `deps`) against what the model computes.
+"""Verifying what an output declares it depends on (its `deps`) against what the model computes.
 
 A scene tabulates each output only over the sliders in its deps, so a parameter missing from them would
 freeze that slider's effect and ship a wrong number at every other stop. When a scene is tabulated, each
 output is evaluated at the scene's defaults and at a stop seeded from the scene's key, and again with each
 parameter of the scene moved — to both ends of its slider and a seeded stop, or to seeded values of its
 domain near its fixed value — all in one call of the model. An output that changes with a parameter its deps leave out
-is an error naming its `Output(...)` line, the parameter and the values. The finding is remembered under the scene's
+is an error naming its `Output(...)` line, the parameter and the values. The finding is cached under the scene's
 key: a warm build reads it back and evaluates nothing.
 
 The other way round is read from the tables themselves, at no cost: a declared dep whose slider leaves a
 table the same at every stop (at the digits shown) is a note with the factor of stops it costs. A book's
-tests run the same probe across the model's whole domain (`check_model`, through sitegen.testing), where a
+tests run the same probe across the model's whole domain (`probe_model`, through sitegen.testing), where a
 declared dep that never changed the output is reported too.
 """
 
@@ -49,7 +49,7 @@ class Probe:
 
 
 @dataclass(frozen=True)
-class Checked:
+class DepsFindings:
     """What the probe found: an error text per undeclared dependency, a note text per declared dep that never
     changed an output (for the deps the probe notes)."""
 
@@ -57,22 +57,22 @@ class Checked:
     notes: tuple[str, ...] = ()
 
 
-def verify_scene_deps(scene: ResolvedScene, names, remember=compute_now, root: Path | None = None):
+def verify_scene_deps(scene: ResolvedScene, names, cached=compute_now, root: Path | None = None):
     """An author error for each output among `names` that changes with a parameter its deps leave out
-    (remembered under the scene's key: a rebuild reads the finding back and evaluates nothing)."""
+    (cached under the scene's key: a rebuild reads the finding back and evaluates nothing)."""
     names = list(dict.fromkeys(names))
     key = digest(scene_key(scene, names).digest, source_digest(DEPS_MODULES), str(root), "deps")
 
     def probe() -> bytes:
-        return json.dumps(list(check_scene(scene, names, root).errors)).encode()
+        return json.dumps(list(probe_scene(scene, names, root).errors)).encode()
 
-    return [AuthorError(scene.spec.loc, text, scene.id) for text in json.loads(remember("deps", key, probe))]
+    return [AuthorError(scene.spec.loc, text, scene.id) for text in json.loads(cached("deps", key, probe))]
 
 
-def check_scene(scene: ResolvedScene, names, root: Path | None = None) -> Checked:
+def probe_scene(scene: ResolvedScene, names, root: Path | None = None) -> DepsFindings:
     """Probe a scene's outputs `names` at seeded stops of its sliders."""
     probe = scene_probe(scene, _seed(scene, names))
-    return check(scene.model, names, scene.effects, probe, root, _stop_text(scene))
+    return probe_outputs(scene.model, names, scene.effects, probe, root, _stop_text(scene))
 
 
 def inert_deps_note(scene: ResolvedScene, tables, root: Path | None = None) -> str | None:
@@ -102,23 +102,25 @@ def inert_deps_note(scene: ResolvedScene, tables, root: Path | None = None) -> s
     return f"note: {note}"
 
 
-def check_model(
+def probe_model(
     model, effects=frozenset(), points: int = 16, seed: int = 0, root: Path | None = None, moves: int = MOVES
-) -> Checked:
+) -> DepsFindings:
     """Probe every output of `model` under `effects` at `points` seeded points of its domain, each parameter
     moved `moves` times from each (for a book's tests)."""
     effects = frozenset(effects)
     names = [o.name for o in model.outputs if not o.effect or o.effect in effects]
     probe = model_probe(model, effects, points, seed, moves)
-    return check(model, names, effects, probe, root, where=_point_text(model))
+    return probe_outputs(model, names, effects, probe, root, where=_point_text(model))
 
 
-def check(model, names, effects, probe: Probe, root=None, where=None) -> Checked:
+def probe_outputs(model, names, effects, probe: Probe, root=None, where=None) -> DepsFindings:
     """Errors and notes for outputs `names` of `model` from one evaluation at the probe's points."""
     try:
         results = _evaluate(model, names, effects, probe)
     except (ValueError, ArithmeticError, TimeoutError) as error:  # a model's documented ways to fail
-        return Checked((f"model '{model.name}' failed at a point of its domain while its deps were checked: {error}",))
+        return DepsFindings(
+            (f"model '{model.name}' failed at a point of its domain while its deps were checked: {error}",)
+        )
     errors, notes = [], []
     for name in names:
         output = type(model).output(name)
@@ -131,7 +133,7 @@ def check(model, names, effects, probe: Probe, root=None, where=None) -> Checked
                 errors.append(f"{declared}: {_undeclared(output, param, change, probe, where)}")
             elif param in deps and change is None and param in probe.noted:
                 notes.append(f"{declared}: {_inert(output, param, probe)}")
-    return Checked(tuple(errors), tuple(notes))
+    return DepsFindings(tuple(errors), tuple(notes))
 
 
 # --- the points ----------------------------------------------------------------------------------------------

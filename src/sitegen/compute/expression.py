@@ -1,5 +1,5 @@
 """The page script's arithmetic in numpy, over many stops at once: what an expression shown by the
-page evaluates to, in the script's order of operations (so that what the build proves is what the
+page evaluates to, in the script's order of operations (so that what the build verifies is what the
 page shows)."""
 
 from __future__ import annotations

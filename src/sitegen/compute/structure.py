@@ -3,7 +3,7 @@ exact pieces is shipped as that expression, and the page's script evaluates it.
 
 The expression is plain JSON that knows slider values, tables, polynomial nodes, branches and
 thresholds, and nothing of physics. expression.py is the script's arithmetic in numpy, in the
-same order of operations, so that what the build proves is what the page shows; proof.py compares
+same order of operations, so that what the build verifies is what the page shows; closed_form.py compares
 it with a direct evaluation of the model at every corner and edge of the slider box and at a
 seeded random sample of stops, and the build fails on any displayed difference.
 """
@@ -16,9 +16,9 @@ import numpy as np
 
 from ..errors import AuthorError
 from ..physics.structure import ChoiceOf, Choose, Coord, Log10, OutputOf, Poly, Ratio, Threshold
+from .closed_form import verified_stops, verify_closed_form
 from .expression import shown, table_values
 from .grid import CHOICE, LIST
-from .proof import proof_stops, prove
 from .quantize import quantize
 from .scenes import ResolvedScene
 from .table import Table, grid_table
@@ -36,7 +36,7 @@ class Structured:
     special: str = ""
     parts: dict[str, Table] = field(default_factory=dict)  # the tables the expression reads
     sliders: tuple[np.ndarray, ...] = ()  # each slider's value at each stop, as the script computes it
-    bounds: tuple[float, float] = (0.0, 0.0)  # smallest and largest shown value over the proof's stops
+    bounds: tuple[float, float] = (0.0, 0.0)  # smallest and largest shown value over the sampled stops
     digits = 0  # an expression is shown to its decimals, never to significant digits
 
     def at(self, stops: tuple[int, ...]):
@@ -179,8 +179,8 @@ def _along_index_sum(entries: np.ndarray) -> np.ndarray | None:
     """The values by i + j + ... when they depend only on that sum (e.g. a function of m1 + m2 on
     two sliders with the same grid), else None. The sum of two floats can differ in its last bit
     between 0.1 + 0.3 and 0.2 + 0.2, so values along one sum may differ by a few units in the last
-    place (or one unit of the last stored digit): far below what any output shows, and the proof
-    checks the outputs."""
+    place (or one unit of the last stored digit): far below what any output shows, and the sampled
+    check verifies the outputs."""
     if entries.ndim < 2:
         return None
     total = sum(np.indices(entries.shape))
@@ -208,9 +208,9 @@ def structured_pieces(scene: ResolvedScene, names) -> dict[str, object]:
 def compile_structured(
     scene: ResolvedScene, pieces: dict[str, object], per_stop: dict[str, Table]
 ) -> dict[str, object]:
-    """Each declared output as a proven expression, plus the coordinate tables they read (named "~…")."""
+    """Each declared output as a verified expression, plus the coordinate tables they read (named "~…")."""
     compiler = _Compiler(scene, per_stop)
-    stops = proof_stops(scene) if pieces else None
+    stops = verified_stops(scene) if pieces else None
     out: dict[str, object] = {}
     for name, piece in pieces.items():
         output = scene.model.output(name)
@@ -228,7 +228,7 @@ def compile_structured(
             dict(compiler.parts),
             compiler.sliders,
         )
-        bounds = prove(scene, table, stops)
+        bounds = verify_closed_form(scene, table, stops)
         out[name] = replace(table, bounds=bounds)
     out.update({n: t for n, t in compiler.parts.items() if n not in out})
     return out

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..errors import AuthorError
 from ..physics.structure import outputs_read
-from .proof import require_showable, stop_text
+from .closed_form import require_showable, stop_text
 from .quantize import quantize, significant
 from .scenes import ResolvedScene
 from .structure import compile_structured, structured_pieces
@@ -104,7 +104,7 @@ def assemble_tables(
     scene: ResolvedScene, units: list[WorkUnit], results: list[dict[str, np.ndarray]], names=()
 ) -> dict:
     """Join the units' blocks (in plan order) into tables, then add the outputs among `names` that
-    have a declared structure (compiled and proven against the model here)."""
+    have a declared structure (compiled and verified against the model here)."""
     blocks: dict[tuple[int, ...], list[dict[str, np.ndarray]]] = defaultdict(list)
     for unit, result in zip(units, results):
         blocks[unit.axes].append(result)

@@ -86,8 +86,8 @@ def _types(before: str, after: str) -> str:
     return ", ".join(f"{before}{kind.upper()}{after}" for kind in CALLOUT_TYPES)
 
 
-def figure_line(line: str, loc: SourceLoc, number: int, found) -> Figure | None:
-    """The figure a line holding only an image makes (None if the line is not one); its problems go to `found`."""
+def figure_line(line: str, loc: SourceLoc, number: int, extracted) -> Figure | None:
+    """The figure a line holding only an image makes (None if the line is not one); its problems go to `extracted`."""
     match = _FIGURE_LINE.match(line)
     if not match:
         return None
@@ -98,7 +98,7 @@ def figure_line(line: str, loc: SourceLoc, number: int, found) -> Figure | None:
         elif attr["key"] == "alt":
             alt = attr["value"]
         else:
-            found.errors.append(
+            extracted.errors.append(
                 AuthorError(loc, f"an image takes {{#fig-name}} and alt=\"…\" in its braces, not '{attr[0]}'")
             )
     caption = match["caption"].strip()
@@ -122,9 +122,9 @@ def table_caption(line: str, previous: str) -> tuple[str, str | None] | None:
 class FurnitureProcessor(Treeprocessor):
     """Callouts as notes, footnotes as endnotes, caption paragraphs into their figure or table."""
 
-    def __init__(self, md: markdown.Markdown, found):
+    def __init__(self, md: markdown.Markdown, extracted):
         super().__init__(md)
-        self.found = found
+        self.extracted = extracted
 
     def run(self, root: etree.Element) -> None:
         for parent in list(root.iter()):
@@ -148,7 +148,7 @@ class FurnitureProcessor(Treeprocessor):
                     _scrolling(parent, child)
 
     def _figure(self, parent: etree.Element, paragraph: etree.Element) -> None:
-        figure = self.found.figures[int(paragraph.attrib.pop("data-figure"))]
+        figure = self.extracted.figures[int(paragraph.attrib.pop("data-figure"))]
         paragraph.tag = "figcaption"
         element = etree.Element("figure", {"class": "figure"})
         if figure.label:
@@ -232,12 +232,12 @@ def _endnotes(element: etree.Element) -> None:
 class FurnitureExtension(Extension):
     """Registers the furniture's tree processor for one page."""
 
-    def __init__(self, found):
+    def __init__(self, extracted):
         super().__init__()
-        self.found = found
+        self.extracted = extracted
 
     def extendMarkdown(self, md: markdown.Markdown) -> None:
         md.ESCAPED_CHARS += ["$", "@"]  # \$ and \@ write the characters themselves
         # Priority 5: after the inline processor (20) and attr_list (8) have filled every element.
-        md.treeprocessors.register(FurnitureProcessor(md, self.found), "sitegen_furniture", 5)
+        md.treeprocessors.register(FurnitureProcessor(md, self.extracted), "sitegen_furniture", 5)
         md.postprocessors.register(_FocusableCode(md), "sitegen_focusable_code", 5)  # after raw HTML is put back

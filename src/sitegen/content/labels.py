@@ -36,7 +36,7 @@ def index_labels(pages: list[Page]) -> tuple[dict[str, Target], list[AuthorError
     no error: it is one only when a reference names it)."""
     index, errors, scene_ids = {}, [], {}
     for page in pages:
-        for label in page.found.labels:
+        for label in page.extracted.labels:
             if label.anchor != label.name:  # a scene: referred to by its id
                 scene_ids.setdefault(label.name, []).append(Target(label, page))
                 continue
@@ -55,7 +55,7 @@ def scene_places(pages: list[Page]) -> dict[str, list[SourceLoc]]:
     """Where each scene id is, for the error of a reference that names one used more than once."""
     places: dict[str, list[SourceLoc]] = {}
     for page in pages:
-        for label in page.found.labels:
+        for label in page.extracted.labels:
             if label.anchor != label.name:
                 places.setdefault(label.name, []).append(label.loc)
     return places
@@ -65,7 +65,7 @@ def check_references(pages: list[Page], index: dict[str, Target]) -> list[Author
     """An error for each `(@name)` that names no label, with the closest label."""
     places, errors = scene_places(pages), []
     for page in pages:
-        for name, loc in page.found.references:
+        for name, loc in page.extracted.references:
             if name in index:
                 continue
             if len(places.get(name, [])) > 1:

@@ -24,7 +24,9 @@ _ID = re.compile(r'\sid="([^"]+)"')
 def page_anchors(page: Page, extra: tuple[str, ...] = ()) -> set[str]:
     """The ids a link can name on `page`: those in its HTML, those its placeholders become, and `extra`
     (the template's)."""
-    return {unescape(i) for i in _ID.findall(page.html)} | {label.anchor for label in page.found.labels} | set(extra)
+    return (
+        {unescape(i) for i in _ID.findall(page.html)} | {label.anchor for label in page.extracted.labels} | set(extra)
+    )
 
 
 def check_links(
@@ -36,7 +38,7 @@ def check_links(
     slugs = {page.slug for page in pages}
     existing = sorted(p.relative_to(content).as_posix() for p in content.rglob("*") if p.is_file())
     for page in pages:
-        for link in page.found.links:
+        for link in page.extracted.links:
             problem, file = _problem(link, page, slugs, anchors, content, existing, reserved)
             if problem:
                 errors.append(AuthorError(link.loc, problem))

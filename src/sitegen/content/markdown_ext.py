@@ -94,9 +94,9 @@ class Extracted:
 
 
 class _SlotPreprocessor(Preprocessor):
-    def __init__(self, md: markdown.Markdown, path: str, first_line: int, found: Extracted):
+    def __init__(self, md: markdown.Markdown, path: str, first_line: int, extracted: Extracted):
         super().__init__(md)
-        self.path, self.first_line, self.found = path, first_line, found
+        self.path, self.first_line, self.extracted = path, first_line, extracted
 
     def run(self, lines: list[str]) -> list[str]:
         out: list[str] = []
@@ -120,13 +120,13 @@ class _SlotPreprocessor(Preprocessor):
     def _furniture(self, lines, i, loc, out) -> None:
         """One line of prose: a figure or a table's caption on its own, or text with math, references,
         citations and links."""
-        line, found = lines[i], self.found
-        found.prose.append((loc, line))
+        line, extracted = lines[i], self.extracted
+        extracted.prose.append((loc, line))
         problem = furniture.callout_problem(line, loc)
         if problem:
-            found.errors.append(problem)
+            extracted.errors.append(problem)
         alone = (i == 0 or not lines[i - 1].strip()) and (i + 1 == len(lines) or not lines[i + 1].strip())
-        figure = furniture.figure_line(line, loc, found.figure_count + 1, found) if alone else None
+        figure = furniture.figure_line(line, loc, extracted.figure_count + 1, extracted) if alone else None
         caption = furniture.table_caption(line, lines[i - 1] if i else "")
         heading = _HEADING_LABEL.match(line)
         if figure is not None:
@@ -145,38 +145,38 @@ class _SlotPreprocessor(Preprocessor):
         def rest(stretch: str) -> str:
             problem = prose.unconverted_dollar(stretch, loc)
             if problem:
-                self.found.errors.append(problem)
-            prose.record_links(stretch, loc, self.found)
-            return prose.citation_slots(prose.reference_slots(stretch, loc, self.found), loc, self.found)
+                self.extracted.errors.append(problem)
+            prose.record_links(stretch, loc, self.extracted)
+            return prose.citation_slots(prose.reference_slots(stretch, loc, self.extracted), loc, self.extracted)
 
         return prose.outside_code(text, rest)
 
     def _figure(self, figure: Figure, line: str, loc: SourceLoc, out: list[str]) -> None:
-        found = self.found
+        extracted = self.extracted
         if figure.label:
-            found.next_figure()
+            extracted.next_figure()
             self._label(figure.label, "figure", figure.number, loc)
-        found.links.append(Link(figure.src, loc, True, figure.alt))
-        found.figures.append(figure)
+        extracted.links.append(Link(figure.src, loc, True, figure.alt))
+        extracted.figures.append(figure)
         if not figure.caption:  # a picture without a caption (its alt text given in braces)
             src, alt = escape(figure.src), escape(figure.alt)
             out.extend(["", f'<figure class="figure"><img src="{src}" alt="{alt}"></figure>', ""])
             return
-        out.extend(["", self._prose(figure.caption, loc), f'{{: data-figure="{len(found.figures) - 1}"}}', ""])
+        out.extend(["", self._prose(figure.caption, loc), f'{{: data-figure="{len(extracted.figures) - 1}"}}', ""])
 
     def _table_caption(self, caption: str, label: str | None, loc: SourceLoc, out: list[str]) -> None:
         number = ""
         if label:
-            self.found.table_count += 1
-            number = str(self.found.table_count)
-            self._label(label, "table", self.found.table_count, loc)
+            self.extracted.table_count += 1
+            number = str(self.extracted.table_count)
+            self._label(label, "table", self.extracted.table_count, loc)
         attrs = f'data-table-caption="{number}"' + (f' data-table-label="{label}"' if label else "")
         out.extend(["", self._prose(caption, loc), f"{{: {attrs}}}", ""])
 
     def _label(self, name: str, kind: str, number: int | None, loc: SourceLoc, anchor: str | None = None) -> None:
         prefix = {"equation": "eq", "figure": "fig", "table": "tbl", "section": "sec"}[kind]
         if anchor is None and not _LABEL_NAME.match(name):
-            self.found.errors.append(
+            self.extracted.errors.append(
                 AuthorError(
                     loc,
                     f"label '{name}' is not a {kind} label: write {{#{prefix}-name}}, lower-case letters, "
@@ -184,21 +184,21 @@ class _SlotPreprocessor(Preprocessor):
                 )
             )
             return
-        self.found.labels.append(Label(name, kind, number, loc, anchor or name))
+        self.extracted.labels.append(Label(name, kind, number, loc, anchor or name))
 
     def _scene(self, lines, i, loc, out) -> int:
         end = self._block_end(lines, i, loc, "scene")
         if end is None:
             return self._after_unclosed(lines, i)
         spec, errors = parse_scene_block(lines[i + 1 : end], loc)
-        self.found.errors.extend(errors)
+        self.extracted.errors.extend(errors)
         if spec is not None:
-            self.found.scenes.append(spec)
-            self._label(spec.id, "figure", self.found.next_figure(), loc, anchor=f"scene-{spec.id}")
+            self.extracted.scenes.append(spec)
+            self._label(spec.id, "figure", self.extracted.next_figure(), loc, anchor=f"scene-{spec.id}")
             # the caption now, so that its citations and references come in the page's order
             line = spec.loc_of("caption").line
-            self.found.captions.append(markdown_to_html(spec.caption, self.path, line, self.found, inline=True))
-            slot = f'<div data-scene-slot="{len(self.found.scenes) - 1}"></div>'
+            self.extracted.captions.append(markdown_to_html(spec.caption, self.path, line, self.extracted, inline=True))
+            slot = f'<div data-scene-slot="{len(self.extracted.scenes) - 1}"></div>'
             out.extend(["", slot, ""])
         return end + 1
 
@@ -207,10 +207,10 @@ class _SlotPreprocessor(Preprocessor):
         if end is None:
             return self._after_unclosed(lines, i)
         block, errors = parse_report_block(lines[i + 1 : end], loc)
-        self.found.errors.extend(errors)
+        self.extracted.errors.extend(errors)
         if block is not None:
-            self.found.reports.append(block)
-            out.extend(["", f'<div data-report-slot="{len(self.found.reports) - 1}"></div>', ""])
+            self.extracted.reports.append(block)
+            out.extend(["", f'<div data-report-slot="{len(self.extracted.reports) - 1}"></div>', ""])
         return end + 1
 
     def _block_end(self, lines, i, loc, kind: str) -> int | None:
@@ -225,7 +225,7 @@ class _SlotPreprocessor(Preprocessor):
                 return j
             if _CODE_FENCE.match(lines[j].lstrip()):
                 line = self.first_line + j
-                self.found.errors.append(
+                self.extracted.errors.append(
                     AuthorError(
                         loc,
                         f"{kind} block is not closed: line {line} opens another "
@@ -233,7 +233,7 @@ class _SlotPreprocessor(Preprocessor):
                     )
                 )
                 return None
-        self.found.errors.append(AuthorError(loc, f"{kind} block is not closed; end it with a line '```'"))
+        self.extracted.errors.append(AuthorError(loc, f"{kind} block is not closed; end it with a line '```'"))
         return None
 
     @staticmethod
@@ -248,7 +248,7 @@ class _SlotPreprocessor(Preprocessor):
         closing = re.compile(rf"^\s*{re.escape(fence[0])}{{{len(fence)},}}\s*$")
         end = next((j for j in range(i + 1, len(lines)) if closing.match(lines[j])), None)
         if end is None:
-            self.found.errors.append(AuthorError(loc, f"code block is not closed; end it with a line '{fence}'"))
+            self.extracted.errors.append(AuthorError(loc, f"code block is not closed; end it with a line '{fence}'"))
             end = len(lines) - 1
         out.extend(lines[i : end + 1])
         return end + 1
@@ -270,14 +270,14 @@ class _SlotPreprocessor(Preprocessor):
         tag = None if hand is None else hand[2] if hand[1] else f"({hand[2]})"
         pieces = split_display(_HAND_TAG.sub("", tex).strip())
         if label:
-            if label not in self.found.numbers:  # a label used twice is reported by the book-wide check
-                self.found.numbers[label] = len(self.found.numbers) + 1
-                self._label(label, "equation", self.found.numbers[label], loc)
+            if label not in self.extracted.numbers:  # a label used twice is reported by the book-wide check
+                self.extracted.numbers[label] = len(self.extracted.numbers) + 1
+                self._label(label, "equation", self.extracted.numbers[label], loc)
             else:
-                self.found.labels.append(Label(label, "equation", self.found.numbers[label], loc, label))
-        first = len(self.found.maths)
-        self.found.maths += [MathItem(piece, True, loc, label, tag) for piece in pieces]
-        span = f"{first}-{len(self.found.maths) - 1}" if len(pieces) > 1 else f"{first}"
+                self.extracted.labels.append(Label(label, "equation", self.extracted.numbers[label], loc, label))
+        first = len(self.extracted.maths)
+        self.extracted.maths += [MathItem(piece, True, loc, label, tag) for piece in pieces]
+        span = f"{first}-{len(self.extracted.maths) - 1}" if len(pieces) > 1 else f"{first}"
         out.extend(["", f'<div data-math-slot="{span}"></div>', ""])
         return end + 1
 
@@ -291,7 +291,7 @@ class _SlotPreprocessor(Preprocessor):
                 return j
             if not lines[j].strip() or _CODE_FENCE.match(lines[j].lstrip()):
                 what = "the blank line" if not lines[j].strip() else "the fence"
-                self.found.errors.append(
+                self.extracted.errors.append(
                     AuthorError(
                         loc,
                         f"display math '$$' is not closed before {what} at line {self.first_line + j}; "
@@ -299,12 +299,12 @@ class _SlotPreprocessor(Preprocessor):
                     )
                 )
                 return None
-        self.found.errors.append(AuthorError(loc, "display math '$$' is not closed; end it with '$$'"))
+        self.extracted.errors.append(AuthorError(loc, "display math '$$' is not closed; end it with '$$'"))
         return None
 
     def _inline_math(self, match: re.Match, loc: SourceLoc) -> str:
-        self.found.maths.append(MathItem(match["tex"], False, loc))
-        return f'<span data-math-slot="{len(self.found.maths) - 1}"></span>'
+        self.extracted.maths.append(MathItem(match["tex"], False, loc))
+        return f'<span data-math-slot="{len(self.extracted.maths) - 1}"></span>'
 
 
 def split_display(tex: str) -> list[str]:
@@ -327,16 +327,18 @@ def split_display(tex: str) -> list[str]:
 class SlotExtension(Extension):
     """Registers the slot preprocessor for one page (a fresh instance per page)."""
 
-    def __init__(self, path: str, first_line: int, found: Extracted):
+    def __init__(self, path: str, first_line: int, extracted: Extracted):
         super().__init__()
-        self.path, self.first_line, self.found = path, first_line, found
+        self.path, self.first_line, self.extracted = path, first_line, extracted
 
     def extendMarkdown(self, md: markdown.Markdown) -> None:
         # Priority 35: ahead of normalize_whitespace (30) and fenced_code (25), on the author's lines.
-        md.preprocessors.register(_SlotPreprocessor(md, self.path, self.first_line, self.found), "sitegen_slots", 35)
+        md.preprocessors.register(
+            _SlotPreprocessor(md, self.path, self.first_line, self.extracted), "sitegen_slots", 35
+        )
 
 
-def markdown_to_html(text: str, path: str, first_line: int, found: Extracted, inline: bool = False) -> str:
+def markdown_to_html(text: str, path: str, first_line: int, extracted: Extracted, inline: bool = False) -> str:
     """Convert one page's Markdown (or one inline snippet) to HTML with slots for math, scenes, citations and
     references."""
     md = markdown.Markdown(
@@ -346,8 +348,8 @@ def markdown_to_html(text: str, path: str, first_line: int, found: Extracted, in
             "md_in_html",
             "tables",
             *furniture.MARKDOWN_EXTENSIONS,
-            furniture.FurnitureExtension(found),
-            SlotExtension(path, first_line, found),
+            furniture.FurnitureExtension(extracted),
+            SlotExtension(path, first_line, extracted),
         ],
         extension_configs={"toc": {"permalink": False}, **furniture.MARKDOWN_CONFIGS},
     )
@@ -357,15 +359,15 @@ def markdown_to_html(text: str, path: str, first_line: int, found: Extracted, in
     return html
 
 
-def _display(found: Extracted, mathml, first: int, last: int | None) -> str:
+def _display(extracted: Extracted, mathml, first: int, last: int | None) -> str:
     """A displayed formula, or (`last` given) a list of them, with its number if it has one: a label's, or the
     display's own \\tag. The number sits outside the math, at the right margin on the last line's baseline,
     the same in every browser (Temml's \\tag is a table cell that each engine places elsewhere)."""
-    item = found.maths[first]
+    item = extracted.maths[first]
     # a list of equations: its items wrap onto lines of their own where the line is too short for all
     items = "".join(mathml[first : (first if last is None else last) + 1])
     kind = "equation" if last is None else "equation list"
-    number = f"({found.numbers[item.label]})" if item.label else None if item.tag is None else escape(item.tag)
+    number = f"({extracted.numbers[item.label]})" if item.label else None if item.tag is None else escape(item.tag)
     if number is None:
         return f'<div class="{kind}">{items}</div>'
     if last is not None:
@@ -374,7 +376,7 @@ def _display(found: Extracted, mathml, first: int, last: int | None) -> str:
     return f'<div class="{kind} numbered"{anchor}>{items}<span class="eqno">{number}</span></div>'
 
 
-def fill_slots(html: str, found: Extracted, mathml, scenes, reports=(), citations=(), reference=None) -> str:
+def fill_slots(html: str, extracted: Extracted, mathml, scenes, reports=(), citations=(), reference=None) -> str:
     """Replace every placeholder with its MathML, scene HTML, report part, citation or reference
     (`reference(label)`: the link to a label, with its number)."""
 
@@ -388,7 +390,7 @@ def fill_slots(html: str, found: Extracted, mathml, scenes, reports=(), citation
             return citations[index] + after
         if tag == "span":
             return kept_with(breakable(mathml[index]), after)
-        return _display(found, mathml, index, None if match[4] is None else int(match[4])) + after
+        return _display(extracted, mathml, index, None if match[4] is None else int(match[4])) + after
 
     html = _SLOT.sub(substitute, html)
     return _REF_SLOT.sub(lambda m: reference(m[1]), html) if reference else html

@@ -19,18 +19,18 @@ class MathToolMissing(RuntimeError):
     """node is not on PATH (a set-up problem, not an author error)."""
 
 
-def convert_math(items: list[MathItem], remember=None) -> tuple[list[str], list[AuthorError]]:
+def convert_math(items: list[MathItem], cached=None) -> tuple[list[str], list[AuthorError]]:
     """MathML for each formula (in order), and an author error for each formula Temml rejects.
 
-    `remember(kind, key, compute)` may serve a previous run's conversion of the same formulas.
+    `cached(kind, key, compute)` may serve a previous run's conversion of the same formulas.
     """
     unique = sorted({(m.tex, m.display) for m in items})
     if not unique:
         return [], []
     key = hashlib.sha256(json.dumps([unique, _converter_version()]).encode()).hexdigest()
     converted = (
-        remember("math", key, lambda: json.dumps(_run_temml(unique)).encode())
-        if remember
+        cached("math", key, lambda: json.dumps(_run_temml(unique)).encode())
+        if cached
         else json.dumps(_run_temml(unique)).encode()
     )
     results = dict(zip(unique, json.loads(converted)))

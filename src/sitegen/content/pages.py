@@ -27,7 +27,7 @@ class Page:
     parent: str | None
     summary: str
     html: str
-    found: Extracted
+    extracted: Extracted
 
     @property
     def output_name(self) -> str:
@@ -56,8 +56,8 @@ def read_page(path: Path, root: Path) -> tuple[Page | None, list[AuthorError]]:
         return None, errors
     # Otherwise the body is read even when the front matter is broken, and the page stands in with
     # its file name as title, so that one run reports the errors of its prose and scenes too.
-    found = Extracted()
-    html = markdown_to_html("\n".join(lines[body_start:]), source, body_start + 1, found)
+    extracted = Extracted()
+    html = markdown_to_html("\n".join(lines[body_start:]), source, body_start + 1, extracted)
     meta = meta or {"title": path.stem}
     page = Page(
         slug=path.stem,
@@ -67,9 +67,9 @@ def read_page(path: Path, root: Path) -> tuple[Page | None, list[AuthorError]]:
         parent=meta.get("parent"),
         summary=str(meta.get("summary", "")),
         html=html,
-        found=found,
+        extracted=extracted,
     )
-    return page, errors + found.errors
+    return page, errors + extracted.errors
 
 
 def _front_matter(lines: list[str], source: str) -> tuple[dict | None, int | None, list[AuthorError]]:

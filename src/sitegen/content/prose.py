@@ -76,22 +76,22 @@ def outside_code(line: str, change) -> str:
     return "".join(out)
 
 
-def reference_slots(text: str, loc: SourceLoc, found) -> str:
+def reference_slots(text: str, loc: SourceLoc, extracted) -> str:
     """`(@label)` as a placeholder link, recorded for the book-wide check."""
 
     def slot(match: re.Match) -> str:
-        found.references.append((match["label"], loc))
+        extracted.references.append((match["label"], loc))
         return f'<a data-ref="{match["label"]}"></a>'
 
     return _REFERENCE.sub(slot, text)
 
 
-def citation_slots(text: str, loc: SourceLoc, found) -> str:
+def citation_slots(text: str, loc: SourceLoc, extracted) -> str:
     """Bracketed and in-text citations as placeholders, recorded for the book-wide check."""
 
     def record(citation: Citation) -> str:
-        found.citations.append(citation)
-        return f'<span data-cite-slot="{len(found.citations) - 1}"></span>'
+        extracted.citations.append(citation)
+        return f'<span data-cite-slot="{len(extracted.citations) - 1}"></span>'
 
     def bracketed(match: re.Match) -> str:
         parts = [_CITE_PART.match(part) for part in match["body"].split(";")]
@@ -110,26 +110,26 @@ def _locator(text: str | None) -> tuple[str, str] | None:
         return None
     if _BARE_PAGES.match(text):
         return ("page", text)
-    found = _LOCATOR.match(text)
-    if found and found["term"].lower() in _LOCATORS:
-        return (_LOCATORS[found["term"].lower()], found["value"])
+    locator = _LOCATOR.match(text)
+    if locator and locator["term"].lower() in _LOCATORS:
+        return (_LOCATORS[locator["term"].lower()], locator["value"])
     return ("", text)
 
 
-def record_links(text: str, loc: SourceLoc, found) -> None:
+def record_links(text: str, loc: SourceLoc, extracted) -> None:
     """Every link and image target of a stretch of prose (Markdown and raw HTML), for the book-wide check."""
     for match in _LINK.finditer(text):
         target = match["target"].strip("<>")
         image = bool(match["bang"])
-        found.links.append(Link(target, loc, image, match["text"] if image else None))
+        extracted.links.append(Link(target, loc, image, match["text"] if image else None))
     definition = _LINK_DEFINITION.match(text)
     if definition:
-        found.links.append(Link(definition["target"].strip("<>"), loc))
+        extracted.links.append(Link(definition["target"].strip("<>"), loc))
     for match in _HTML_TARGET.finditer(text):
-        found.links.append(Link(match["target"], loc, match["tag"].lower() == "img"))
+        extracted.links.append(Link(match["target"], loc, match["tag"].lower() == "img"))
     for tag in _HTML_IMG.finditer(text):
         if not re.search(r"\balt\s*=", tag[0]):
-            found.errors.append(AuthorError(loc, 'an <img> needs alt text: alt="what the image shows"'))
+            extracted.errors.append(AuthorError(loc, 'an <img> needs alt text: alt="what the image shows"'))
 
 
 def unconverted_dollar(text: str, loc: SourceLoc) -> AuthorError | None:

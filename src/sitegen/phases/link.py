@@ -33,8 +33,8 @@ def link_book(book: Book, run: BuildRun) -> Book:
     files, problems = check_links(pages, anchors, run.config.content, reserved)
     errors += problems
     for page in pages:
-        text = page.html + "".join(page.found.captions)
-        errors += leftover_markers(text, page.found.prose, SourceLoc(page.source, 1))
+        text = page.html + "".join(page.extracted.captions)
+        errors += leftover_markers(text, page.extracted.prose, SourceLoc(page.source, 1))
     for error in errors:
         run.error(error)
     return replace(book, pages=tuple(pages), labels=labels, citations=citations, files=tuple(files))
@@ -46,10 +46,10 @@ def _template_ids(page: Page) -> tuple[str, ...]:
 
 def _cite(pages: list[Page], run: BuildRun) -> tuple[list[Page], dict]:
     """The pages, those that cite with their list of references; each page's citations as HTML."""
-    cited = [page for page in pages if page.found.citations]
+    cited = [page for page in pages if page.extracted.citations]
     if not cited:
         return pages, {}
-    library = _bibliography(run, cited[0].found.citations[0].loc)
+    library = _bibliography(run, cited[0].extracted.citations[0].loc)
     if library is None:
         return pages, {}
     try:
@@ -59,8 +59,8 @@ def _cite(pages: list[Page], run: BuildRun) -> tuple[list[Page], dict]:
         return pages, {}
     made, out = {}, []
     for page in pages:
-        if page.found.citations and _known_keys(page, library, run):
-            made[page.slug] = bib.format_page(page.found.citations, library, style)
+        if page.extracted.citations and _known_keys(page, library, run):
+            made[page.slug] = bib.format_page(page.extracted.citations, library, style)
             page = replace(page, html=_with_references(page.html, made[page.slug].references))
         out.append(page)
     return out, made
@@ -93,7 +93,7 @@ def _bibliography(run: BuildRun, first: SourceLoc) -> bib.Bibliography | None:
 def _known_keys(page: Page, library: bib.Bibliography, run: BuildRun) -> bool:
     """Whether every key the page cites is in the bibliography (an error for each that is not)."""
     known = True
-    for citation in page.found.citations:
+    for citation in page.extracted.citations:
         for cited in citation.keys:
             if cited.key not in library.items:
                 hint = did_you_mean(cited.key, library.items)

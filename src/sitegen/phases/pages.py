@@ -6,7 +6,7 @@ from __future__ import annotations
 import hashlib
 from dataclasses import replace
 
-from ..compute.check import caption_sentence
+from ..compute.measure import caption_sentence
 from ..compute.sources import digest, source_digest
 from ..content.bench_results import BENCH_NAME, load_results
 from ..content.markdown_ext import fill_slots
@@ -28,7 +28,7 @@ def assemble_scenes(book: Book, run: BuildRun) -> Book:
     if run.failed:
         return book
     accuracy = next((p for p in book.pages if p.slug == "accuracy"), None)  # the rows exist only on that page
-    parts = {block.part for block in accuracy.found.reports} if accuracy else set()
+    parts = {block.part for block in accuracy.extracted.reports} if accuracy else set()
     records = []
     for record in book.current():
         with run.scene(record, "assembling its element"):
@@ -40,12 +40,12 @@ def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool, par
     scene, tables, figure, page = record.scene, record.tables, record.figure, record.page
     # The figure's layers go into the payload: a change to the view's layers is a new payload.
     key = digest(scene_digest(record), source_digest(PAYLOAD_CODE), repr(figure.layers))
-    payload = run.remember("payloads", key, lambda: scene_payload(scene, tables, figure.layers).encode())
+    payload = run.cached("payloads", key, lambda: scene_payload(scene, tables, figure.layers).encode())
     cited = book.citations.get(page.slug)
     caption = fill_slots(
-        record.caption, page.found, book.mathml[page.slug], [], (), cited and cited.citations, book.reference(page)
+        record.caption, page.extracted, book.mathml[page.slug], [], (), cited and cited.citations, book.reference(page)
     )
-    number = f'<span class="caption-label">Figure\u00a0{page.found.scene_number(record.index)}</span>'
+    number = f'<span class="caption-label">Figure\u00a0{page.extracted.scene_number(record.index)}</span>'
     caption = f"{number} {caption}".strip()
     if record.accuracy is not None:
         methods = record.accuracy.model in parts  # the accuracy page shows the model's part
@@ -57,21 +57,27 @@ def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool, par
 def _data_bytes(payload: bytes, run: BuildRun) -> tuple[int, int]:
     """Raw and gzip bytes of a scene's inline tables (what the accuracy report lists)."""
     key = digest(hashlib.sha256(payload).hexdigest(), source_digest(SIZE_CODE))  # how sizes are measured is part of one
-    packed = run.remember("report-gzip", key, lambda: str(gzip_bytes(payload)).encode())
+    packed = run.cached("report-gzip", key, lambda: str(gzip_bytes(payload)).encode())
     return len(payload), int(packed)
 
 
 def write_page(book: Book, run: BuildRun) -> Book:
-    """The current page as HTML, written into the new tree; its scenes then keep only their small facts."""
+    """The current page as HTML, written into the new tree; its scenes then keep only what the accuracy report reads."""
     if run.failed:
         return book
     page, records = book.page, book.current()
-    context = _report_context(book, run) if page.found.reports else None
-    reports = [report_part(block.part, context) for block in page.found.reports]
+    context = _report_context(book, run) if page.extracted.reports else None
+    reports = [report_part(block.part, context) for block in page.extracted.reports]
     cited = book.citations.get(page.slug)
     scenes = [r.html for r in records]
     body = fill_slots(
-        page.html, page.found, book.mathml[page.slug], scenes, reports, cited and cited.citations, book.reference(page)
+        page.html,
+        page.extracted,
+        book.mathml[page.slug],
+        scenes,
+        reports,
+        cited and cited.citations,
+        book.reference(page),
     )
     html = page_html(page, body, list(book.pages), run.config.book.title or book.title, run.config.book)
     run.tree.write(page.output_name, html.encode())
@@ -84,7 +90,7 @@ def _report_context(book: Book, run: BuildRun) -> ReportContext:
     records = tuple(r.accuracy for r in book.scenes if r.accuracy is not None)
     sizes = {r.name: r.data_bytes for r in book.scenes}
     bench = load_results(run.config.content / BENCH_NAME)
-    return ReportContext(bench, records, book.pages, book.scenes, sizes, run.remember, run.models, run.registry.reports)
+    return ReportContext(bench, records, book.pages, book.scenes, sizes, run.cached, run.models, run.registry.reports)
 
 
 def write_assets(book: Book, run: BuildRun) -> Book:
@@ -96,5 +102,5 @@ def write_assets(book: Book, run: BuildRun) -> Book:
         run.tree.write("assets/sitegen.js", assets.script())
         run.tree.write(search.SEARCH_SCRIPT, search.search_script(run.searchable, list(book.pages)))
         run.tree.write("assets/sitegen.css", assets.stylesheet(assets.theme_css(run.config.book.theme)))
-        run.tree.write(f"assets/{assets.FONT_FILE}", assets.math_font(run.math_characters, run.remember))
+        run.tree.write(f"assets/{assets.FONT_FILE}", assets.math_font(run.math_characters, run.cached))
     return book

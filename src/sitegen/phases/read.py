@@ -54,7 +54,7 @@ def resolve_scenes(book: Book, run: BuildRun) -> Book:
     records = []
     for page in book.pages:
         seen: set[str] = set()
-        for index, spec in enumerate(page.found.scenes):
+        for index, spec in enumerate(page.extracted.scenes):
             if spec.id in seen:
                 run.error(
                     AuthorError(
@@ -63,16 +63,16 @@ def resolve_scenes(book: Book, run: BuildRun) -> Book:
                 )
                 continue
             seen.add(spec.id)
-            record = resolve_record(SceneRecord(page, index, spec), run)
+            record = resolve_record(page, index, spec, run)
             if record is not None:
                 records.append(record)
         _check_report_blocks(page, run)
     return replace(book, scenes=tuple(records))
 
 
-def resolve_record(record: SceneRecord, run: BuildRun) -> SceneRecord | None:
-    """The record with its resolved scene, figure, caption, outputs and key; None after logging its errors."""
-    spec, page = record.spec, record.page
+def resolve_record(page, index: int, spec, run: BuildRun) -> SceneRecord | None:
+    """The record of scene block `spec` (the `index`-th of `page`) with its resolved scene, figure, caption,
+    outputs and key; None after logging its errors."""
     scene, errors = resolve_scene(spec, run.models, run.registry.broken)
     figure = figure_name(spec)
     if scene is not None and figure not in run.figures:
@@ -83,7 +83,7 @@ def resolve_record(record: SceneRecord, run: BuildRun) -> SceneRecord | None:
         run.error(error)
     if errors:
         return None
-    record = replace(record, scene=scene, view=run.figures[figure])
+    record = SceneRecord(page, index, scene, run.figures[figure])
     layers = None
     with run.scene(
         record, "listing its figure's layers"
@@ -95,7 +95,7 @@ def resolve_record(record: SceneRecord, run: BuildRun) -> SceneRecord | None:
     if layers is None or errors:
         return None
     outputs = shown_outputs(scene, layers)
-    caption = page.found.captions[record.index]
+    caption = page.extracted.captions[record.index]
     return replace(record, caption=caption, outputs=tuple(outputs), key=scene_key(scene, outputs))
 
 
@@ -120,19 +120,19 @@ def shown_outputs(scene, layers) -> list[str]:
 
 def _check_report_blocks(page, run: BuildRun) -> None:
     parts = report_parts(run.models)
-    for block in page.found.reports:
+    for block in page.extracted.reports:
         if block.part not in parts:
             run.error(unknown_part_error(block, parts))
 
 
 def convert_math(book: Book, run: BuildRun) -> Book:
     """MathML for every formula of every page (one Temml run for the whole book, or none if cached)."""
-    items = [m for page in book.pages for m in page.found.maths]
-    mathml, errors = tex_to_mathml(items, run.remember)
+    items = [m for page in book.pages for m in page.extracted.maths]
+    mathml, errors = tex_to_mathml(items, run.cached)
     for error in errors:
         run.error(error)
     by_page, start = {}, 0
     for page in book.pages:
-        by_page[page.slug] = tuple(mathml[start : start + len(page.found.maths)])
-        start += len(page.found.maths)
+        by_page[page.slug] = tuple(mathml[start : start + len(page.extracted.maths)])
+        start += len(page.extracted.maths)
     return replace(book, mathml=by_page)

@@ -16,7 +16,6 @@ from ..compute.table import Table
 from ..content.bibliography import PageCitations
 from ..content.labels import Target, reference_html
 from ..content.pages import Page
-from ..content.scenes import SceneSpec
 from ..render.figures.base import FigureView
 from ..site.assemble import RenderedScene
 
@@ -27,9 +26,8 @@ class SceneRecord:
 
     page: Page
     index: int  # position among the page's scenes
-    spec: SceneSpec
-    scene: ResolvedScene | None = None  # resolve
-    view: FigureView | None = None  # resolve: the figure that draws it
+    scene: ResolvedScene  # resolve: the block against its model (its `spec` is the block as written)
+    view: FigureView  # resolve: the figure that draws it
     caption: str = ""  # resolve: the caption's HTML (math still as slots)
     outputs: tuple[str, ...] = ()  # resolve: what it shows (readouts and what its layers read)
     key: CacheKey | None = None  # resolve: the key of its tables
@@ -44,7 +42,7 @@ class SceneRecord:
     @property
     def name(self) -> str:
         """How the build's log and the accuracy report name the scene: "page#scene"."""
-        return f"{self.page.slug}#{self.spec.id}"
+        return f"{self.page.slug}#{self.scene.spec.id}"
 
     @property
     def stops(self) -> int:
@@ -55,7 +53,7 @@ class SceneRecord:
         return count
 
     def finished(self) -> SceneRecord:
-        """The record once its page is written: the small facts kept, the tables, figure and HTML let go."""
+        """The record once its page is written: what the accuracy report reads kept, the tables, figure and HTML let go."""
         return replace(self, tables=None, figure=None, html="")
 
 
@@ -91,7 +89,7 @@ class Book:
 
     def writing_order(self) -> list[Page]:
         """Pages in the order they are finished: pages with accuracy reports last, as they read every scene."""
-        return sorted(self.pages, key=lambda p: bool(p.found.reports))
+        return sorted(self.pages, key=lambda p: bool(p.extracted.reports))
 
     def reference(self, page: Page):
         """How a reference on `page` is written: label -> the link to it, with its number."""
@@ -100,7 +98,7 @@ class Book:
     @property
     def has_reports(self) -> bool:
         """Whether a page shows accuracy-report parts (which list every scene's data bytes)."""
-        return any(p.found.reports for p in self.pages)
+        return any(p.extracted.reports for p in self.pages)
 
     @property
     def title(self) -> str:

@@ -24,7 +24,7 @@ class BuildConfig:
     root: Path
     content: Path
     out: Path
-    cache: Path | None = None  # None: compute everything, remember nothing
+    cache: Path | None = None  # None: compute everything, keep nothing
     jobs: int | str = 1  # local worker processes, or "auto" (one per core); 1: everything in this process
     scheduler: str | None = None  # address of a Dask scheduler, e.g. tcp://127.0.0.1:8786
     book: BookConfig | None = None  # the rest of book.toml (None: its defaults, for a book at `root`)
@@ -68,8 +68,8 @@ class BuildReport:
 
 
 class BuildRun:
-    """What every phase is handed besides the book: the config, the registry of models and figures it
-    may use, the error log, the cache (`remember`), the progress callback, the report being filled, and the
+    """What every phase gets besides the book: the config, the registry of models and figures it
+    may use, the error log, the cache (`cached`: a stored value or one computed now), the progress callback, the report being filled, and the
     executor that runs the work with the work sent to it."""
 
     def __init__(self, config: BuildConfig, progress, registry: Registry, executor=None):
@@ -77,7 +77,7 @@ class BuildRun:
         self.models, self.figures = registry.models, registry.figures
         self.log, self.report = ErrorLog(), BuildReport()
         self.cache = TableCache(config.cache) if config.cache else None
-        self.remember = self.cache.remember if self.cache else compute_now
+        self.cached = self.cache.cached if self.cache else compute_now
         self.executor = executor or InProcess()  # where the work runs (compute.executors)
         self.work: dict[str, tuple] = {}  # a table key's digest -> its units of work and their futures, in plan order
         self.tree = None  # the staging folder the pages are written into (site.writer.StagedTree)
@@ -118,7 +118,5 @@ class BuildRun:
         except (KeyboardInterrupt, SystemExit, MemoryError):
             raise
         except Exception as error:
-            code = raising_line(
-                error, [type(record.scene.model), type(record.view)] if record.scene else [], self.config.book
-            )
-            raise SceneCrashed(record.spec.loc, record.spec.id, doing, error, code) from error
+            code = raising_line(error, [type(record.scene.model), type(record.view)], self.config.book)
+            raise SceneCrashed(record.scene.spec.loc, record.scene.spec.id, doing, error, code) from error

@@ -6,8 +6,8 @@ from __future__ import annotations
 import time
 from dataclasses import replace
 
-from ..compute.check import check_scenes as check_accuracy
 from ..compute.deps import inert_deps_note, verify_scene_deps
+from ..compute.measure import measure_accuracy
 from ..compute.sources import digest, library_version, source_digest
 from ..compute.tabulate import assemble_tables, evaluate_timed, per_stop_outputs, plan_scene
 from ..errors import AuthorError
@@ -78,7 +78,7 @@ def tabulate_scenes(book: Book, run: BuildRun) -> Book:
 def _checked_deps(record: SceneRecord, run: BuildRun) -> SceneRecord:
     """The record, once its outputs are found to change only with what their deps declare (probed, or read
     back with its tables); each that does not is an author error, and the record keeps no tables."""
-    errors = verify_scene_deps(record.scene, planned_outputs(record), run.remember, run.config.root)
+    errors = verify_scene_deps(record.scene, planned_outputs(record), run.cached, run.config.root)
     for error in errors:
         run.error(error)
     return replace(record, tables=None) if errors else record
@@ -170,7 +170,7 @@ def check_scenes(book: Book, run: BuildRun) -> Book:
         if record.tables is None:
             continue
         with run.scene(record, "checking its numerics"):
-            found, errors = check_accuracy([record], run.remember, run.progress, shown=lambda _: record.outputs)
+            found, errors = measure_accuracy([record], run.cached, run.progress, shown=lambda _: record.outputs)
             for error in errors:
                 run.error(error)
             records.append(replace(record, accuracy=found[0] if found else None))
@@ -198,7 +198,7 @@ def _figure(record: SceneRecord, run: BuildRun) -> RenderedScene:
 
     # The layers are drawn at the defaults, so the defaults (through the points) belong in the key.
     key = digest(scene_digest(record), source_digest(DRAWING | {type(view).__module__}), repr(points), "figure")
-    return RenderedScene(run.remember("figures", key, draw).decode(), tuple(layers))
+    return RenderedScene(run.cached("figures", key, draw).decode(), tuple(layers))
 
 
 def scene_digest(record: SceneRecord) -> str:

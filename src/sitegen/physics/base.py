@@ -135,7 +135,7 @@ class Output:
 
     def __reduce__(self):
         # Pickled (to a worker process) without its structure, whose kernels are local functions: a
-        # worker only evaluates the model; structures are compiled and proven in the build's process.
+        # worker only evaluates the model; structures are compiled and verified in the build's process.
         fields = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
         return _output_from_fields, ({**fields, "structure": None},)
 
@@ -169,7 +169,7 @@ class Model:
     numerics: ClassVar[Numerics | None] = None
     methods: ClassVar[dict[str, dict[str, object]]] = {}  # method: the settings it takes, at their defaults
     error_metric: ClassVar[str] = ""
-    check_stops: ClassVar[int] = 16  # slider stops the build's check samples (fewer for an ODE solve per point)
+    accuracy_stops: ClassVar[int] = 16  # slider stops the build's check samples (fewer for an ODE solve per point)
     # What `sitegen bench` measures of the methods: each over a ladder of its setting (rtol, nodes or step) at
     # the stops the build checks. A ladder here replaces the default one of a setting for every method
     # (`{"rtol": (1e-4, 1e-6, 1e-8)}`) or for one method (`{"RK45": {"rtol": (1e-4, 1e-6)}}`); an empty ladder
@@ -179,7 +179,7 @@ class Model:
     # is a part of the accuracy report under its name.
     experiments: ClassVar[dict[str, object]] = {}
 
-    checks_digits: ClassVar[bool] = False  # whether measure_error also compares the displayed digits
+    compares_digits: ClassVar[bool] = False  # whether measure_error also compares the displayed digits
 
     def __init__(self, settings: Numerics | None = None):
         self.settings = settings if settings is not None else self.numerics

@@ -3,7 +3,7 @@
 A model declares, next to an output, the mathematical form it has (docs/physics/README.md): a
 polynomial of known degree in some coordinates, a branch chosen by a threshold, a ratio. The
 build turns the declaration into small tables (polynomial nodes, one coordinate table) and
-proves it against the model at sampled stops. These classes are pure mathematics: nothing here
+verifies it against the model at sampled stops (in the check phase). These classes are pure mathematics: nothing here
 knows about pages, tables or scripts.
 """
 

@@ -72,7 +72,7 @@ def compare_table(name: str, unit: str, old: dict | None, new: dict | None) -> T
 
 
 def _compare_expressions(name: str, unit: str, old: dict | None, new: dict | None) -> TableChange | None:
-    """An output computed by the page from a proven expression: changed when the expression (its
+    """An output computed by the page from a verified expression: changed when the expression (its
     nodes, node values or digits) changed; the coordinate tables it reads ("~…") are compared as
     tables of their own."""
     if old == new:

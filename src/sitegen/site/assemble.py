@@ -217,7 +217,7 @@ def page_html(page: Page, body: str, pages: list[Page], book_title: str, book: B
             outline=navigation.outline(pages),
             previous=previous,
             next=following,
-            has_scenes=bool(page.found.scenes),
+            has_scenes=bool(page.extracted.scenes),
             description=description(page, body),
             search_index=SEARCH_SCRIPT,
             book=book or BookConfig(Path(".")),

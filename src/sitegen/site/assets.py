@@ -55,15 +55,15 @@ def math_characters(html: str) -> set[str]:
     return {c for element in _MATH_ELEMENT.findall(html) for c in unescape(_TAG.sub("", element))}
 
 
-def math_font(characters: set[str], remember=None) -> bytes:
+def math_font(characters: set[str], cached=None) -> bytes:
     """Latin Modern Math cut down to `characters` (those the pages' formulas use) and a few every
     formula may need, with their variants."""
     text = "".join(sorted(characters | set("()[]{}|=+−0123456789√")))  # √: <msqrt> draws it without a text character
-    if remember is None:
+    if cached is None:
         return _subset_font(text)
     font_hash = hashlib.sha256((STATIC / FONT_FILE).read_bytes()).hexdigest()
     key = hashlib.sha256(f"{text}\x00{font_hash}\x00fonttools {fontTools.version}".encode()).hexdigest()
-    return remember("fonts", key, lambda: _subset_font(text))
+    return cached("fonts", key, lambda: _subset_font(text))
 
 
 def _subset_font(text: str) -> bytes:

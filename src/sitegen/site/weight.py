@@ -24,13 +24,13 @@ class PageWeight:
     scenes: tuple[tuple[str, int], ...]  # ("page#scene", raw bytes of its inline tables), heaviest first
 
 
-def page_weights(files: dict[str, bytes], records, remember) -> list[PageWeight]:
+def page_weights(files: dict[str, bytes], records, cached) -> list[PageWeight]:
     """The weight of every page among `files` (name: bytes, the built site's), with its scenes from `records`.
-    Each gzip size is remembered by the file's digest: a rebuild compresses only what changed."""
+    Each gzip size is cached by the file's digest: a rebuild compresses only what changed."""
 
     def packed(data: bytes) -> int:
         key = hashlib.sha256(data).hexdigest()
-        return int(remember("page-gzip", key, lambda: str(gzip_bytes(data)).encode()))
+        return int(cached("page-gzip", key, lambda: str(gzip_bytes(data)).encode()))
 
     assets = sum(packed(data) for name, data in sorted(files.items()) if name.startswith("assets/"))
     weights = []

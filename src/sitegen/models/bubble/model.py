@@ -280,8 +280,8 @@ class Bubble(Model):
         **{name: {"rtol": 1e-6, "atol": None} for name in (*SOLVERS, *COMPILED)},
     }
     error_metric = "max |ΔR|/R₀ over R(t) and its extrema"
-    check_stops = 16  # each costs a solve and a tight reference solve (compiled: 1–50 ms)
-    checks_digits = True
+    accuracy_stops = 16  # each costs a solve and a tight reference solve (compiled: 1–50 ms)
+    compares_digits = True
     # An ODE solve per stop (1–50 ms compiled): blocks spread a scene over the executor's workers and pace its
     # progress lines, and hold enough stops to pay for their trip to a worker.
     chunk_stops = 64

@@ -122,7 +122,7 @@ class Stepper:
                 return OK
             g_old = g_new
 
-    def found(self, role: str) -> list:
+    def events_of(self, role: str) -> list:
         """(τ, r, ṙ) of every event recorded in `role` ("max", "min" or "speed")."""
         return [row for event, rows in zip(self.events, self.hits) if event.records == role for row in rows]
 
@@ -179,9 +179,9 @@ def _stepped_run(status: str, method: str, rtol: float, stepper: Stepper, nfev: 
         stepper.grid,
         stepper.samples,
         stepper.last,
-        stepper.found("max"),
-        stepper.found("min"),
-        stepper.found("speed"),
+        stepper.events_of("max"),
+        stepper.events_of("min"),
+        stepper.events_of("speed"),
         nfev,
         seconds,
     )

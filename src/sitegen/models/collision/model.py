@@ -59,7 +59,7 @@ def _momentum_after(c):
 _MULTILINEAR = ((_M1, 1), (_M2, 1), (_V1, 1), (_V2, 1), (_E, 1), (INV_TOTAL, 1))
 _QUADRATIC_IN_V_AND_E = ((_M1, 1), (_M2, 1), (INV_TOTAL, 1), (_V1, 2), (_V2, 2), (_E, 2))
 # Interpolating v1i − v2i may leave ±1e−16 where the two are equal; on any slider grid a true
-# approach speed is many orders larger, so "approaching" is v1i − v2i > 1e−9 m/s (proved per scene).
+# approach speed is many orders larger, so "approaching" is v1i − v2i > 1e−9 m/s (verified per scene).
 _STATUS = Threshold(Poly(lambda c: c["v1i"] - c["v2i"], ((_V1, 1), (_V2, 1))), (1e-9,), (SEPARATING, COLLISION))
 _K_BEFORE = Poly(_kinetic_before, ((_M1, 1), (_M2, 1), (_V1, 2), (_V2, 2)))
 _K_AFTER = Choose(_STATUS, (Poly(lambda c: _kinetic_before(c) - _kinetic_lost(c), _QUADRATIC_IN_V_AND_E), _K_BEFORE))

@@ -37,7 +37,7 @@ class ReportContext:
     pages: tuple  # the book's Pages
     scenes: tuple  # the build's scene records (each with .page and .scene)
     table_bytes: Mapping  # "page#scene" -> (raw, gzip) bytes of the scene's inline tables in this build
-    remember: object = compute_now
+    cached: object = compute_now
     models: Mapping = None  # the models of the build, by name
     reports: Mapping = None  # the registry's REPORTS (unused: every part is drawn from bench.json by its kind)
 
@@ -62,7 +62,7 @@ def report_part(part: str, context: ReportContext) -> str:
 
 
 def bench_figures(bench: dict, parts: list[str], models: Mapping, reports: Mapping, cache=None) -> dict[str, bytes]:
-    """Every diagram that the report `parts` draw from bench.json alone, by the key `figure` remembers it by
+    """Every diagram that the report `parts` draw from bench.json alone, by the key `figure` caches it under
     (but those `cache`, a TableCache, holds already).
 
     Drawn before the build's own work: a part is rendered as if the build had no scenes, and only
@@ -73,7 +73,7 @@ def bench_figures(bench: dict, parts: list[str], models: Mapping, reports: Mappi
     def keep(kind: str, key: str, compute) -> bytes:
         if kind != FIGURES_KIND:
             return compute()
-        if cache is not None and cache.remembers(kind, key):
+        if cache is not None and cache.holds(kind, key):
             return b""  # drawn before: what the part writes with it is thrown away
         drawn[key] = compute()
         return drawn[key]
@@ -93,12 +93,12 @@ def bench_figures_cached(bench: dict, parts: list[str], models: Mapping, reports
         return b""
 
     _parts_from_bench(bench, parts, models, reports, note)
-    return all(cache.remembers(FIGURES_KIND, key) for key in keys)
+    return all(cache.holds(FIGURES_KIND, key) for key in keys)
 
 
-def _parts_from_bench(bench: dict, parts: list[str], models: Mapping, reports: Mapping, remember) -> None:
-    """Render the report `parts` as if the build had no scenes, with `remember` for what they keep."""
-    context = ReportContext(bench, (), (), (), {}, remember, models, reports)
+def _parts_from_bench(bench: dict, parts: list[str], models: Mapping, reports: Mapping, cached) -> None:
+    """Render the report `parts` as if the build had no scenes, with `cached` for what they keep."""
+    context = ReportContext(bench, (), (), (), {}, cached, models, reports)
     for part in parts:
         try:
             report_part(part, context)
@@ -235,7 +235,7 @@ def scenes_part(context: ReportContext) -> str:
                 f'{sci(record.error)} <span class="report-note">{within} {sci(record.tolerance)}; '
                 f"{escape(record.metric)}</span>",
                 escape(record.reference),
-                f'{record.stops_checked:,} stops<span class="report-note">{record.evaluations:,} evaluations</span>',
+                f'{record.stops_measured:,} stops<span class="report-note">{record.evaluations:,} evaluations</span>',
                 duration(cold["seconds"]) if cold else "—",
                 f'{kib(packed)}<span class="report-note">{kib(raw)} raw</span>' if raw else "—",
             ]

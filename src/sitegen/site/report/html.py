@@ -14,7 +14,7 @@ from ...render.work_precision import Point
 
 # What a diagram's bytes depend on besides its data: the drawing code (followed through its imports).
 DRAWING_CODE = frozenset({"sitegen.site.report", "sitegen.render.work_precision", "sitegen.render.svg"})
-FIGURES_KIND = "report-figures"  # what `figure` remembers its SVG as, by a key of its data and drawing code
+FIGURES_KIND = "report-figures"  # what `figure` caches its SVG as, by a key of its data and drawing code
 MISSING = (
     '<p class="report-missing">No benchmark results yet: run <code>make bench</code> (or '
     "<code>sitegen bench</code>) to measure them.</p>"
@@ -67,7 +67,7 @@ def rtol_exponent(rtol: float) -> str:
 
 
 def figure(context, name: str, data, label: str, draw) -> str:
-    """A diagram's inline SVG, wide and narrow (`draw(narrow)`), remembered by its data and the drawing code
+    """A diagram's inline SVG, wide and narrow (`draw(narrow)`), cached by its data and the drawing code
     (same data, same bytes)."""
     key = digest(
         name,
@@ -80,7 +80,7 @@ def figure(context, name: str, data, label: str, draw) -> str:
         wide = figure_svg(laid_out(draw(False)), [], [], f"acc-{name}", label)
         return (wide + figure_svg(laid_out(draw(True)), [], [], f"acc-{name}-narrow", label, "narrow")).encode()
 
-    return context.remember(FIGURES_KIND, key, both).decode()
+    return context.cached(FIGURES_KIND, key, both).decode()
 
 
 def figure_html(name: str, svg: str, label: str, caption: str, data_table: str) -> str:

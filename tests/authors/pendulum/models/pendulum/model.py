@@ -46,7 +46,7 @@ class Pendulum(Model):
     methods = {name: {"rtol": 1e-8} for name in ("RK45", "DOP853", "LSODA")}
     ladders = {"rtol": (1e-4, 1e-8, 1e-12)}  # short: a test runs the bench
     error_metric = "relative error of the period"
-    check_stops = 3
+    accuracy_stops = 3
 
     def _evaluate(self, x, wanted, effects):
         amplitudes, where = np.unique(x["theta0"], return_inverse=True)

@@ -1,4 +1,4 @@
-"""The build's accuracy check: every numerically computed scene measured against its model's reference.
+"""The accuracy measurement of the check phase: every numerically computed scene measured against its model's reference.
 
 At a small deterministic sample of slider stops (the defaults, corners of the grid and seeded
 random stops) the scene's model measures the error of its own numbers, with the scene's numerical
@@ -28,19 +28,19 @@ from .grid import CHOICE
 from .scenes import ResolvedScene
 from .sources import digest, source_digest
 
-CHECK_MODULES = frozenset({"sitegen.compute.check", "sitegen.compute.accuracy"})
+MEASURE_MODULES = frozenset({"sitegen.compute.measure", "sitegen.compute.accuracy"})
 
 
 @dataclass(frozen=True)
-class Checked:
+class Measured:
     """A scene's record and the slider values of its worst stop (for the error message)."""
 
     record: SceneAccuracy
     worst: str
 
 
-def check_scenes(
-    items, remember=compute_now, progress=None, shown=None
+def measure_accuracy(
+    items, cached=compute_now, progress=None, shown=None
 ) -> tuple[list[SceneAccuracy], list[AuthorError]]:
     """Records of every numerically computed scene, in the order given, and an error per scene over its
     tolerance or showing a digit the reference does not.
@@ -54,33 +54,31 @@ def check_scenes(
         if scene.model.settings is None or not scene.model.is_numerical(scene.effects):
             continue
         start = time.perf_counter()
-        key = digest(scene_key(scene, []).digest, item.page.slug, source_digest(CHECK_MODULES), "accuracy")
+        key = digest(scene_key(scene, []).digest, item.page.slug, source_digest(MEASURE_MODULES), "accuracy")
         names = sorted(shown(scene) if shown else (o.name for o in scene.readouts))
         key = digest(key, *names)
-        measured = json.loads(
-            remember("accuracy", key, lambda scene=scene, names=names: _measure(scene, names).encode())
-        )
-        checked = _checked(item.page.slug, scene, measured)
-        records.append(checked.record)
-        if checked.record.error > checked.record.tolerance:
-            errors.append(tolerance_error(scene, checked))
-        if checked.record.digits_wrong:
-            errors.append(digits_error(scene, checked.record))
+        measured = json.loads(cached("accuracy", key, lambda scene=scene, names=names: _measure(scene, names).encode()))
+        measured_scene = _measured(item.page.slug, scene, measured)
+        records.append(measured_scene.record)
+        if measured_scene.record.error > measured_scene.record.tolerance:
+            errors.append(tolerance_error(scene, measured_scene))
+        if measured_scene.record.digits_wrong:
+            errors.append(digits_error(scene, measured_scene.record))
         if progress:
-            progress(_progress_line(item.page.slug, checked.record, time.perf_counter() - start))
+            progress(_progress_line(item.page.slug, measured_scene.record, time.perf_counter() - start))
     return records, errors
 
 
 def _progress_line(page: str, record: SceneAccuracy, seconds: float) -> str:
-    """One line of the build's log for a checked scene (the only place its time appears)."""
+    """One line of the build's log for a measured scene (the only place its time appears)."""
     error = written(record.error, ".1e") if record.error else "0"
     digits = (
         f"; digits: {len(record.digits_wrong)} wrong, {len(record.near_boundary)} near a rounding boundary"
-        if record.digits_checked
+        if record.digits_compared
         else ""
     )
     return (
-        f"check     {page + '#' + record.scene:<44} {record.stops_checked:>3} stops {seconds:7.2f} s  "
+        f"check     {page + '#' + record.scene:<44} {record.stops_measured:>3} stops {seconds:7.2f} s  "
         f"error {error} (tolerance {written(record.tolerance)}){digits}"
     )
 
@@ -89,7 +87,7 @@ def _measure(scene: ResolvedScene, shown: list[str]) -> str:
     """What the settings achieve at the sampled stops, as JSON: the error, and the displayed outputs
     (of `shown`) that differ from the reference's, wrong or near a rounding boundary."""
     rows, wrong, near = [], [], []
-    for stop in sample_stops(scene):
+    for stop in measured_stops(scene):
         values = {**scene.base_values(), **{a.param: float(a.stop(k)) for a, k in zip(scene.axes, stop)}}
         measurement = scene.model.measure_error(values, scene.effects)
         error = float(measurement.error)
@@ -114,7 +112,7 @@ def _measure(scene: ResolvedScene, shown: list[str]) -> str:
     )
 
 
-def _checked(page: str, scene: ResolvedScene, measured: dict) -> Checked:
+def _measured(page: str, scene: ResolvedScene, measured: dict) -> Measured:
     """The record of a scene from its measurements and its current settings."""
     settings = scene.model.settings
     knobs = settings.knobs().removeprefix(f"method {settings.method}").lstrip(", ")
@@ -130,18 +128,18 @@ def _checked(page: str, scene: ResolvedScene, measured: dict) -> Checked:
         error=float(measured["error"]),
         metric=scene.model.error_metric,
         reference="; ".join(measured["references"]),
-        stops_checked=measured["stops"],
+        stops_measured=measured["stops"],
         evaluations=measured["evaluations"],
-        digits_checked=scene.model.checks_digits,
+        digits_compared=scene.model.compares_digits,
         digits_wrong=tuple(measured["wrong"]),
         near_boundary=tuple(measured["near"]),
     )
-    return Checked(record, measured["worst"])
+    return Measured(record, measured["worst"])
 
 
-def tolerance_error(scene: ResolvedScene, checked: Checked) -> AuthorError:
+def tolerance_error(scene: ResolvedScene, measured_scene: Measured) -> AuthorError:
     """The author error of a scene whose measured error exceeds its declared tolerance, with what to do."""
-    record, settings = checked.record, scene.model.settings
+    record, settings = measured_scene.record, scene.model.settings
     taken = scene.model.methods.get(settings.method, {})
     if "rtol" in taken:
         remedy = f"tighten rtol (now {written(settings.rtol)})" if settings.rtol is not None else "set a smaller rtol"
@@ -152,7 +150,7 @@ def tolerance_error(scene: ResolvedScene, checked: Checked) -> AuthorError:
     where = scene.spec.loc_of("numerics")
     message = (
         f"measured error {written(record.error, '.1e')} ({record.metric}, "
-        f"against {record.reference}) at {checked.worst} "
+        f"against {record.reference}) at {measured_scene.worst} "
         f"exceeds the declared tolerance {written(settings.tolerance)} of '{settings.text()}'; "
         f"{remedy} or loosen the tolerance on the scene's 'numerics:' line"
     )
@@ -171,11 +169,11 @@ def digits_error(scene: ResolvedScene, record: SceneAccuracy) -> AuthorError:
     return AuthorError(scene.spec.loc_of("numerics"), message, scene.id)
 
 
-def sample_stops(scene: ResolvedScene) -> list[tuple[int, ...]]:
-    """The stops a scene is checked at: its defaults, the lowest and highest corners, then other
+def measured_stops(scene: ResolvedScene) -> list[tuple[int, ...]]:
+    """The stops a scene is measured at: its defaults, the lowest and highest corners, then other
     corners and random stops from a generator seeded by the scene's own key (deterministic)."""
     counts = [axis.count for axis in scene.axes]
-    budget = min(scene.model.check_stops, math.prod(counts))
+    budget = min(scene.model.accuracy_stops, math.prod(counts))
     rng = np.random.default_rng(int(hashlib.sha256(scene_key(scene, []).spec.encode()).hexdigest()[:16], 16))
     highest = tuple(count - 1 for count in counts)
     corners = [

@@ -1,4 +1,4 @@
-"""Proving a declared structure against the model: the page's value (the expression, evaluated as the
+"""The sampled check of a closed form (a declared structure) against the model: the page's value (the expression, evaluated as the
 script does) against a direct evaluation of the model at every corner and edge of the slider box,
 the defaults, and a seeded random sample of stops; the build fails on any displayed difference."""
 
@@ -14,11 +14,11 @@ from .expression import shown
 from .quantize import quantize
 from .scenes import ResolvedScene
 
-RANDOM_STOPS = 4000  # sampled stops per scene in the proof, beyond corners and edges
+RANDOM_STOPS = 4000  # sampled stops per scene in the check, beyond corners and edges
 EDGE_STOPS = 20_000  # at most this many stops along the box's edges (all of them when fewer)
 
 
-def proof_stops(scene: ResolvedScene) -> np.ndarray:
+def verified_stops(scene: ResolvedScene) -> np.ndarray:
     """Every corner and (up to EDGE_STOPS) edge stop of the slider box, the defaults, and a seeded
     random sample: the stops at which a structural claim is checked."""
     counts = [a.count for a in scene.axes]
@@ -42,7 +42,7 @@ def proof_stops(scene: ResolvedScene) -> np.ndarray:
     return np.unique(np.vstack([rows, edges, [scene.default_stops], sample]).astype(np.int64), axis=0)
 
 
-def prove(scene: ResolvedScene, table, stops: np.ndarray) -> tuple[float, float]:
+def verify_closed_form(scene: ResolvedScene, table, stops: np.ndarray) -> tuple[float, float]:
     """Check that the page shows what the model gives at every row of `stops`; raise an author
     error at the first difference. Returns the smallest and largest value shown."""
     output = scene.model.output(table.output)

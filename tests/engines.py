@@ -45,7 +45,10 @@ ERROR_LOG_SCRIPT = """<script>(function () {
   window.addEventListener("unhandledrejection", function (e) { log.push("unhandled rejection: " + e.reason); });
   ["error", "warn"].forEach(function (kind) {
     var original = console[kind];
-    console[kind] = function () { log.push(kind + ": " + Array.prototype.join.call(arguments, " ")); return original.apply(console, arguments); };
+    console[kind] = function () {
+      log.push(kind + ": " + Array.prototype.join.call(arguments, " "));
+      return original.apply(console, arguments);
+    };
   });
 })();</script>"""
 
@@ -282,7 +285,10 @@ class Firefox(Engine):
 
 # MiniBrowser's toolbar keeps its window at least 447 px wide; with its widgets shrunk the window (and the
 # viewport) can be as narrow as a phone's.
-GTK_CSS = "toolbar *, entry, button { min-width: 0; min-height: 0; padding: 0; margin: 0; font-size: 1px; border-width: 0; }\n"
+GTK_CSS = (
+    "toolbar *, entry, button { min-width: 0; min-height: 0; padding: 0; margin: 0; font-size: 1px; border-width: 0; }"
+    "\n"
+)
 
 
 class WebKit(Engine):
@@ -329,7 +335,8 @@ class WebKit(Engine):
     def evaluate(self, function, arg=None):
         answer = self.driver.execute_async_script(
             "const answer = arguments[arguments.length - 1];"
-            f"{_expression(function, arg)}.then(text => answer([text]), error => answer(String(error && error.stack || error)));"
+            f"{_expression(function, arg)}"
+            ".then(text => answer([text]), error => answer(String(error && error.stack || error)));"
         )
         if not isinstance(answer, list):
             raise RuntimeError(f"WebKit: {answer}")

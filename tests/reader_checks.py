@@ -302,7 +302,8 @@ def _search(engine, words: str) -> list[str]:
     engine.click("#search-box")  # a click, as a reader's: a script's focus() is not a focus in a window behind
     engine.type(words)
     engine.wait_for(
-        "return !document.getElementById('search-results').hidden && document.querySelector('#search-results li') !== null;"
+        "return !document.getElementById('search-results').hidden"
+        " && document.querySelector('#search-results li') !== null;"
     )
     return engine.run("return [...document.querySelectorAll('#search-results a')].map(a => a.getAttribute('href'));")
 

@@ -1,6 +1,6 @@
 """A Markdown extension that lifts scene blocks and TeX out of the prose before Markdown sees them.
 
-It runs ahead of Python-Markdown's own preprocessors, so it still sees the author's line numbers;
+It runs before Python-Markdown's own preprocessors, so it still sees the author's line numbers;
 each scene or formula is replaced by an empty placeholder element (raw HTML, which Markdown passes
 through untouched) that `fill_slots` swaps for the final HTML. Markdown's own stash cannot be used
 this early: its whitespace normaliser strips the stash markers.
@@ -332,7 +332,7 @@ class SlotExtension(Extension):
         self.path, self.first_line, self.extracted = path, first_line, extracted
 
     def extendMarkdown(self, md: markdown.Markdown) -> None:
-        # Priority 35: ahead of normalize_whitespace (30) and fenced_code (25), on the author's lines.
+        # Priority 35: before normalize_whitespace (30) and fenced_code (25), on the author's lines.
         md.preprocessors.register(
             _SlotPreprocessor(md, self.path, self.first_line, self.extracted), "sitegen_slots", 35
         )

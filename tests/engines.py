@@ -1,4 +1,4 @@
-"""Three browser engines behind one small interface, for the reader's checks in each (tests/test_engines.py):
+"""Three browser engines behind one small interface, for the reader's checks in each (tests/reader_checks.py):
 
 - Chromium: Debian's, through Playwright (a page of the test module's browser, tests/browser.py);
 - Firefox ESR: Debian's, through puppeteer-core over WebDriver BiDi, from node (tests/firefox.js);
@@ -17,8 +17,10 @@ import base64
 import io
 import json
 import os
+import re
 import shutil
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -29,6 +31,7 @@ ROOT = Path(__file__).resolve().parents[1]
 FIREFOX = "/usr/bin/firefox-esr"
 MINIBROWSER = "/usr/lib/x86_64-linux-gnu/webkit2gtk-4.1/MiniBrowser"
 WEBKIT_DRIVER = "/usr/bin/WebKitWebDriver"
+WEBKIT_LIBRARY = "libwebkit2gtk-4.1.so.0"  # MiniBrowser's engine (the driver has no --version)
 ENGINES = ("chromium", "firefox", "webkit")
 
 # What WebKit's pages run first (see `instrumented`): errors, failed loads, unhandled rejections, console
@@ -48,6 +51,36 @@ ERROR_LOG_SCRIPT = """<script>(function () {
     };
   });
 })();</script>"""
+
+
+# The library's own version, asked in a process of its own (loading it here would load GTK into the test run).
+_WEBKIT_VERSION_PY = f"""
+import ctypes
+lib = ctypes.CDLL({WEBKIT_LIBRARY!r})
+print(".".join(str(getattr(lib, f"webkit_get_{{part}}_version")()) for part in ("major", "minor", "micro")))
+"""
+
+
+def _first_line(command: list[str]) -> str:
+    """The first line `command` prints ("" if it cannot run)."""
+    try:
+        done = subprocess.run(command, capture_output=True, text=True, timeout=30)
+    except (OSError, subprocess.TimeoutExpired):
+        return ""
+    return done.stdout.strip().split("\n")[0] if done.returncode == 0 else ""
+
+
+def installed_versions() -> list[str]:
+    """Each engine's name and version as its binary or library tells it ("Chromium 156.0.8078.114", "Firefox
+    ESR 153.8.0", "WebKitGTK 2.50.6"), or that it is not installed."""
+    from sitegen.review.figures import CHROMIUM
+
+    found = {
+        "Chromium": re.match(r"Chromium (\S+)", _first_line([CHROMIUM, "--version"])),  # "... built on Debian ..."
+        "Firefox ESR": re.match(r"Mozilla Firefox (\S+?)(esr)?$", _first_line([FIREFOX, "--version"])),
+        "WebKitGTK": re.match(r"(\d+\.\d+\.\d+)$", _first_line([sys.executable, "-c", _WEBKIT_VERSION_PY])),
+    }
+    return [f"{name} {match.group(1)}" if match else f"{name} not installed" for name, match in found.items()]
 
 
 def _expression(function: str, arg) -> str:

@@ -24,6 +24,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 CHAPTER = ROOT / "content" / "newtons-laws.md"
+BIBLIOGRAPHY = ROOT / "content" / "references.bib"  # the chapter cites it
 _RANGE = re.compile(r"^slider (\w+): (\S+)\.\.(\S+) step (\S+) default (\S+)$")
 _PEAK = (
     "import resource, sys; from sitegen.cli import main; code = main(sys.argv[1:]); "
@@ -66,15 +67,24 @@ def _minus_steps(hi: str, step: str, shift: int) -> str:
     return format(Decimal(lowered.numerator) / Decimal(lowered.denominator), "f")
 
 
+def on_its_own(text: str) -> str:
+    """The chapter without what points outside it: links to the book's other pages become their text, and
+    references to labels of other pages the word "elsewhere"."""
+    own = set(re.findall(r"\{#([\w-]+)\}", text)) | set(re.findall(r"^id: ([\w-]+)$", text, flags=re.M))
+    text = re.sub(r"\[([^\]]+)\]\((?!https?:)[\w-]+\.html[^)]*\)", r"\1", text)
+    return re.sub(r"\(@([\w-]+)\)", lambda m: m.group(0) if m.group(1) in own else "elsewhere", text)
+
+
 def make_shelf(root: Path, copies: int) -> None:
-    """A book of a home page and `copies` shifted copies of the chapter."""
+    """A book of a home page and `copies` shifted copies of the chapter (with the book's bibliography)."""
     content = root / "content"
     content.mkdir(parents=True)
     (content / "index.md").write_text('+++\ntitle = "A shelf"\n+++\n\nThe same chapter, again and again.\n')
-    text = CHAPTER.read_text()
+    text = on_its_own(CHAPTER.read_text())
     for k in range(copies):
         (content / f"chapter-{k + 1:02d}.md").write_text(shifted_chapter(text, k))
-    (root / "book.toml").write_text("")
+    (content / BIBLIOGRAPHY.name).write_bytes(BIBLIOGRAPHY.read_bytes())
+    (root / "book.toml").write_text(f'bibliography = "content/{BIBLIOGRAPHY.name}"\n')
 
 
 def _build_env() -> dict[str, str]:

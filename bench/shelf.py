@@ -67,12 +67,19 @@ def _minus_steps(hi: str, step: str, shift: int) -> str:
     return format(Decimal(lowered.numerator) / Decimal(lowered.denominator), "f")
 
 
-def on_its_own(text: str) -> str:
-    """The chapter without what points outside it: links to the book's other pages become their text, and
-    references to labels of other pages the word "elsewhere"."""
-    own = set(re.findall(r"\{#([\w-]+)\}", text)) | set(re.findall(r"^id: ([\w-]+)$", text, flags=re.M))
+def on_its_own(text: str, copy: int) -> str:
+    """The chapter as copy number `copy` of a shelf: its labels numbered (a label is unique in a book), links to
+    the book's other pages as their text, and references to other pages' labels the word "elsewhere"."""
+    own = set(re.findall(r"\{#([\w-]+)\}", text))
+    scenes = set(re.findall(r"^id: ([\w-]+)$", text, flags=re.M))
+    text = re.sub(r"\{#([\w-]+)\}", rf"{{#\1-{copy}}}", text)
     text = re.sub(r"\[([^\]]+)\]\((?!https?:)[\w-]+\.html[^)]*\)", r"\1", text)
-    return re.sub(r"\(@([\w-]+)\)", lambda m: m.group(0) if m.group(1) in own else "elsewhere", text)
+
+    def reference(found: re.Match) -> str:
+        label = found.group(1)
+        return f"(@{label}-{copy})" if label in own else found.group(0) if label in scenes else "elsewhere"
+
+    return re.sub(r"\(@([\w-]+)\)", reference, text)
 
 
 def make_shelf(root: Path, copies: int) -> None:
@@ -80,9 +87,9 @@ def make_shelf(root: Path, copies: int) -> None:
     content = root / "content"
     content.mkdir(parents=True)
     (content / "index.md").write_text('+++\ntitle = "A shelf"\n+++\n\nThe same chapter, again and again.\n')
-    text = on_its_own(CHAPTER.read_text())
+    text = CHAPTER.read_text()
     for k in range(copies):
-        (content / f"chapter-{k + 1:02d}.md").write_text(shifted_chapter(text, k))
+        (content / f"chapter-{k + 1:02d}.md").write_text(shifted_chapter(on_its_own(text, k + 1), k))
     (content / BIBLIOGRAPHY.name).write_bytes(BIBLIOGRAPHY.read_bytes())
     (root / "book.toml").write_text(f'bibliography = "content/{BIBLIOGRAPHY.name}"\n')
 

@@ -188,6 +188,23 @@ def tabs(chromium):
     return Tabs(chromium)
 
 
+def engines_line(reports) -> str | None:
+    """The log's line of the browser engines and their versions, when a browser test ran among `reports`."""
+    if not any(isinstance(r, pytest.TestReport) and "browser" in r.keywords for r in reports):
+        return None
+    from engines import installed_versions
+
+    return "browser engines: " + ", ".join(installed_versions())
+
+
+def pytest_terminal_summary(terminalreporter) -> None:
+    """Name each browser engine with its version at the end of a run that drove one (with pytest-xdist the
+    workers' reports, marks included, come back to this process, which prints it)."""
+    line = engines_line(report for reports in terminalreporter.stats.values() for report in reports)
+    if line:
+        terminalreporter.write_line(line)
+
+
 def pytest_collection_finish(session) -> None:
     """Young objects collected every 10,000 allocations, not Python's 700, as a build does (phases/collect.py):
     a test process allocates without pause, and the collector ran tens of thousands of times a run for

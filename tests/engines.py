@@ -1,4 +1,4 @@
-"""Three browser engines behind one small interface, for the reader's checks in each (tests/test_engines.py):
+"""Three browser engines behind one small interface, for the reader's checks in each (tests/reader_checks.py):
 
 - Chromium: Debian's, through Playwright (a page of the test module's browser, tests/browser.py);
 - Firefox ESR: Debian's, through puppeteer-core over WebDriver BiDi, from node (tests/firefox.js);
@@ -17,8 +17,10 @@ import base64
 import io
 import json
 import os
+import re
 import shutil
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -29,6 +31,7 @@ ROOT = Path(__file__).resolve().parents[1]
 FIREFOX = "/usr/bin/firefox-esr"
 MINIBROWSER = "/usr/lib/x86_64-linux-gnu/webkit2gtk-4.1/MiniBrowser"
 WEBKIT_DRIVER = "/usr/bin/WebKitWebDriver"
+WEBKIT_LIBRARY = "libwebkit2gtk-4.1.so.0"  # MiniBrowser's engine (the driver has no --version)
 ENGINES = ("chromium", "firefox", "webkit")
 
 # What WebKit's pages run first (see `instrumented`): errors, failed loads, unhandled rejections, console
@@ -42,9 +45,42 @@ ERROR_LOG_SCRIPT = """<script>(function () {
   window.addEventListener("unhandledrejection", function (e) { log.push("unhandled rejection: " + e.reason); });
   ["error", "warn"].forEach(function (kind) {
     var original = console[kind];
-    console[kind] = function () { log.push(kind + ": " + Array.prototype.join.call(arguments, " ")); return original.apply(console, arguments); };
+    console[kind] = function () {
+      log.push(kind + ": " + Array.prototype.join.call(arguments, " "));
+      return original.apply(console, arguments);
+    };
   });
 })();</script>"""
+
+
+# The library's own version, asked in a process of its own (loading it here would load GTK into the test run).
+_WEBKIT_VERSION_PY = f"""
+import ctypes
+lib = ctypes.CDLL({WEBKIT_LIBRARY!r})
+print(".".join(str(getattr(lib, f"webkit_get_{{part}}_version")()) for part in ("major", "minor", "micro")))
+"""
+
+
+def _first_line(command: list[str]) -> str:
+    """The first line `command` prints ("" if it cannot run)."""
+    try:
+        done = subprocess.run(command, capture_output=True, text=True, timeout=30)
+    except (OSError, subprocess.TimeoutExpired):
+        return ""
+    return done.stdout.strip().split("\n")[0] if done.returncode == 0 else ""
+
+
+def installed_versions() -> list[str]:
+    """Each engine's name and version as its binary or library tells it ("Chromium 156.0.8078.114", "Firefox
+    ESR 153.8.0", "WebKitGTK 2.50.6"), or that it is not installed."""
+    from sitegen.review.figures import CHROMIUM
+
+    found = {
+        "Chromium": re.match(r"Chromium (\S+)", _first_line([CHROMIUM, "--version"])),  # "... built on Debian ..."
+        "Firefox ESR": re.match(r"Mozilla Firefox (\S+?)(esr)?$", _first_line([FIREFOX, "--version"])),
+        "WebKitGTK": re.match(r"(\d+\.\d+\.\d+)$", _first_line([sys.executable, "-c", _WEBKIT_VERSION_PY])),
+    }
+    return [f"{name} {match.group(1)}" if match else f"{name} not installed" for name, match in found.items()]
 
 
 def _expression(function: str, arg) -> str:
@@ -249,7 +285,10 @@ class Firefox(Engine):
 
 # MiniBrowser's toolbar keeps its window at least 447 px wide; with its widgets shrunk the window (and the
 # viewport) can be as narrow as a phone's.
-GTK_CSS = "toolbar *, entry, button { min-width: 0; min-height: 0; padding: 0; margin: 0; font-size: 1px; border-width: 0; }\n"
+GTK_CSS = (
+    "toolbar *, entry, button { min-width: 0; min-height: 0; padding: 0; margin: 0; font-size: 1px; border-width: 0; }"
+    "\n"
+)
 
 
 class WebKit(Engine):
@@ -296,7 +335,8 @@ class WebKit(Engine):
     def evaluate(self, function, arg=None):
         answer = self.driver.execute_async_script(
             "const answer = arguments[arguments.length - 1];"
-            f"{_expression(function, arg)}.then(text => answer([text]), error => answer(String(error && error.stack || error)));"
+            f"{_expression(function, arg)}"
+            ".then(text => answer([text]), error => answer(String(error && error.stack || error)));"
         )
         if not isinstance(answer, list):
             raise RuntimeError(f"WebKit: {answer}")

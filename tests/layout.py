@@ -59,6 +59,29 @@ EQUATION_NUMBERS_JS = (
 """
 )
 
+# A fraction in text style (in a sentence, \tfrac, within another fraction's part) has its parts at a script's
+# size, about 0.7 of the fraction's own; in display style (a displayed formula, \dfrac, an aligned display) at
+# its size. The nearest ancestor that sets a style decides, as MathML Core's math-style does.
+FRACTION_SIZES_JS = r"""
+    const problems = [], size = el => parseFloat(getComputedStyle(el).fontSize);
+    const compact = fraction => {
+      for (let el = fraction.parentElement; el; el = el.parentElement) {
+        if (el.localName === 'mfrac') return true;
+        if (el.hasAttribute('displaystyle')) return el.getAttribute('displaystyle') === 'false';
+        if (el.localName === 'math') return el.getAttribute('display') !== 'block';
+      }
+      return true;
+    };
+    for (const fraction of document.querySelectorAll('mfrac')) {
+      const small = compact(fraction), [low, high] = small ? [0.6, 0.75] : [0.95, 1.05];
+      for (const part of fraction.children) {
+        const ratio = size(part) / size(fraction);
+        if (ratio < low || ratio > high) problems.push(`a fraction in ${small ? 'text' : 'display'} style ("${fraction.textContent.slice(0, 30)}"): a part at ${ratio.toFixed(2)} of its size`);
+      }
+    }
+    return problems;
+"""
+
 
 def overflow_problems(page) -> list[str]:
     """The page scrolling sideways, and any box whose content is wider than it without showing that it

@@ -15,13 +15,14 @@ On the tiny book (tests/book) and the project's own book, as the engine draws th
   Chromium (a layer painted over the plot, as WebKit once painted dots, shows as far too much of it);
   the pictures are kept in the run's temporary folder, `engines/<engine>/`, for a person to look at;
 - at 390, 320 and 1280 px the page fits: no sideways scrolling, a wide box shows that it scrolls, each
-  equation number at the right margin beside its formula.
+  equation number at the right margin beside its formula, a fraction in a sentence set at a script's size.
 
 One browser per module, one tab; a page stays loaded from one test to the next when they read the same
 document (each test puts its scene back on its defaults), and the tests are ordered so that the viewport
 changes its width rarely (a resize of a long page costs WebKit a second or two). Chromium's states and
-colours, the reference, come from a tab of their own. Each test records its engine's version, which
-conftest.py prints at the end of the run.
+colours, the reference, come from a tab of their own. Each test records its engine's version as its driver
+tells it (a property of the test in a JUnit XML report); conftest.py ends a run that drove a browser with a
+line naming each engine and its version.
 """
 
 from __future__ import annotations
@@ -46,7 +47,7 @@ from browser import (
     spread,
 )
 from engines import Chromium, Firefox, WebKit, instrumented
-from layout import EQUATION_NUMBERS_JS, OVERFLOW_JS
+from layout import EQUATION_NUMBERS_JS, FRACTION_SIZES_JS, OVERFLOW_JS
 
 from sitegen.compute.grid import CHOICE
 
@@ -112,7 +113,7 @@ def engine(request, chromium, tmp_path_factory):
 
 @pytest.fixture(autouse=True)
 def _engine_version(request, record_property):
-    """Every test carries its engine's version (conftest.py prints them at the end of the run)."""
+    """Every test carries its engine's version, as its driver tells it (a JUnit XML report shows it)."""
     record_property("browser", request.getfixturevalue("engine").version)
 
 
@@ -301,7 +302,8 @@ def _search(engine, words: str) -> list[str]:
     engine.click("#search-box")  # a click, as a reader's: a script's focus() is not a focus in a window behind
     engine.type(words)
     engine.wait_for(
-        "return !document.getElementById('search-results').hidden && document.querySelector('#search-results li') !== null;"
+        "return !document.getElementById('search-results').hidden"
+        " && document.querySelector('#search-results li') !== null;"
     )
     return engine.run("return [...document.querySelectorAll('#search-results a')].map(a => a.getAttribute('href'));")
 
@@ -426,8 +428,9 @@ def _slack(colour: str, share: float) -> float:
 @pytest.mark.parametrize("name,page,transport,width", _pages(("file",), widths=(390, 320, WIDE)))
 def test_page_fits(engine, url, name, page, transport, width):
     """At 390, 320 and 1280 px the page does not scroll sideways, a box wider than its content shows it
-    scrolls, and every equation number sits at the right margin beside its formula."""
+    scrolls, every equation number sits at the right margin beside its formula, and a fraction's parts are at
+    its style's size (in a sentence, a script's: WebKit's, without math-depth, once kept the formula's)."""
     show(engine, url(engine, name, page), width)
     settle(engine)
-    problems = engine.run(OVERFLOW_JS) + engine.run(EQUATION_NUMBERS_JS)
+    problems = engine.run(OVERFLOW_JS) + engine.run(EQUATION_NUMBERS_JS) + engine.run(FRACTION_SIZES_JS)
     assert not problems, "\n".join(problems[:15])

@@ -296,7 +296,8 @@ def test_print_opens_the_derivations_and_lets_a_scene_start_a_page(open_page):
     assert closed, "no closed <details> on the page"
     page.emulate_media(media="print")
     laid_out = """() => [...document.querySelectorAll('details')].map(d =>
-        [...d.children].filter(c => c.localName !== 'summary').reduce((h, c) => h + c.getBoundingClientRect().height, 0))"""
+        [...d.children].filter(c => c.localName !== 'summary')
+            .reduce((h, c) => h + c.getBoundingClientRect().height, 0))"""
     assert all(height > 0 for height in page.evaluate(laid_out)), page.evaluate(laid_out)
     breaks = page.evaluate("""() => [...document.querySelectorAll('figure.scene')].map(s =>
         [getComputedStyle(s).breakInside, getComputedStyle(s.querySelector('.scene-figure')).breakInside])""")

@@ -159,7 +159,8 @@ def test_exactly_structured_axes_interpolate_to_round_off(line, axis, nodes):
 
 
 def test_two_node_line_in_e_misses_the_parabola_by_its_sagitta():
-    """K_after(e) = K_before − ½µΔ²(1 − e²) with µ = 2/3, Δ = 4: a chord through e = 0, 1 misses by 16/3 · ¼ = 4/3 at e = ½."""
+    """K_after(e) = K_before − ½µΔ²(1 − e²) with µ = 2/3, Δ = 4: a chord through e = 0, 1 misses by
+    16/3 · ¼ = 4/3 at e = ½."""
     error, _ = interpolation_error(LINES["K_after"], "linear", 2)
     assert error == pytest.approx(4 / 3, abs=1e-12)
 
@@ -338,7 +339,8 @@ def test_accuracy_page_has_each_diagram_with_its_numbers(built_site, figure):
     """Each diagram: an inline SVG with a label, a caption and a table of the numbers behind it."""
     html = (built_site / "accuracy.html").read_text()
     found = re.search(
-        rf'<figure class="report-figure" id="fig-{figure}">(.*?)</figure>\s*<details class="report-data">(.*?)</details>',
+        rf'<figure class="report-figure" id="fig-{figure}">(.*?)</figure>\s*'
+        r'<details class="report-data">(.*?)</details>',
         html,
         re.S,
     )

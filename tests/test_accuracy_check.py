@@ -1,4 +1,4 @@
-"""The in-build accuracy check: declared numerical settings, measured errors, tolerances that fail the build."""
+"""The build's accuracy measurement: declared numerical settings, measured errors, tolerances that fail the build."""
 
 from __future__ import annotations
 
@@ -115,7 +115,7 @@ def test_checked_scene_caption_states_the_error_and_links_only_when_the_page_exi
     assert f'href="accuracy.html#{record.anchor}"' in (config.out / "beads.html").read_text()
 
 
-def test_no_op_rebuild_runs_no_check_solves(tmp_path):
+def test_no_op_rebuild_runs_no_accuracy_solves(tmp_path):
     """With a cache the second check measures nothing: every record comes from the cached result."""
     from sitegen.compute.cache import TableCache
 

@@ -93,7 +93,7 @@ def test_imports_point_down_the_layers(name):
 
 @pytest.mark.parametrize("name", NAMES)
 def test_only_the_registry_imports_the_built_in_models(name):
-    """No phase, no framework module reaches a model by importing it: the build is handed the registry."""
+    """No phase, no framework module reaches a model by importing it: the build is given the registry."""
     models = sorted(t for t in graph()[name] if t.startswith("sitegen.models."))
     assert not models or name.startswith(MODEL_USERS), f"{name} imports {', '.join(models)}"
 

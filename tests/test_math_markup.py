@@ -2,7 +2,8 @@
 
 - a numbered display, one equation or a list, carries its number outside the math, in a box of its own
   after the formula (Temml's \\tag is a table cell that Chromium, Firefox and WebKit each put elsewhere);
-- inline math may break after a top-level relation (no browser breaks a line inside a <math>);
+- inline math may break after a top-level relation (no browser breaks a line inside a <math>), never before
+  the punctuation that follows it;
 - a dot of a figure is a stroke too short to see but not of zero length (WebKit paints `M x,y h0` with a
   non-scaling stroke as a block over the whole plot).
 
@@ -68,6 +69,25 @@ def test_inline_math_breaks_after_its_relations():
     pieces = re.findall(r"<math>.*?</math>", html)
     assert len(pieces) == 3 and html.count("<wbr>") == 2, html
     assert pieces[0].endswith("<mo>=</mo></mrow></math>") and pieces[1].endswith("<mo>≤</mo></mrow></math>")
+
+
+@pytest.mark.parametrize(
+    "text,kept",
+    [
+        ("the restitution $e$. The", '<span class="nobreak"><math><mi>e</mi></math>.</span> The'),
+        ("with $e$), then", '<span class="nobreak"><math><mi>e</mi></math>),</span> then'),
+        ("so $a = b$; then", '<wbr><span class="nobreak"><math><mrow><mi>b</mi></mrow></math>;</span> then'),
+    ],
+    ids=["full-stop", "bracket-comma", "broken-formula"],
+)
+def test_inline_math_keeps_the_punctuation_after_it_on_its_line(text, kept):
+    """Every engine may break a line between a <math> and a full stop: the formula's last piece and the
+    punctuation after it are one unbreakable run."""
+    assert kept in _html(text + "\n")
+
+
+def test_inline_math_before_a_word_is_left_as_it_is():
+    assert "nobreak" not in _html("the restitution $e$ and the mass $m$\n")
 
 
 @pytest.mark.parametrize(

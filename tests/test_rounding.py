@@ -1,7 +1,7 @@
 """One rounding rule wherever a number is shown: to the nearest digit, an exact tie away from zero. A book of
 exact decimal ties (0.125 to two decimals, 0.5625 to three, 19.375 to two, and their negatives) shows each as a
 table readout (rounded by the build) and as an expression readout (a closed form the page's script evaluates and
-rounds), read in Chromium from file:// and http:// after moving the real slider; the build's digit check
+rounds), read in Chromium from file:// and http:// after moving the real slider; the build's digit comparison
 compares digits by the same rule."""
 
 from __future__ import annotations
@@ -147,7 +147,7 @@ def test_ties_show_the_same_digits_in_both_kinds_of_readout_in_chromium(ties_sit
     [(0.5625, 0.5625000001, False), (-0.5625, -0.5625000001, False), (0.5625, 0.5624999999, True)],
     ids=["tie-and-above", "negative-tie-and-below", "tie-and-below"],
 )
-def test_the_build_digit_check_reads_a_tie_as_the_page_shows_it(run, reference, near):
+def test_the_build_digit_comparison_reads_a_tie_as_the_page_shows_it(run, reference, near):
     """A run landing exactly on the tie 0.5625 shows 0.563 (away from zero), as the reference just above it does:
     no difference. Against a reference just below, the digits differ, within the error of the boundary: near."""
     outputs = (Output("p_x", "x", "", (), decimals=3),)

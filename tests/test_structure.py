@@ -1,13 +1,15 @@
-"""Structure-aware tabulation: declared exact forms are compiled into small expressions, verified
-against the model at build time, and a wrong claim fails the build at the scene's line."""
+"""Structure-aware tabulation: declared exact forms are compiled into small expressions, which the
+check phase verifies against the model at sampled stops; a wrong claim fails the build at the scene's line."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from helpers import resolved_scene
+from helpers import build_errors, resolved_scene, write_book
+from test_author_errors import _BareFigure
 
-from sitegen.compute.closed_form import verified_stops
+from sitegen.build import build
+from sitegen.compute.closed_form import verified_stops, verify_closed_forms
 from sitegen.compute.expression import shown
 from sitegen.compute.structure import Structured
 from sitegen.compute.tabulate import tabulate_scene
@@ -95,21 +97,40 @@ def test_true_claims_are_verified(output):
     table = tabulate_scene(scene, [output])[output]
     assert isinstance(table, Structured)
     assert table.at(scene.default_stops) == 1000
+    assert verify_closed_forms(scene, [table]) == []
 
 
 def test_false_claim_fails_the_build_at_the_scene():
     """Declaring x² linear in x is caught by the sampled check: an author error at the scene's line that names
     the output, a stop, and what the page would show against the model."""
     scene = _scene([*SQUARE, "readouts: wrong"], {"square": _Square})
-    with pytest.raises(AuthorError) as caught:
-        tabulate_scene(scene, ["wrong"])
-    message = str(caught.value)
+    errors = verify_closed_forms(scene, [tabulate_scene(scene, ["wrong"])["wrong"]])
+    assert len(errors) == 1 and isinstance(errors[0], AuthorError)
+    message = str(errors[0])
     assert message.startswith("try.md:10: scene 'sq': output 'wrong'") and "x=" in message and "model gives" in message
 
 
 def test_sampled_check_covers_corners_edges_and_defaults():
-    """The sampled check's stops include every corner, every stop along each edge of the slider box, and the defaults."""
+    """The sampled check's stops include every corner, every stop along each edge of the slider box, and the
+    defaults."""
     scene = _scene([*SQUARE, "readouts: right"], {"square": _Square})
     stops = {tuple(s) for s in verified_stops(scene).tolist()}
     assert {(0, 0), (0, 99), (400, 0), (400, 99), scene.default_stops} <= stops
     assert all((k, 0) in stops and (k, 99) in stops for k in range(401))
+
+
+SQUARE_PAGE = (
+    '+++\ntitle = "Square"\n+++\n\n```scene\nmodel: square\nid: sq\nslider x: -2..2 step 0.01 default 1\n'
+    "readouts: {readout}\n```\n"
+)
+
+
+def test_a_false_claim_fails_each_build_in_the_check_phase(tmp_path, register):
+    """A wrong closed form fails the build at the scene's line in the check phase, and again when the scene's tables
+    come from the cache (its verdict is cached with them); a true one builds."""
+    register({"square": _Square}, {"square": _BareFigure()})
+    config = write_book(tmp_path, {"square": SQUARE_PAGE.format(readout="wrong")}, cache=True)
+    first = build_errors(config)
+    assert len(first) == 1 and first[0].startswith("content/square.md:5: scene 'sq': output 'wrong'")
+    assert build_errors(config) == first
+    build(write_book(tmp_path, {"square": SQUARE_PAGE.format(readout="right")}, cache=True), progress=None)

@@ -1,5 +1,5 @@
 """What the pages show is exact to the displayed digit, against exact rationals: at every stop of
-small scenes, and for scenes of up to 10^10 stops (computed from verified expressions) at every
+small scenes, and for scenes of up to 10^10 stops (computed from closed-form expressions) at every
 corner and edge of the slider box plus a large random sample, drawn independently of the build's
 own sampled check."""
 

@@ -11,6 +11,8 @@ accuracy-report parts come last, as those list every scene.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from .compute.executors import executor_for
 from .compute.sources import forget_sources
 from .phases.collect import collect_garbage, collecting_per_page
@@ -54,42 +56,52 @@ def build(config: BuildConfig, progress=print, registry: Registry | None = None)
     setup = BookModels.of(config.book)  # the book's own models, for workers to import
     modules = sorted({model.__module__ for model in registry.models.values()})  # what workers import first
     with executor_for(config.jobs, config.scheduler, setup, modules) as executor, collecting_per_page():
-        run = BuildRun(config, progress, registry, executor)
+        run = BuildRun.of(config, registry, progress, executor)
         book = Book()
         for name, phase in BOOK_PHASES:
             book = _timed(run, name, phase, book)
         run.log.raise_if_any()
-        run.report.pages, run.report.scenes = len(book.pages), len(book.scenes)
-        with staged_tree(config.out) as run.tree:
+        with staged_tree(config.out) as tree:
+            pages = replace(run, tree=tree)
             for page in book.writing_order():
                 for name, phase in PAGE_PHASES:
-                    book = run.phase(name, phase, book.at(page))
-            book = run.phase("write", write_assets, book.at(None))
+                    book = pages.phase(name, phase, book.at(page))
+            book = pages.phase("write", write_assets, book.at(None))
             run.log.raise_if_any()
     for name in (n for n, _ in PAGE_PHASES):
-        run.say(f"{name:<9} {run.report.phases[name]:6.2f} s")
+        run.say(f"{name:<9} {run.seconds[name]:6.2f} s")
     return _finish(run, book)
 
 
 def _timed(run: BuildRun, name: str, phase, book: Book) -> Book:
     book = run.phase(name, phase, book)
-    run.say(f"{name:<9} {run.report.phases[name]:6.2f} s")
+    run.say(f"{name:<9} {run.seconds[name]:6.2f} s")
     return book
 
 
 def _finish(run: BuildRun, book: Book) -> BuildReport:
-    report = run.report
-    if run.cache:
-        report.scene_lines += run.cache.problems
-    report.stored_values = sum(r.stored_values for r in book.scenes)
-    report.accuracy = [r.accuracy for r in book.scenes if r.accuracy is not None]
-    report.data_bytes = {r.name: r.data_bytes for r in book.scenes}
-    report.files = dict(sorted(run.tree.sizes.items()))
-    report.weights = page_weights(_site_files(run.config.out, report.files), book.scenes, run.cached)
-    report.warnings = weight_warnings(report.weights, run.config.book.page_budget_kb, book.scenes)
-    for line in weight_lines(report.weights) + report.warnings:
+    """What the build did, from the book it made and the run's log; the pages' weights said."""
+    tabulated = [r for r in book.in_writing_order() if r.status]
+    files = dict(sorted({w.name: w.size for w in book.written}.items()))
+    weights = page_weights(_site_files(run.config.out, files), book.scenes, run.cached)
+    warnings = weight_warnings(weights, run.config.book.page_budget_kb, book.scenes)
+    for line in weight_lines(weights) + warnings:
         run.say(line)
-    return report
+    return BuildReport(
+        pages=len(book.pages),
+        scenes=len(book.scenes),
+        stored_values=sum(r.stored_values for r in book.scenes),
+        computed=sum(not r.cached for r in tabulated),
+        cached=sum(r.cached for r in tabulated),
+        evaluations=sum(r.evaluations for r in book.scenes),
+        phases=dict(run.seconds),
+        files=files,
+        scene_lines=[line for r in tabulated for line in r.lines] + (run.cache.problems if run.cache else []),
+        weights=weights,
+        warnings=warnings,
+        accuracy=[r.accuracy for r in book.scenes if r.accuracy is not None],
+        data_bytes={r.name: r.data_bytes for r in book.scenes},
+    )
 
 
 def _site_files(out, names) -> dict[str, bytes]:
@@ -105,7 +117,7 @@ def needed_outputs(scene, registry: Registry | None = None) -> list[str]:
 
 def resolve_book(config: BuildConfig, registry: Registry | None = None) -> Book:
     """The book read and its scenes resolved (the first phases of a build; BuildFailed on author errors)."""
-    run = BuildRun(config, None, registry or load_registry(config.book))
+    run = BuildRun.of(config, registry or load_registry(config.book))
     book = resolve_scenes(read_pages(Book(), run), run)
     run.log.raise_if_any()
     return book
@@ -113,8 +125,7 @@ def resolve_book(config: BuildConfig, registry: Registry | None = None) -> Book:
 
 def tabulate_book(book: Book, config: BuildConfig, registry: Registry | None = None) -> Book:
     """The book's scenes tabulated, as a build would (its cache, if any; nothing checked, drawn or written)."""
-    run = BuildRun(config, None, registry or load_registry(config.book))
-    run.report.scenes = len(book.scenes)
+    run = BuildRun.of(config, registry or load_registry(config.book))
     book = tabulate_scenes(book.at(None), run)
     run.log.raise_if_any()
     return book

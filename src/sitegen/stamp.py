@@ -62,25 +62,25 @@ def outputs_digest(out: Path) -> str:
 
 
 def up_to_date(book: BookConfig, out: Path, inputs: str | None) -> dict | None:
-    """The last build's facts when its stamp matches `inputs` (the digest of the inputs as they are now)
-    and `out` as it is now, else None."""
+    """The last build's counts (pages, scenes) when its stamp matches `inputs` (the digest of the inputs as they
+    are now) and `out` as it is now, else None."""
     try:
         stamp = json.loads(_stamp_path(book, out).read_text())
     except (OSError, ValueError):
         return None
     if inputs is None or stamp.get("inputs") != inputs or stamp.get("outputs") != outputs_digest(out):
         return None
-    return stamp.get("facts", {})
+    return stamp.get("counts", {})
 
 
-def write_stamp(book: BookConfig, out: Path, inputs: str | None, facts: dict) -> None:
+def write_stamp(book: BookConfig, out: Path, inputs: str | None, counts: dict) -> None:
     """Record a complete build of `out` made from `inputs` (the digest taken before it started)."""
     if inputs is None:
         return
     path = _stamp_path(book, out)
     path.parent.mkdir(parents=True, exist_ok=True)
     partial = path.with_suffix(".new")
-    partial.write_text(json.dumps({"inputs": inputs, "outputs": outputs_digest(out), "facts": facts}))
+    partial.write_text(json.dumps({"inputs": inputs, "outputs": outputs_digest(out), "counts": counts}))
     partial.replace(path)
 
 

@@ -106,7 +106,7 @@ def bench_scene(name: str, scene, shown, stops) -> BenchScene:
 
 
 def method_experiment(items: list[BenchScene], plan: Plan = FULL, progress=None) -> dict:
-    """One model's methods at the check stops of each of its scenes: a panel of runs per scene."""
+    """One model's methods at the accuracy stops of each of its scenes: a panel of runs per scene."""
     model = type(items[0].scene.model)
     panels = [_scene_panel(item, plan, progress) for item in items]
     references = sorted({ref for panel in panels for ref in panel.pop("references")})

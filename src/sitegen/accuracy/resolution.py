@@ -147,8 +147,9 @@ def json_gzip_bytes(values: np.ndarray, decimals: int) -> int:
 
 
 def resolution_experiment(scenes=None) -> list[dict]:
-    """Every row of the resolution table (docs/physics/README.md), then one 'every stop' row per output (what the page ships, no interpolation); only the
-    outputs of `scenes` ("page#id") when given (a book without those scenes has no rows)."""
+    """Every row of the resolution table (docs/physics/README.md), then one 'every stop' row per output (what
+    the page ships, no interpolation); only the outputs of `scenes` ("page#id") when given (a book without those
+    scenes has no rows)."""
     lines = {key: line for key, line in LINES.items() if scenes is None or line.scene in scenes}
     rows = []
     for key, axis, counts in CASES:

@@ -1,6 +1,13 @@
-"""The sampled check of a closed form (a declared structure) against the model: the page's value (the expression, evaluated as the
-script does) against a direct evaluation of the model at every corner and edge of the slider box,
-the defaults, and a seeded random sample of stops; the build fails on any displayed difference."""
+"""The sampled check of closed forms, run in the build's check phase.
+
+An output whose model declares its closed form (a structure: a polynomial, a branch, a ratio; see
+physics/structure.py) is shipped as an expression the page's script evaluates. The check compares what
+the page will show (the expression evaluated as the script does, compute/expression.py) with a direct
+evaluation of the model, at display precision, at every corner of the slider box, at the stops along
+its edges (all of them, or EDGE_STOPS spread evenly), at the defaults, and at RANDOM_STOPS stops drawn
+from a generator seeded by the scene's id; the build fails at the scene's line on any difference (a
+value on an exact rounding tie may round either way).
+"""
 
 from __future__ import annotations
 
@@ -42,9 +49,21 @@ def verified_stops(scene: ResolvedScene) -> np.ndarray:
     return np.unique(np.vstack([rows, edges, [scene.default_stops], sample]).astype(np.int64), axis=0)
 
 
-def verify_closed_form(scene: ResolvedScene, table, stops: np.ndarray) -> tuple[float, float]:
+def verify_closed_forms(scene: ResolvedScene, forms) -> list[AuthorError]:
+    """The sampled check of a scene's closed forms (its `Structured` tables): an author error for the
+    first whose page value differs from the model's at a stop of `verified_stops`, else none."""
+    stops = verified_stops(scene)
+    for form in forms:
+        try:
+            verify_closed_form(scene, form, stops)
+        except AuthorError as error:
+            return [error]
+    return []
+
+
+def verify_closed_form(scene: ResolvedScene, table, stops: np.ndarray) -> None:
     """Check that the page shows what the model gives at every row of `stops`; raise an author
-    error at the first difference. Returns the smallest and largest value shown."""
+    error at the first difference."""
     output = scene.model.output(table.output)
     inputs = scene.base_values()
     for i, axis in enumerate(scene.axes):
@@ -72,8 +91,6 @@ def verify_closed_form(scene: ResolvedScene, table, stops: np.ndarray) -> tuple[
             f"'{scene.model.name}' is wrong for this scene (remove it to tabulate per stop)",
             scene.id,
         )
-    scale = 10.0**-output.decimals
-    return float(page.min()) * scale, float(page.max()) * scale
 
 
 def require_showable(scene: ResolvedScene, output, values: np.ndarray, where) -> None:

@@ -50,7 +50,7 @@ class _Deferred(Future):
         (fn, args, kwargs), self._call = self._call, None
         try:
             self.set_result(fn(*args, **kwargs))
-        except BaseException as error:  # handed to whoever reads the result, as a pool would
+        except BaseException as error:  # raised to whoever reads the result, as a pool would
             self.set_exception(error)
 
 

@@ -1,4 +1,4 @@
-"""The accuracy measurement of the check phase: every numerically computed scene measured against its model's reference.
+"""The check phase's accuracy measurement: every numerically computed scene against its model's reference.
 
 At a small deterministic sample of slider stops (the defaults, corners of the grid and seeded
 random stops) the scene's model measures the error of its own numbers, with the scene's numerical

@@ -32,7 +32,7 @@ def quantize(values, decimals: int, special: bool = False) -> np.ndarray:
 # 5.46250000000000036, and the same value interpolated by the page a few units of its last place below 5.4625,
 # both read 5.463, as the exact 5.4625 does; 1.005, stored as 1.00499999999999989, reads 1.01. Tables are rounded here;
 # the page's script rounds an expression's value by the same steps in
-# the same order (sitegen.js toQuantum), and the build's checks of displayed digits compare by this rule.
+# the same order (sitegen.js toQuantum), and the build's digit comparison rounds by this rule.
 
 TIE = 1e-12  # relative: a value this close to half a digit is half-way
 _CHUNK = 1 << 16  # values rounded at a time (tables run to millions: the temporaries stay small)

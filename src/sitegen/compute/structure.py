@@ -3,9 +3,9 @@ exact pieces is shipped as that expression, and the page's script evaluates it.
 
 The expression is plain JSON that knows slider values, tables, polynomial nodes, branches and
 thresholds, and nothing of physics. expression.py is the script's arithmetic in numpy, in the
-same order of operations, so that what the build verifies is what the page shows; closed_form.py compares
-it with a direct evaluation of the model at every corner and edge of the slider box and at a
-seeded random sample of stops, and the build fails on any displayed difference.
+same order of operations, so that what the build verifies is what the page shows: the check phase
+compares it with a direct evaluation of the model at every corner and edge of the slider box and at
+a seeded random sample of stops (closed_form.py), and fails on any displayed difference.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import numpy as np
 
 from ..errors import AuthorError
 from ..physics.structure import ChoiceOf, Choose, Coord, Log10, OutputOf, Poly, Ratio, Threshold
-from .closed_form import verified_stops, verify_closed_form
+from .closed_form import verified_stops
 from .expression import shown, table_values
 from .grid import CHOICE, LIST
 from .quantize import quantize
@@ -191,6 +191,14 @@ def _along_index_sum(entries: np.ndarray) -> np.ndarray | None:
     return by_sum if np.all(spread <= allowed) else None
 
 
+def shown_bounds(table: Structured, stops: np.ndarray) -> tuple[float, float]:
+    """The smallest and largest value the page shows at `stops` (for a figure's axis limits)."""
+    with np.errstate(invalid="ignore"):  # a value too large to show: the check phase's error (require_showable)
+        page = shown(table, stops)
+    scale = 10.0**-table.decimals
+    return float(page.min()) * scale, float(page.max()) * scale
+
+
 # --- a scene's structured outputs ------------------------------------------------------------
 
 
@@ -208,7 +216,8 @@ def structured_pieces(scene: ResolvedScene, names) -> dict[str, object]:
 def compile_structured(
     scene: ResolvedScene, pieces: dict[str, object], per_stop: dict[str, Table]
 ) -> dict[str, object]:
-    """Each declared output as a verified expression, plus the coordinate tables they read (named "~…")."""
+    """Each declared output as an expression, plus the coordinate tables they read (named "~…"). The check
+    phase verifies each against the model (closed_form.py)."""
     compiler = _Compiler(scene, per_stop)
     stops = verified_stops(scene) if pieces else None
     out: dict[str, object] = {}
@@ -228,7 +237,6 @@ def compile_structured(
             dict(compiler.parts),
             compiler.sliders,
         )
-        bounds = verify_closed_form(scene, table, stops)
-        out[name] = replace(table, bounds=bounds)
+        out[name] = replace(table, bounds=shown_bounds(table, stops))
     out.update({n: t for n, t in compiler.parts.items() if n not in out})
     return out

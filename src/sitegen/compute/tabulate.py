@@ -104,7 +104,7 @@ def assemble_tables(
     scene: ResolvedScene, units: list[WorkUnit], results: list[dict[str, np.ndarray]], names=()
 ) -> dict:
     """Join the units' blocks (in plan order) into tables, then add the outputs among `names` that
-    have a declared structure (compiled and verified against the model here)."""
+    have a declared structure (compiled here; the check phase verifies them against the model)."""
     blocks: dict[tuple[int, ...], list[dict[str, np.ndarray]]] = defaultdict(list)
     for unit, result in zip(units, results):
         blocks[unit.axes].append(result)

@@ -1,6 +1,6 @@
 """A Markdown extension that lifts scene blocks and TeX out of the prose before Markdown sees them.
 
-It runs ahead of Python-Markdown's own preprocessors, so it still sees the author's line numbers;
+It runs before Python-Markdown's own preprocessors, so it still sees the author's line numbers;
 each scene or formula is replaced by an empty placeholder element (raw HTML, which Markdown passes
 through untouched) that `fill_slots` swaps for the final HTML. Markdown's own stash cannot be used
 this early: its whitespace normaliser strips the stash markers.
@@ -19,7 +19,7 @@ from markdown.preprocessors import Preprocessor
 from ..errors import AuthorError, SourceLoc
 from . import furniture, prose
 from .furniture import Figure
-from .mathml import breakable
+from .mathml import breakable, kept_with
 from .prose import Citation, Link
 from .reports import ReportBlock, parse_report_block
 from .scenes import SceneSpec, parse_scene_block
@@ -29,7 +29,8 @@ _REPORT_FENCE = re.compile(r"^```\s*accuracy-report\s*$")
 _CODE_FENCE = re.compile(r"^(```|~~~)")
 _FENCE_RUN = re.compile(r"^(`{3,}|~{3,})")
 _INLINE_MATH = re.compile(r"(?<![\\$\w])\$(?=[^\s$])(?P<tex>[^$\n]*?[^\s\\$])\$(?![\w$])")
-_SLOT = re.compile(r'<(div|span) data-(math|scene|report|cite)-slot="(\d+)(?:-(\d+))?"></\1>')
+# A placeholder, and the punctuation right after it (kept on the line of an inline formula: see `kept_with`).
+_SLOT = re.compile(r'<(div|span) data-(math|scene|report|cite)-slot="(\d+)(?:-(\d+))?"></\1>([.,;:!?)\]’”]*)')
 _LIST_BREAK = re.compile(r"\\(qquad|begin|end)\b|[{}]")
 _HAND_TAG = re.compile(r"\\tag(\*?)\{([^{}]*)\}")  # \tag{2a} (shown "(2a)") or \tag*{A} (shown "A")
 _DISPLAY_END = re.compile(r"^(?P<tex>.*)\$\$\s*(?:\{#(?P<label>eq-[a-z0-9-]+)\})?\s*$")
@@ -331,7 +332,7 @@ class SlotExtension(Extension):
         self.path, self.first_line, self.extracted = path, first_line, extracted
 
     def extendMarkdown(self, md: markdown.Markdown) -> None:
-        # Priority 35: ahead of normalize_whitespace (30) and fenced_code (25), on the author's lines.
+        # Priority 35: before normalize_whitespace (30) and fenced_code (25), on the author's lines.
         md.preprocessors.register(
             _SlotPreprocessor(md, self.path, self.first_line, self.extracted), "sitegen_slots", 35
         )
@@ -380,16 +381,16 @@ def fill_slots(html: str, extracted: Extracted, mathml, scenes, reports=(), cita
     (`reference(label)`: the link to a label, with its number)."""
 
     def substitute(match: re.Match) -> str:
-        tag, kind, index = match[1], match[2], int(match[3])
+        tag, kind, index, after = match[1], match[2], int(match[3]), match[5]
         if kind == "scene":
-            return scenes[index]
+            return scenes[index] + after
         if kind == "report":
-            return reports[index]
+            return reports[index] + after
         if kind == "cite":
-            return citations[index]
+            return citations[index] + after
         if tag == "span":
-            return breakable(mathml[index])
-        return _display(extracted, mathml, index, None if match[4] is None else int(match[4]))
+            return kept_with(breakable(mathml[index]), after)
+        return _display(extracted, mathml, index, None if match[4] is None else int(match[4])) + after
 
     html = _SLOT.sub(substitute, html)
     return _REF_SLOT.sub(lambda m: reference(m[1]), html) if reference else html

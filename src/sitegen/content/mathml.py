@@ -32,3 +32,12 @@ def breakable(mathml: str) -> str:
         return mathml
     pieces.append(body[start:])
     return "<wbr>".join(f"<math><mrow>{piece}</mrow></math>" for piece in pieces)
+
+
+def kept_with(mathml: str, after: str) -> str:
+    """Inline MathML and the punctuation right after it (`after`) on one line: every engine may break a line
+    between a <math> and a full stop, which would start the next line with it."""
+    if not after:
+        return mathml
+    last = mathml.rindex("<math")  # of a formula broken after its relations, the last piece
+    return f'{mathml[:last]}<span class="nobreak">{mathml[last:]}{after}</span>'

@@ -15,7 +15,7 @@ from ..site.assemble import page_html, scene_html
 from ..site.payload import scene_payload
 from ..site.report import ReportContext, report_part
 from ..site.sizes import gzip_bytes
-from .record import Book, SceneRecord
+from .record import Book, SceneRecord, Written
 from .run import BuildRun
 from .scenes import scene_digest
 
@@ -80,27 +80,37 @@ def write_page(book: Book, run: BuildRun) -> Book:
         book.reference(page),
     )
     html = page_html(page, body, list(book.pages), run.config.book.title or book.title, run.config.book)
-    run.tree.write(page.output_name, html.encode())
-    run.math_characters |= assets.math_characters(html)
-    run.searchable[page.output_name] = search.page_sections(html)
-    return book.with_records(r.finished() for r in records)
+    written = _write(run, page.output_name, html.encode(), assets.math_characters(html), search.page_sections(html))
+    return replace(book.with_records(r.finished() for r in records), written=(*book.written, written))
 
 
 def _report_context(book: Book, run: BuildRun) -> ReportContext:
     records = tuple(r.accuracy for r in book.scenes if r.accuracy is not None)
     sizes = {r.name: r.data_bytes for r in book.scenes}
     bench = load_results(run.config.content / BENCH_NAME)
-    return ReportContext(bench, records, book.pages, book.scenes, sizes, run.cached, run.models, run.registry.reports)
+    return ReportContext(
+        bench, records, book.pages, book.scenes, sizes, run.cached, run.registry.models, run.registry.reports
+    )
 
 
 def write_assets(book: Book, run: BuildRun) -> Book:
     """The script, the stylesheet (with the theme's CSS), the math font (cut down to the characters the
     pages use), the search index of every page with its code, and the files the pages name, as they are."""
-    if not run.failed:
-        for name in book.files:
-            run.tree.write(name, (run.config.content / name).read_bytes())
-        run.tree.write("assets/sitegen.js", assets.script())
-        run.tree.write(search.SEARCH_SCRIPT, search.search_script(run.searchable, list(book.pages)))
-        run.tree.write("assets/sitegen.css", assets.stylesheet(assets.theme_css(run.config.book.theme)))
-        run.tree.write(f"assets/{assets.FONT_FILE}", assets.math_font(run.math_characters, run.cached))
-    return book
+    if run.failed:
+        return book
+    pages = book.written  # the pages, all written by now
+    characters = set().union(*(w.characters for w in pages))
+    files = [(name, (run.config.content / name).read_bytes()) for name in book.files]
+    files += [
+        ("assets/sitegen.js", assets.script()),
+        (search.SEARCH_SCRIPT, search.search_script({w.name: list(w.sections) for w in pages}, list(book.pages))),
+        ("assets/sitegen.css", assets.stylesheet(assets.theme_css(run.config.book.theme))),
+        (f"assets/{assets.FONT_FILE}", assets.math_font(characters, run.cached)),
+    ]
+    return replace(book, written=(*book.written, *(_write(run, name, data) for name, data in files)))
+
+
+def _write(run: BuildRun, name: str, data: bytes, characters=frozenset(), sections=()) -> Written:
+    """Write one file of the site into the staging folder; what the shared assets need of it."""
+    run.tree.write(name, data)
+    return Written(name, len(data), frozenset(characters), tuple(sections))

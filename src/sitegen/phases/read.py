@@ -73,9 +73,9 @@ def resolve_scenes(book: Book, run: BuildRun) -> Book:
 def resolve_record(page, index: int, spec, run: BuildRun) -> SceneRecord | None:
     """The record of scene block `spec` (the `index`-th of `page`) with its resolved scene, figure, caption,
     outputs and key; None after logging its errors."""
-    scene, errors = resolve_scene(spec, run.models, run.registry.broken)
+    scene, errors = resolve_scene(spec, run.registry.models, run.registry.broken)
     figure = figure_name(spec)
-    if scene is not None and figure not in run.figures:
+    if scene is not None and figure not in run.registry.figures:
         errors.append(
             AuthorError(spec.loc_of("figure"), unknown_figure_message(figure, spec.model, run.registry), spec.id)
         )
@@ -83,7 +83,7 @@ def resolve_record(page, index: int, spec, run: BuildRun) -> SceneRecord | None:
         run.error(error)
     if errors:
         return None
-    record = SceneRecord(page, index, scene, run.figures[figure])
+    record = SceneRecord(page, index, scene, run.registry.figures[figure])
     layers = None
     with run.scene(
         record, "listing its figure's layers"
@@ -119,7 +119,7 @@ def shown_outputs(scene, layers) -> list[str]:
 
 
 def _check_report_blocks(page, run: BuildRun) -> None:
-    parts = report_parts(run.models)
+    parts = report_parts(run.registry.models)
     for block in page.extracted.reports:
         if block.part not in parts:
             run.error(unknown_part_error(block, parts))

@@ -33,6 +33,9 @@ class SceneRecord:
     key: CacheKey | None = None  # resolve: the key of its tables
     tables: Mapping[str, Table] | None = None  # tabulate
     status: str = ""  # tabulate: "cached", or "computed: why"
+    cached: bool = False  # tabulate: the tables came from the cache
+    evaluations: int = 0  # tabulate: units of work run for them (none when cached)
+    lines: tuple[str, ...] = ()  # tabulate: its lines of the build's log (cached or computed and why, notes)
     accuracy: SceneAccuracy | None = None  # check: numerically computed scenes only
     figure: RenderedScene | None = None  # render
     html: str = ""  # assemble: the scene element
@@ -53,14 +56,27 @@ class SceneRecord:
         return count
 
     def finished(self) -> SceneRecord:
-        """The record once its page is written: what the accuracy report reads kept, the tables, figure and HTML let go."""
+        """The record once its page is written: what the accuracy report reads is kept; the tables, figure and
+        HTML are let go."""
         return replace(self, tables=None, figure=None, html="")
+
+
+@dataclass(frozen=True)
+class Written:
+    """One file the write phases put into the site, and what a page's leaves for the shared assets: the
+    characters its formulas show (the math font's subset) and its sections (the search index)."""
+
+    name: str
+    size: int
+    characters: frozenset[str] = frozenset()
+    sections: tuple = ()
 
 
 @dataclass(frozen=True)
 class Book:
     """The pages, a record per resolved scene (page and scene order), the MathML of each page, the book's
-    labels, each citing page's citations and the files the pages name."""
+    labels, each citing page's citations and the files the pages name; while it is built, the work sent out
+    for its tables and the files written."""
 
     pages: tuple[Page, ...] = ()
     scenes: tuple[SceneRecord, ...] = ()
@@ -69,6 +85,8 @@ class Book:
     citations: Mapping[str, PageCitations] = field(default_factory=dict)  # link: by page slug
     files: tuple[str, ...] = ()  # link: the files under content/ the pages name, copied into the site
     page: Page | None = None  # the page the scene phases are working on (None: every page)
+    work: Mapping[str, tuple] = field(default_factory=dict)  # send: a table key's digest -> units, futures
+    written: tuple[Written, ...] = ()  # write: the site's files so far, in the order written
 
     def current(self) -> tuple[SceneRecord, ...]:
         """The records the scene phases work on now: the current page's, or all."""
@@ -90,6 +108,10 @@ class Book:
     def writing_order(self) -> list[Page]:
         """Pages in the order they are finished: pages with accuracy reports last, as they read every scene."""
         return sorted(self.pages, key=lambda p: bool(p.extracted.reports))
+
+    def in_writing_order(self) -> list[SceneRecord]:
+        """The records in the order their pages are finished (`writing_order`), each page's in scene order."""
+        return sorted(self.scenes, key=lambda r: bool(r.page.extracted.reports))
 
     def reference(self, page: Page):
         """How a reference on `page` is written: label -> the link to it, with its number."""

@@ -1,18 +1,21 @@
-"""One run of the build: its settings, errors, cache, progress lines and counters, and the phase clock."""
+"""One run of the build: its configuration and its log (errors, progress lines, the phase clock)."""
 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
+from concurrent.futures import Executor
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..compute.accuracy import SceneAccuracy
-from ..compute.cache import TableCache, compute_now
+from ..compute.cache import TableCache
 from ..compute.executors import InProcess
 from ..config import BookConfig, read_book
 from ..errors import AuthorError, ErrorLog, SceneCrashed
 from ..registry import Registry, raising_line
+from ..site.writer import StagedTree
 
 PROGRESS_EVERY = 2.0  # seconds: long work (a heavy scene, compiling) says how far it got at least this often
 
@@ -41,7 +44,7 @@ class BuildConfig:
         return cls(book.root, book.content, (out or book.output).resolve(), book=book, **options)
 
 
-@dataclass
+@dataclass(frozen=True)
 class BuildReport:
     """What a build did: pages, scenes, values stored, and seconds per phase."""
 
@@ -57,9 +60,7 @@ class BuildReport:
     weights: list = field(default_factory=list)  # a site.weight.PageWeight per page
     warnings: list[str] = field(default_factory=list)  # pages above the book's budget, and what would shrink them
     accuracy: list[SceneAccuracy] = field(default_factory=list)  # numerically computed scenes, in page/scene order
-    data_bytes: dict[str, tuple[int, int]] = field(
-        default_factory=dict
-    )  # "page#scene" -> raw, gzip bytes of its inline tables
+    data_bytes: dict[str, tuple[int, int]] = field(default_factory=dict)  # "page#scene" -> raw, gzip inline bytes
 
     @property
     def notes(self) -> list[str]:
@@ -67,22 +68,31 @@ class BuildReport:
         return [line for line in self.scene_lines if line.startswith("note: ")]
 
 
+@dataclass(frozen=True)
 class BuildRun:
-    """What every phase gets besides the book: the config, the registry of models and figures it
-    may use, the error log, the cache (`cached`: a stored value or one computed now), the progress callback, the report being filled, and the
-    executor that runs the work with the work sent to it."""
+    """What every phase gets besides the book: the run's configuration (the settings, the models and figures
+    it may use, the cache, the executor the work runs on, the staging folder the write phases fill, where
+    progress lines go) and its log (the author errors found, and the seconds of each phase). What a phase
+    makes goes into the book it returns."""
 
-    def __init__(self, config: BuildConfig, progress, registry: Registry, executor=None):
-        self.config, self.progress, self.registry = config, progress, registry
-        self.models, self.figures = registry.models, registry.figures
-        self.log, self.report = ErrorLog(), BuildReport()
-        self.cache = TableCache(config.cache) if config.cache else None
-        self.cached = self.cache.cached if self.cache else compute_now
-        self.executor = executor or InProcess()  # where the work runs (compute.executors)
-        self.work: dict[str, tuple] = {}  # a table key's digest -> its units of work and their futures, in plan order
-        self.tree = None  # the staging folder the pages are written into (site.writer.StagedTree)
-        self.math_characters: set[str] = set()  # what the pages' formulas show: the math font's subset
-        self.searchable: dict[str, list] = {}  # each written page's sections: the search index
+    config: BuildConfig
+    registry: Registry
+    progress: Callable[[str], None] | None = None
+    executor: Executor = field(default_factory=InProcess)  # where the work runs (compute.executors)
+    cache: TableCache | None = None
+    tree: StagedTree | None = None  # the page phases' only: where the site's files go
+    log: ErrorLog = field(default_factory=ErrorLog)
+    seconds: dict[str, float] = field(default_factory=dict)  # phase -> seconds, summed over its runs
+
+    @classmethod
+    def of(cls, config: BuildConfig, registry: Registry, progress=None, executor: Executor | None = None) -> BuildRun:
+        """A run of `config` (its cache, if it names one) with `registry`'s models and figures."""
+        cache = TableCache(config.cache) if config.cache else None
+        return cls(config, registry, progress, executor or InProcess(), cache)
+
+    def cached(self, kind: str, key: str, compute) -> bytes:
+        """The value stored under (`kind`, `key`), else `compute()` (stored for next time when there is a cache)."""
+        return self.cache.cached(kind, key, compute) if self.cache else compute()
 
     def phase(self, name: str, function, book):
         """Run one phase over the book, adding its seconds to the phase's total."""
@@ -90,7 +100,7 @@ class BuildRun:
         try:
             return function(book, self)
         finally:
-            self.report.phases[name] = self.report.phases.get(name, 0.0) + time.perf_counter() - start
+            self.seconds[name] = self.seconds.get(name, 0.0) + time.perf_counter() - start
 
     def say(self, line: str) -> None:
         """One line of the build's log (nothing when the run is quiet)."""

@@ -1,14 +1,18 @@
 """The phases that work on scenes, a page at a time: tabulate (from the cache or by the executor),
-check the numerics against each model's reference, and render each figure."""
+check (each closed form against its model at sampled stops, the numerics against each model's
+reference), and render each figure."""
 
 from __future__ import annotations
 
+import json
 import time
 from dataclasses import replace
 
+from ..compute.closed_form import verify_closed_forms
 from ..compute.deps import inert_deps_note, verify_scene_deps
 from ..compute.measure import measure_accuracy
 from ..compute.sources import digest, library_version, source_digest
+from ..compute.structure import Structured
 from ..compute.tabulate import assemble_tables, evaluate_timed, per_stop_outputs, plan_scene
 from ..errors import AuthorError
 from ..render.figures.base import scene_figures
@@ -22,6 +26,7 @@ from .run import PROGRESS_EVERY, BuildRun
 SAID_FROM = 0.1  # seconds: a model whose first stop takes this long (compiled code, mostly) gets a line
 # The code that turns a view's drawing into the page's SVG (followed through its imports, with the view's module).
 DRAWING = frozenset(f.__module__ for f in (figure_svg, laid_out, layer_points, scene_figures))
+CLOSED_FORM_CODE = frozenset({verify_closed_forms.__module__})
 
 
 def compile_first_stops(book: Book, run: BuildRun) -> Book:
@@ -50,15 +55,16 @@ def send_work(book: Book, run: BuildRun) -> Book:
     """Send the work of every table the cache lacks to the executor, each table once, in plan order."""
     if run.failed:
         return book
+    work = {}
     for record in book.scenes:
         digest = record.key.digest
-        if digest in run.work or (run.cache and run.cache.has(record.key)):
+        if digest in work or (run.cache and run.cache.has(record.key)):
             continue
         try:
-            run.work[digest] = _submitted(planned(record), run.executor)
+            work[digest] = _submitted(planned(record), run.executor)
         except AuthorError:  # reported when the scene is tabulated
             continue
-    return book
+    return replace(book, work=work)
 
 
 def _submitted(units: list, executor) -> tuple[list, list]:
@@ -67,15 +73,19 @@ def _submitted(units: list, executor) -> tuple[list, list]:
 
 
 def tabulate_scenes(book: Book, run: BuildRun) -> Book:
-    """Each scene's tables: from the cache when its key matches, else from the work sent out for it."""
-    records = []
+    """Each scene's tables: from the cache when its key matches, else from the work sent out for it (which
+    the book then no longer holds)."""
+    records, work = [], dict(book.work)
+    done = sum(1 for r in book.scenes if r.status)  # scenes tabulated before this page
     for record in book.current():
         with run.scene(record, "tabulating"):
-            records.append(_checked_deps(_tabulated(record, run), run))
-    return book.with_records(records)
+            record, seconds = _tabulated(record, work.pop(record.key.digest, None), run)
+            record = _noted(record, seconds, f"[{done + len(records) + 1}/{len(book.scenes)}]", run)
+            records.append(_verified_deps(record, run))
+    return replace(book.with_records(records), work=work)
 
 
-def _checked_deps(record: SceneRecord, run: BuildRun) -> SceneRecord:
+def _verified_deps(record: SceneRecord, run: BuildRun) -> SceneRecord:
     """The record, once its outputs are found to change only with what their deps declare (probed, or read
     back with its tables); each that does not is an author error, and the record keeps no tables."""
     errors = verify_scene_deps(record.scene, planned_outputs(record), run.cached, run.config.root)
@@ -84,17 +94,18 @@ def _checked_deps(record: SceneRecord, run: BuildRun) -> SceneRecord:
     return replace(record, tables=None) if errors else record
 
 
-def _tabulated(record: SceneRecord, run: BuildRun) -> SceneRecord:
-    found = run.cache.load(record.key) if run.cache else None
-    if found is not None:
-        return _noted(replace(record, tables=found), run, cached=True, seconds=0.0)
-    units, futures = run.work.pop(record.key.digest, None) or _submitted(planned(record), run.executor)
+def _tabulated(record: SceneRecord, work: tuple | None, run: BuildRun) -> tuple[SceneRecord, float]:
+    """The record with its tables, from the cache or folded from `work` (its units and their futures; sent
+    now when None), and the seconds the work took."""
+    tables = run.cache.load(record.key) if run.cache else None
+    if tables is not None:
+        return replace(record, tables=tables, cached=True), 0.0
+    units, futures = work or _submitted(planned(record), run.executor)
     results, seconds = _evaluated(record, units, map(_result, units, futures), run)
     tables = assemble_tables(record.scene, units, results, list(record.outputs))
-    run.report.evaluations += len(units)
     if run.cache:
         run.cache.store(record.key, tables)
-    return _noted(replace(record, tables=tables), run, cached=False, seconds=seconds)
+    return replace(record, tables=tables, evaluations=len(units)), seconds
 
 
 def _result(unit, future) -> tuple:
@@ -147,34 +158,53 @@ class _Pace:
             self.run.say(f"  {self.record.name:<40} {self.stops:>12,} of {self.total:,} stops, {rate:,.0f} stops/s")
 
 
-def _noted(record: SceneRecord, run: BuildRun, cached: bool, seconds: float) -> SceneRecord:
-    """Count the scene and log its line: name, stops, seconds, cached or computed and why."""
-    report = run.report
-    status = run.cache.explain(record.name, record.key, cached) if run.cache else "computed: no cache"
-    report.cached += cached
-    report.computed += not cached
-    line = f"[{report.cached + report.computed}/{report.scenes}] {record.name:<36} {record.stops:>14,} stops {seconds:7.2f} s  {status}"
-    report.scene_lines.append(line)
-    run.say(line)
-    stored = sum(t.stored_values() for t in record.tables.values())
+def _noted(record: SceneRecord, seconds: float, number: str, run: BuildRun) -> SceneRecord:
+    """The record with its status, the numbers its tables ship and its lines of the log (said): name, stops,
+    seconds, cached or computed and why, and a note on each declared dep that changes nothing."""
+    status = run.cache.explain(record.name, record.key, record.cached) if run.cache else "computed: no cache"
+    lines = [f"{number} {record.name:<36} {record.stops:>14,} stops {seconds:7.2f} s  {status}"]
+    run.say(lines[0])
     if note := inert_deps_note(record.scene, record.tables, run.config.root):
-        report.scene_lines.append(note)
+        lines.append(note)
         run.say(note)
-    return replace(record, status=status, stored_values=stored)
+    stored = sum(t.stored_values() for t in record.tables.values())
+    return replace(record, status=status, lines=tuple(lines), stored_values=stored)
 
 
 def check_scenes(book: Book, run: BuildRun) -> Book:
-    """Each numerically computed scene measured against its model's reference (over its tolerance: an error)."""
+    """Each scene's closed forms verified against its model at sampled stops, then each numerically computed
+    scene measured against its model's reference (a wrong closed form, or an error over the tolerance: an
+    author error)."""
     records = []
     for record in book.current():
         if record.tables is None:
             continue
-        with run.scene(record, "checking its numerics"):
-            found, errors = measure_accuracy([record], run.cached, run.progress, shown=lambda _: record.outputs)
+        with run.scene(record, "checking its closed forms and numerics"):
+            if errors := _closed_form_errors(record, run):
+                for error in errors:
+                    run.error(error)
+                records.append(replace(record, tables=None))
+                continue
+            measured, errors = measure_accuracy([record], run.cached, run.progress, shown=lambda _: record.outputs)
             for error in errors:
                 run.error(error)
-            records.append(replace(record, accuracy=found[0] if found else None))
+            records.append(replace(record, accuracy=measured[0] if measured else None))
     return book.with_records(records)
+
+
+def _closed_form_errors(record: SceneRecord, run: BuildRun) -> list[AuthorError]:
+    """The sampled check of the scene's closed forms (`verify_closed_forms`), its verdict cached under the key of
+    the scene's tables: a rebuild with the tables cached evaluates nothing."""
+    forms = [table for table in record.tables.values() if isinstance(table, Structured)]
+    if not forms:
+        return []
+    scene = record.scene
+    key = digest(record.key.digest, source_digest(CLOSED_FORM_CODE), "closed-forms")
+
+    def verify() -> bytes:
+        return json.dumps([error.message for error in verify_closed_forms(scene, forms)]).encode()
+
+    return [AuthorError(scene.spec.loc, text, scene.id) for text in json.loads(run.cached("closed-forms", key, verify))]
 
 
 def render_figures(book: Book, run: BuildRun) -> Book:

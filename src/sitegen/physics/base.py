@@ -169,7 +169,7 @@ class Model:
     numerics: ClassVar[Numerics | None] = None
     methods: ClassVar[dict[str, dict[str, object]]] = {}  # method: the settings it takes, at their defaults
     error_metric: ClassVar[str] = ""
-    accuracy_stops: ClassVar[int] = 16  # slider stops the build's check samples (fewer for an ODE solve per point)
+    accuracy_stops: ClassVar[int] = 16  # stops its accuracy is measured at (fewer for an ODE solve per point)
     # What `sitegen bench` measures of the methods: each over a ladder of its setting (rtol, nodes or step) at
     # the stops the build checks. A ladder here replaces the default one of a setting for every method
     # (`{"rtol": (1e-4, 1e-6, 1e-8)}`) or for one method (`{"RK45": {"rtol": (1e-4, 1e-6)}}`); an empty ladder

@@ -43,14 +43,12 @@ class StagedTree:
 
     def __init__(self, folder: Path):
         self.folder = folder
-        self.sizes: dict[str, int] = {}  # what was written: name -> bytes
 
     def write(self, name: str, data: bytes) -> None:
         """Write one file of the new tree (a relative path with forward slashes)."""
         path = self.folder / name
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_bytes(data)
-        self.sizes[name] = len(data)
 
 
 @contextmanager

@@ -13,7 +13,8 @@ from .kernel_march import CAP_CODE, CORE_CODE, FAILED_CODE, KM_CODE, MACH_CODE, 
 
 @kernel
 def better(candidate, best, larger):
-    """Whether `candidate` replaces `best` as numpy's argmax (larger) or argmin picks: NaN first, ties to the earlier."""
+    """Whether `candidate` replaces `best` as numpy's argmax (larger) or argmin picks: NaN first, ties to the
+    earlier."""
     if math.isnan(best):
         return False
     if math.isnan(candidate):

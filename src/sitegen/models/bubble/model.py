@@ -287,7 +287,8 @@ class Bubble(Model):
     chunk_stops = 64
     # The bench at the scenes' stops: `auto` at its own rule, the compiled solvers over rtol 1e-6 … 1e-10 (a scipy
     # solver costs 20–200 times as much, and an explicit one seconds a stop where the terms are stiff: those are
-    # compared on the three regimes of docs/physics/bubble.md instead, and the sweep puts every stop's digits against time).
+    # compared on the three regimes of docs/physics/bubble.md instead, and the sweep puts every stop's digits
+    # against time).
     ladders = {"rtol": (1e-6, 1e-7, 1e-8, 1e-9, 1e-10), AUTO: {"rtol": ()}, **{name: {"rtol": ()} for name in SOLVERS}}
     experiments = {**{f"bubble-{case}": Regime(case) for case in "ABC"}, "settings": DigitSweep()}
 

@@ -58,7 +58,7 @@ EXPLICIT, IMPLICIT = "compiled-DOP853", "compiled-Radau"  # what `auto` picks of
 # tight reference at every stop (the sweep on the accuracy page; DOP853 at 1e-6 gives 1e-3 R0 on the driven bubble).
 EXPLICIT_RTOL, IMPLICIT_RTOL = 1e-8, 1e-8
 AUTO = "auto"  # the method setting that lets the composed terms choose (analytic, compiled DOP853 or Radau)
-REFERENCE_RTOL, REFERENCE_STIFF = 1e-12, 1e-10  # the check's tight solutions (non-stiff, stiff)
+REFERENCE_RTOL, REFERENCE_STIFF = 1e-12, 1e-10  # the accuracy measurement's tight solutions (non-stiff, stiff)
 ATOL_PER_RTOL = 1e-3  # nondimensional: atol = 1e-3 rtol on r ~ 1 and ṙ ~ 1
 # ... but on stiff terms, for `auto` and the references, never below 1e-11: in a quasi-static stretch of
 # a stiff run ṙ ≈ 0, its round-off exceeds a smaller atol and the step size collapses (Radau at rtol 1e-10 ran into 3e6

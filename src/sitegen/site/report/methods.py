@@ -17,7 +17,7 @@ from .html import MISSING, duration, factor, figure, figure_html, run_point, sci
 
 
 def model_part(name: str, context) -> str:
-    """A model's methods over their ladders at the check stops of each of its scenes."""
+    """A model's methods over their ladders at the accuracy stops of each of its scenes."""
     results = ((context.bench or {}).get("models") or {}).get(name)
     if not results or not results.get("methods"):
         return _wrapped(name, MISSING if not context.bench or results else _no_scenes(name))

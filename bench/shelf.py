@@ -24,6 +24,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 CHAPTER = ROOT / "content" / "newtons-laws.md"
+BIBLIOGRAPHY = ROOT / "content" / "references.bib"  # the chapter cites it
 _RANGE = re.compile(r"^slider (\w+): (\S+)\.\.(\S+) step (\S+) default (\S+)$")
 _PEAK = (
     "import resource, sys; from sitegen.cli import main; code = main(sys.argv[1:]); "
@@ -66,15 +67,31 @@ def _minus_steps(hi: str, step: str, shift: int) -> str:
     return format(Decimal(lowered.numerator) / Decimal(lowered.denominator), "f")
 
 
+def on_its_own(text: str, copy: int) -> str:
+    """The chapter as copy number `copy` of a shelf: its labels numbered (a label is unique in a book), links to
+    the book's other pages as their text, and references to other pages' labels the word "elsewhere"."""
+    own = set(re.findall(r"\{#([\w-]+)\}", text))
+    scenes = set(re.findall(r"^id: ([\w-]+)$", text, flags=re.M))
+    text = re.sub(r"\{#([\w-]+)\}", rf"{{#\1-{copy}}}", text)
+    text = re.sub(r"\[([^\]]+)\]\((?!https?:)[\w-]+\.html[^)]*\)", r"\1", text)
+
+    def reference(found: re.Match) -> str:
+        label = found.group(1)
+        return f"(@{label}-{copy})" if label in own else found.group(0) if label in scenes else "elsewhere"
+
+    return re.sub(r"\(@([\w-]+)\)", reference, text)
+
+
 def make_shelf(root: Path, copies: int) -> None:
-    """A book of a home page and `copies` shifted copies of the chapter."""
+    """A book of a home page and `copies` shifted copies of the chapter (with the book's bibliography)."""
     content = root / "content"
     content.mkdir(parents=True)
     (content / "index.md").write_text('+++\ntitle = "A shelf"\n+++\n\nThe same chapter, again and again.\n')
     text = CHAPTER.read_text()
     for k in range(copies):
-        (content / f"chapter-{k + 1:02d}.md").write_text(shifted_chapter(text, k))
-    (root / "book.toml").write_text("")
+        (content / f"chapter-{k + 1:02d}.md").write_text(shifted_chapter(on_its_own(text, k + 1), k))
+    (content / BIBLIOGRAPHY.name).write_bytes(BIBLIOGRAPHY.read_bytes())
+    (root / "book.toml").write_text(f'bibliography = "content/{BIBLIOGRAPHY.name}"\n')
 
 
 def _build_env() -> dict[str, str]:

@@ -54,7 +54,8 @@ def build(config: BuildConfig, progress=print, registry: Registry | None = None)
     forget_sources()  # a long-lived process (tests, a watcher) must see edited model code
     registry = registry or load_registry(config.book)
     setup = BookModels.of(config.book)  # the book's own models, for workers to import
-    with executor_for(config.jobs, config.scheduler, setup) as executor, collecting_per_page():
+    modules = sorted({model.__module__ for model in registry.models.values()})  # what workers import first
+    with executor_for(config.jobs, config.scheduler, setup, modules) as executor, collecting_per_page():
         run = BuildRun.of(config, registry, progress, executor)
         book = Book()
         for name, phase in BOOK_PHASES:

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from .figure import AcousticEnergyFigure
+from .. import figures_when_asked
 from .model import AcousticEnergy
 
 MODELS = {"acoustic_energy": AcousticEnergy}
-FIGURES = {"acoustic_energy": AcousticEnergyFigure()}
+# FIGURES, made when first asked for: a worker that only tabulates imports no figure
+__getattr__ = figures_when_asked(__name__, acoustic_energy="AcousticEnergyFigure")

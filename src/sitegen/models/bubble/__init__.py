@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from .figure import BubbleEventsFigure, BubbleFigure
+from .. import figures_when_asked
 from .model import Bubble
 
 MODELS = {"bubble": Bubble}
-FIGURES = {"bubble": BubbleFigure(), "bubble_events": BubbleEventsFigure()}
+# FIGURES, made when first asked for: a worker that only tabulates imports no figure
+__getattr__ = figures_when_asked(__name__, bubble="BubbleFigure", bubble_events="BubbleEventsFigure")

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from .figure import EulerSlabFigure
+from .. import figures_when_asked
 from .model import EulerSlab
 
 MODELS = {"euler_slab": EulerSlab}
-FIGURES = {"euler_slab": EulerSlabFigure()}
+# FIGURES, made when first asked for: a worker that only tabulates imports no figure
+__getattr__ = figures_when_asked(__name__, euler_slab="EulerSlabFigure")

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from .figure import KineticFigure
+from .. import figures_when_asked
 from .model import Kinetic
 
 MODELS = {"kinetic": Kinetic}
-FIGURES = {"kinetic": KineticFigure()}
+# FIGURES, made when first asked for: a worker that only tabulates imports no figure
+__getattr__ = figures_when_asked(__name__, kinetic="KineticFigure")

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from .figure import LeverFigure
+from .. import figures_when_asked
 from .model import Lever
 
 MODELS = {"lever": Lever}
-FIGURES = {"lever": LeverFigure()}
+# FIGURES, made when first asked for: a worker that only tabulates imports no figure
+__getattr__ = figures_when_asked(__name__, lever="LeverFigure")

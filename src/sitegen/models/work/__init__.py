@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from .figure import WorkFigure
+from .. import figures_when_asked
 from .model import Work
 
 MODELS = {"work": Work}
-FIGURES = {"work": WorkFigure()}
+# FIGURES, made when first asked for: a worker that only tabulates imports no figure
+__getattr__ = figures_when_asked(__name__, work="WorkFigure")

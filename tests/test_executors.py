@@ -99,9 +99,9 @@ def test_in_process_work_runs_when_its_result_is_asked_for():
     assert isinstance(failing.exception(), ValueError)
 
 
-def test_jobs_auto_is_a_worker_per_core_but_the_builds_own():
-    """`auto` asks for a worker per core this process may use but one (at least one); a number for that many."""
-    assert worker_count("auto") == max(1, len(os.sched_getaffinity(0)) - 1)
+def test_jobs_auto_is_a_worker_per_core():
+    """`auto` asks for as many workers as this process may use cores; a number for that many."""
+    assert worker_count("auto") == len(os.sched_getaffinity(0))
     assert worker_count(3) == 3
 
 

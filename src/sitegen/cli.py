@@ -155,7 +155,7 @@ def _executor_options(command) -> None:
         type=_jobs,
         default=1,
         metavar="N|auto",
-        help="run the work in N local processes, or one per core but one with 'auto' (default 1: in this process)",
+        help="run the work in N local processes, or one per core with 'auto' (default 1: in this process)",
     )
     command.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT", help="run the work on a Dask cluster")
 

@@ -13,7 +13,7 @@ from collections.abc import Iterator
 from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from contextlib import contextmanager
 
-AUTO = "auto"  # --jobs auto: a worker per core of this machine but one, which the build itself keeps
+AUTO = "auto"  # --jobs auto: a worker per core of this machine
 
 
 class InProcess(Executor):
@@ -55,15 +55,9 @@ class _Deferred(Future):
 
 
 def worker_count(jobs: int | str) -> int:
-    """The number of local workers `--jobs` asks for (`auto`: one per core this process may use but one).
-
-    The build's own process draws the figures and folds the results all along, so it keeps a core. On two
-    cores, in paired cold builds of this repository's book against the same earlier build, two workers took
-    1.29 times its time and the build in one process 1.04 (medians): the workers' start, imports and kernels
-    are paid twice over with no core to spare."""
+    """The number of local workers `--jobs` asks for (`auto`: one per core this process may use)."""
     if jobs == AUTO:
-        cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
-        return max(1, cores - 1)
+        return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
     return int(jobs)
 
 

@@ -28,7 +28,7 @@ class BuildConfig:
     content: Path
     out: Path
     cache: Path | None = None  # None: compute everything, keep nothing
-    jobs: int | str = 1  # local worker processes, or "auto" (one per core but one); 1: everything in this process
+    jobs: int | str = 1  # local worker processes, or "auto" (one per core); 1: everything in this process
     scheduler: str | None = None  # address of a Dask scheduler, e.g. tcp://127.0.0.1:8786
     book: BookConfig | None = None  # the rest of book.toml (None: its defaults, for a book at `root`)
 

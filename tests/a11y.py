@@ -87,7 +87,8 @@ const where = el => {
   for (let node = el; node && node.nodeType === 1 && parts.length < 4; node = node.parentElement) {
     let part = node.localName;
     if (node.id) { parts.unshift(part + '#' + node.id); break; }
-    if (node.classList.length) part += '.' + [...node.classList].join('.');
+    // the root's classes are the page script's state (the first Tab lays every block out), not where
+    if (node.classList.length && node !== document.documentElement) part += '.' + [...node.classList].join('.');
     parts.unshift(part);
   }
   return parts.join(' > ');

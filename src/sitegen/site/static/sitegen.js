@@ -444,6 +444,11 @@
         if (root) live(root);
       }, true);
     });
+    // A reader moving by keyboard is taken to blocks far down: lay every block out first (before
+    // the Tab moves focus), so the focused one is not pushed off the screen by guessed heights above it.
+    document.addEventListener("keydown", function (e) {
+      if (e.key === "Tab") document.documentElement.classList.add("laid-out");
+    }, true);
     // Back (or a reload) may give the controls the reader's values without an input event: redraw.
     var revive = function () { elements.forEach(function (root) { if (restored(root)) live(root).update(); }); };
     revive();

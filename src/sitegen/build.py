@@ -17,7 +17,7 @@ from .compute.executors import executor_for
 from .compute.sources import forget_sources
 from .phases.collect import collect_garbage, collecting_per_page
 from .phases.link import link_book
-from .phases.pages import assemble_scenes, write_assets, write_page
+from .phases.pages import assemble_scenes, send_diagrams, write_assets, write_page
 from .phases.read import convert_math, figure_name, read_pages, resolve_scenes
 from .phases.read import needed_outputs as _needed_outputs
 from .phases.record import Book
@@ -36,6 +36,7 @@ BOOK_PHASES = (
     ("math", convert_math),
     ("compile", compile_first_stops),
     ("send", send_work),
+    ("diagrams", send_diagrams),
 )
 PAGE_PHASES = (
     ("tabulate", tabulate_scenes),

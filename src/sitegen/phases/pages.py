@@ -13,7 +13,7 @@ from ..content.markdown_ext import fill_slots
 from ..site import assets, search
 from ..site.assemble import page_html, scene_html
 from ..site.payload import scene_payload
-from ..site.report import ReportContext, report_part
+from ..site.report import ReportContext, bench_figures, bench_figures_cached, report_part
 from ..site.sizes import gzip_bytes
 from .record import Book, SceneRecord, Written
 from .run import BuildRun
@@ -21,6 +21,31 @@ from .scenes import scene_digest
 
 PAYLOAD_CODE = frozenset({scene_payload.__module__})
 SIZE_CODE = frozenset({gzip_bytes.__module__})
+
+
+def send_diagrams(book: Book, run: BuildRun) -> Book:
+    """Send the drawing of the accuracy report's diagrams that come from bench.json alone (those the cache
+    lacks) to the executor, a unit per report part, after the tables: a pool's workers draw them while this
+    process finishes the other pages, and the report's page folds them in (the same bytes as drawn here)."""
+    bench = load_results(run.config.content / BENCH_NAME)
+    if run.failed or bench is None:
+        return book
+    models, reports = run.registry.models, run.registry.reports
+    parts = dict.fromkeys(block.part for page in book.pages for block in page.extracted.reports)
+    if run.cache:
+        parts = [part for part in parts if not bench_figures_cached(bench, [part], models, reports, run.cache)]
+    futures = tuple(run.executor.submit(bench_figures, bench, [part], models, reports) for part in parts)
+    return replace(book, diagrams=futures)
+
+
+def _drawn_diagrams(book: Book) -> dict[str, bytes]:
+    """The diagrams sent out by `send_diagrams`, by their cache key; a part whose drawing failed is left out
+    (it is drawn with its page, where a failure is reported)."""
+    drawn = {}
+    for future in book.diagrams:
+        if future.exception() is None:
+            drawn.update(future.result())
+    return drawn
 
 
 def assemble_scenes(book: Book, run: BuildRun) -> Book:
@@ -66,7 +91,7 @@ def write_page(book: Book, run: BuildRun) -> Book:
     if run.failed:
         return book
     page, records = book.page, book.current()
-    context = _report_context(book, run) if page.extracted.reports else None
+    context = _report_context(book, run, _drawn_diagrams(book)) if page.extracted.reports else None
     reports = [report_part(block.part, context) for block in page.extracted.reports]
     cited = book.citations.get(page.slug)
     scenes = [r.html for r in records]
@@ -81,15 +106,21 @@ def write_page(book: Book, run: BuildRun) -> Book:
     )
     html = page_html(page, body, list(book.pages), run.config.book.title or book.title, run.config.book)
     written = _write(run, page.output_name, html.encode(), assets.math_characters(html), search.page_sections(html))
-    return replace(book.with_records(r.finished() for r in records), written=(*book.written, written))
+    finished = book.with_records(r.finished() for r in records)
+    return replace(finished, written=(*book.written, written), diagrams=() if context else book.diagrams)
 
 
-def _report_context(book: Book, run: BuildRun) -> ReportContext:
+def _report_context(book: Book, run: BuildRun, drawn: dict[str, bytes]) -> ReportContext:
+    """What the report's parts show; a diagram in `drawn` (by its key) is taken from there (and cached)."""
     records = tuple(r.accuracy for r in book.scenes if r.accuracy is not None)
     sizes = {r.name: r.data_bytes for r in book.scenes}
     bench = load_results(run.config.content / BENCH_NAME)
+
+    def cached(kind: str, key: str, compute) -> bytes:
+        return run.cached(kind, key, (lambda: drawn[key]) if key in drawn else compute)
+
     return ReportContext(
-        bench, records, book.pages, book.scenes, sizes, run.cached, run.registry.models, run.registry.reports
+        bench, records, book.pages, book.scenes, sizes, cached, run.registry.models, run.registry.reports
     )
 
 

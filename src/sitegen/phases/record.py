@@ -86,6 +86,7 @@ class Book:
     files: tuple[str, ...] = ()  # link: the files under content/ the pages name, copied into the site
     page: Page | None = None  # the page the scene phases are working on (None: every page)
     work: Mapping[str, tuple] = field(default_factory=dict)  # send: a table key's digest -> units, futures
+    diagrams: tuple = ()  # send: futures of the accuracy report's diagrams, each {cache key: SVG bytes}
     written: tuple[Written, ...] = ()  # write: the site's files so far, in the order written
 
     def current(self) -> tuple[SceneRecord, ...]:

@@ -3,8 +3,9 @@
 read, resolve and math run over the whole book, and every author error they find is reported
 before anything is computed. Then the work of every table the cache lacks is sent to the executor (in this
 process, local processes or a Dask cluster: compute.executors), and, a page at a time, its scenes' tables
-are taken from the cache or folded from that work in plan order, checked and drawn, the page is assembled
-and written into a staging folder, and the garbage its work left is collected. The staging folder replaces
+are taken from the cache or folded from that work in plan order and checked, and its figures sent out to be
+drawn; then the page before it takes in its figures, is assembled and written into a staging folder, and
+the garbage its work left is collected. The staging folder replaces
 build/ only when every page is written: the previous build/ stays intact on any failure. Pages that show
 accuracy-report parts come last, as those list every scene.
 """
@@ -22,7 +23,7 @@ from .phases.read import convert_math, figure_name, read_pages, resolve_scenes
 from .phases.read import needed_outputs as _needed_outputs
 from .phases.record import Book
 from .phases.run import BuildConfig, BuildReport, BuildRun
-from .phases.scenes import check_scenes, compile_first_stops, render_figures, send_work, tabulate_scenes
+from .phases.scenes import check_scenes, compile_first_stops, render_figures, send_figures, send_work, tabulate_scenes
 from .registry import BookModels, Registry, builtin_registry, load_registry
 from .site.weight import page_weights, weight_lines, weight_warnings
 from .site.writer import staged_tree
@@ -38,9 +39,14 @@ BOOK_PHASES = (
     ("send", send_work),
     ("diagrams", send_diagrams),
 )
+# A page's phases in two halves: while the executor's workers draw a page's figures, this process goes on to
+# the next page's tables (a build holds two pages' tables at most), then finishes the page.
 PAGE_PHASES = (
     ("tabulate", tabulate_scenes),
     ("check", check_scenes),
+    ("figures", send_figures),
+)
+FINISH_PHASES = (
     ("render", render_figures),
     ("assemble", assemble_scenes),
     ("write", write_page),
@@ -64,12 +70,17 @@ def build(config: BuildConfig, progress=print, registry: Registry | None = None)
         run.log.raise_if_any()
         with staged_tree(config.out) as tree:
             pages = replace(run, tree=tree)
-            for page in book.writing_order():
-                for name, phase in PAGE_PHASES:
-                    book = pages.phase(name, phase, book.at(page))
+            order = book.writing_order()
+            for page, before in zip([*order, None], [None, *order]):
+                if page is not None:
+                    for name, phase in PAGE_PHASES:
+                        book = pages.phase(name, phase, book.at(page))
+                if before is not None:
+                    for name, phase in FINISH_PHASES:
+                        book = pages.phase(name, phase, book.at(before))
             book = pages.phase("write", write_assets, book.at(None))
             run.log.raise_if_any()
-    for name in (n for n, _ in PAGE_PHASES):
+    for name in (n for n, _ in PAGE_PHASES + FINISH_PHASES):
         run.say(f"{name:<9} {run.seconds[name]:6.2f} s")
     return _finish(run, book)
 

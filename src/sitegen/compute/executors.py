@@ -54,6 +54,15 @@ class _Deferred(Future):
             self.set_exception(error)
 
 
+def result_here_if_waiting(executor: Executor, future: Future, fn, *args):
+    """`future`'s result, where `future` is `executor.submit(fn, *args)`; should no local worker have started it
+    yet, it is cancelled and `fn(*args)` runs in this process, which would only wait for it (the same value, as
+    the work is a pure function of its arguments). On a cluster the future is left to it."""
+    if isinstance(executor, (InProcess, ProcessPoolExecutor)) and future.cancel():
+        return fn(*args)
+    return future.result()
+
+
 def worker_count(jobs: int | str) -> int:
     """The number of local workers `--jobs` asks for (`auto`: one per core this process may use)."""
     if jobs == AUTO:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import hashlib
 from dataclasses import replace
 
+from ..compute.executors import result_here_if_waiting
 from ..compute.measure import caption_sentence
 from ..compute.sources import digest, source_digest
 from ..content.bench_results import BENCH_NAME, load_results
@@ -34,17 +35,19 @@ def send_diagrams(book: Book, run: BuildRun) -> Book:
     parts = dict.fromkeys(block.part for page in book.pages for block in page.extracted.reports)
     if run.cache:
         parts = [part for part in parts if not bench_figures_cached(bench, [part], models, reports, run.cache)]
-    futures = tuple(run.executor.submit(bench_figures, bench, [part], models, reports) for part in parts)
-    return replace(book, diagrams=futures)
+    drawings = [(bench, [part], models, reports) for part in parts]
+    return replace(book, diagrams=tuple((args, run.executor.submit(bench_figures, *args)) for args in drawings))
 
 
-def _drawn_diagrams(book: Book) -> dict[str, bytes]:
-    """The diagrams sent out by `send_diagrams`, by their cache key; a part whose drawing failed is left out
-    (it is drawn with its page, where a failure is reported)."""
+def _drawn_diagrams(book: Book, executor) -> dict[str, bytes]:
+    """The diagrams sent out by `send_diagrams`, by their cache key (drawn here if no worker has started them); a
+    part whose drawing failed is left out (it is drawn with its page, where a failure is reported)."""
     drawn = {}
-    for future in book.diagrams:
-        if future.exception() is None:
-            drawn.update(future.result())
+    for args, future in book.diagrams:
+        try:
+            drawn.update(result_here_if_waiting(executor, future, bench_figures, *args))
+        except Exception:
+            continue
     return drawn
 
 
@@ -91,7 +94,7 @@ def write_page(book: Book, run: BuildRun) -> Book:
     if run.failed:
         return book
     page, records = book.page, book.current()
-    context = _report_context(book, run, _drawn_diagrams(book)) if page.extracted.reports else None
+    context = _report_context(book, run, _drawn_diagrams(book, run.executor)) if page.extracted.reports else None
     reports = [report_part(block.part, context) for block in page.extracted.reports]
     cited = book.citations.get(page.slug)
     scenes = [r.html for r in records]

@@ -7,6 +7,7 @@ goes through its build the same way); nothing travels in dicts keyed by "page#sc
 from __future__ import annotations
 
 from collections.abc import Mapping
+from concurrent.futures import Future
 from dataclasses import dataclass, field, replace
 
 from ..compute.accuracy import SceneAccuracy
@@ -37,6 +38,7 @@ class SceneRecord:
     evaluations: int = 0  # tabulate: units of work run for them (none when cached)
     lines: tuple[str, ...] = ()  # tabulate: its lines of the build's log (cached or computed and why, notes)
     accuracy: SceneAccuracy | None = None  # check: numerically computed scenes only
+    drawing: FigureWork | None = None  # figures: its figure sent out to be drawn (until render takes it)
     figure: RenderedScene | None = None  # render
     html: str = ""  # assemble: the scene element
     data_bytes: tuple[int, int] = (0, 0)  # assemble: raw and gzip bytes of its inline tables (for the report)
@@ -58,7 +60,19 @@ class SceneRecord:
     def finished(self) -> SceneRecord:
         """The record once its page is written: what the accuracy report reads is kept; the tables, figure and
         HTML are let go."""
-        return replace(self, tables=None, figure=None, html="")
+        return replace(self, tables=None, drawing=None, figure=None, html="")
+
+
+@dataclass(frozen=True)
+class FigureWork:
+    """A scene's figure sent out to be drawn: its cache key, its moving layers, what its drawing is made of (view,
+    scene, tables, layers, their points at the defaults, the ids' prefix) and the future of its SVG bytes (None
+    when the cache holds them)."""
+
+    key: str
+    layers: tuple
+    drawing: tuple
+    future: Future | None
 
 
 @dataclass(frozen=True)
@@ -86,7 +100,7 @@ class Book:
     files: tuple[str, ...] = ()  # link: the files under content/ the pages name, copied into the site
     page: Page | None = None  # the page the scene phases are working on (None: every page)
     work: Mapping[str, tuple] = field(default_factory=dict)  # send: a table key's digest -> units, futures
-    diagrams: tuple = ()  # send: futures of the accuracy report's diagrams, each {cache key: SVG bytes}
+    diagrams: tuple = ()  # diagrams: the report's diagrams sent out, (arguments, future of {cache key: SVG bytes})
     written: tuple[Written, ...] = ()  # write: the site's files so far, in the order written
 
     def current(self) -> tuple[SceneRecord, ...]:

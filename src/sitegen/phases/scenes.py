@@ -10,6 +10,7 @@ from dataclasses import replace
 
 from ..compute.closed_form import verify_closed_forms
 from ..compute.deps import inert_deps_note, verify_scene_deps
+from ..compute.executors import result_here_if_waiting
 from ..compute.measure import measure_accuracy
 from ..compute.sources import digest, library_version, source_digest
 from ..compute.structure import Structured
@@ -20,7 +21,7 @@ from ..render.layers import layer_points
 from ..render.style import laid_out
 from ..render.svg import figure_svg
 from ..site.assemble import RenderedScene, dom_id
-from .record import Book, SceneRecord
+from .record import Book, FigureWork, SceneRecord
 from .run import PROGRESS_EVERY, BuildRun
 
 SAID_FROM = 0.1  # seconds: a model whose first stop takes this long (compiled code, mostly) gets a line
@@ -101,18 +102,19 @@ def _tabulated(record: SceneRecord, work: tuple | None, run: BuildRun) -> tuple[
     if tables is not None:
         return replace(record, tables=tables, cached=True), 0.0
     units, futures = work or _submitted(planned(record), run.executor)
-    results, seconds = _evaluated(record, units, map(_result, units, futures), run)
+    results, seconds = _evaluated(record, units, (_result(u, f, run.executor) for u, f in zip(units, futures)), run)
     tables = assemble_tables(record.scene, units, results, list(record.outputs))
     if run.cache:
         run.cache.store(record.key, tables)
     return replace(record, tables=tables, evaluations=len(units)), seconds
 
 
-def _result(unit, future) -> tuple:
-    """A unit's result and seconds. Should its work have failed but for an author error (a crash, whose line is
-    best named from a traceback of this process; or a worker lost), it is done again here."""
+def _result(unit, future, executor) -> tuple:
+    """A unit's result and seconds (worked out here if no worker has started it). Should its work have failed but
+    for an author error (a crash, whose line is best named from a traceback of this process; or a worker lost), it
+    is done again here."""
     try:
-        return future.result()
+        return result_here_if_waiting(executor, future, evaluate_timed, unit)
     except AuthorError:
         raise
     except Exception:
@@ -207,28 +209,56 @@ def _closed_form_errors(record: SceneRecord, run: BuildRun) -> list[AuthorError]
     return [AuthorError(scene.spec.loc, text, scene.id) for text in json.loads(run.cached("closed-forms", key, verify))]
 
 
-def render_figures(book: Book, run: BuildRun) -> Book:
-    """Each scene's static SVG with its moving layers drawn at the default slider values."""
-    if run.failed:
-        return book
+def send_figures(book: Book, run: BuildRun) -> Book:
+    """Send the drawing of each figure the cache lacks to the executor (the static SVG, with the moving layers at
+    the default slider values): a pool's workers draw a page's figures while this process goes on to the next
+    page's tables, and `render_figures` takes each drawing in."""
     records = []
     for record in book.current():
+        if record.tables is None:  # its tabulating or check failed, and is reported
+            continue
         with run.scene(record, "drawing its figure"):
-            records.append(replace(record, figure=_figure(record, run)))
+            records.append(replace(record, drawing=_sent_figure(record, run)))
     return book.with_records(records)
 
 
-def _figure(record: SceneRecord, run: BuildRun) -> RenderedScene:
+def _sent_figure(record: SceneRecord, run: BuildRun) -> FigureWork:
     scene, tables, view = record.scene, record.tables, record.view
     layers = view.layers(scene)
     points = layer_points(layers, scene, tables, scene.default_stops)
-
-    def draw() -> bytes:  # the wide figure, then (if the view draws one) the phone's
-        return "".join(scene_figures(view, scene, tables, layers, points, dom_id(scene))).encode()
-
     # The layers are drawn at the defaults, so the defaults (through the points) belong in the key.
     key = digest(scene_digest(record), source_digest(DRAWING | {type(view).__module__}), repr(points), "figure")
-    return RenderedScene(run.cached("figures", key, draw).decode(), tuple(layers))
+    drawing = (view, scene, tables, layers, points, dom_id(scene))
+    future = None if run.cache and run.cache.holds("figures", key) else run.executor.submit(drawn_figure, *drawing)
+    return FigureWork(key, tuple(layers), drawing, future)
+
+
+def drawn_figure(view, scene, tables, layers, points, prefix: str) -> bytes:
+    """A scene's figure as inline SVG: the wide one, then (if the view draws one) the phone's."""
+    return "".join(scene_figures(view, scene, tables, layers, points, prefix)).encode()
+
+
+def render_figures(book: Book, run: BuildRun) -> Book:
+    """Each scene's figure: from the cache, or the drawing sent out for it (drawn here should its unit have failed
+    but for an author error, so that a crash is named from this process's traceback)."""
+    records = []
+    for record in book.current():
+        if record.drawing is None:
+            continue
+        with run.scene(record, "drawing its figure"):
+            work = record.drawing
+            svg = run.cached("figures", work.key, lambda: _drawing(work, run.executor))
+            records.append(replace(record, figure=RenderedScene(svg.decode(), work.layers), drawing=None))
+    return book.with_records(records)
+
+
+def _drawing(work: FigureWork, executor) -> bytes:
+    try:
+        return result_here_if_waiting(executor, work.future, drawn_figure, *work.drawing)
+    except AuthorError:
+        raise
+    except Exception:
+        return drawn_figure(*work.drawing)
 
 
 def scene_digest(record: SceneRecord) -> str:

@@ -1,8 +1,9 @@
 """`make bench`: a shelf, not a chapter. Builds generated shelves of 1, 4 and 16 copies of the chapter
 "Newton's laws" (content/newtons-laws.md: six scenes, no bubble), each copy's scenes with a slider
 range shortened by a different number of steps so that every scene must be computed, and prints per
-shelf: the cold build (empty cache), its peak memory (and that of the largest process it started: node converting
-the math, or a worker process), and a rebuild with nothing changed.
+shelf: the cold build (empty cache) in one process (`--jobs 1`) and with a worker per core (`--jobs auto`), the
+peak memory of the latter (and that of the largest process it started: node converting the math, or a worker
+process), and a rebuild with nothing changed.
 
 Each build runs in a fresh process (`sitegen build`), which reports its own peak resident memory. Python's
 compiled bytecode is kept, and an untimed build makes it first, as every run after a user's first finds it;
@@ -108,13 +109,12 @@ def compile_bytecode() -> None:
         timed_build(Path(folder))
 
 
-def timed_build(root: Path) -> tuple[float, float, float]:
-    """Seconds and peak resident MiB of `sitegen build --root ROOT` in a fresh process, and of the largest
+def timed_build(root: Path, *options: str) -> tuple[float, float, float]:
+    """Seconds and peak resident MiB of `sitegen build --root ROOT OPTIONS` in a fresh process, and of the largest
     process it started (node converting the math, or a worker process)."""
     start = time.perf_counter()
-    done = subprocess.run(
-        [sys.executable, "-c", _PEAK, "build", "--root", str(root)], capture_output=True, text=True, env=_build_env()
-    )
+    command = [sys.executable, "-c", _PEAK, "build", "--root", str(root), *options]
+    done = subprocess.run(command, capture_output=True, text=True, env=_build_env())
     seconds = time.perf_counter() - start
     if done.returncode:
         raise SystemExit(f"the shelf did not build:\n{done.stderr}")
@@ -129,18 +129,20 @@ def main(counts: list[int]) -> None:
     )
     compile_bytecode()
     print(
-        f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'s/chapter':>10} "
+        f"{'chapters':>8} {'scenes':>7} {'cold s':>8} {'auto s':>8} {'s/chapter':>10} "
         f"{'peak MiB':>9} {'child MiB':>10} {'no-op s':>8}"
     )
     for copies in counts:
         with tempfile.TemporaryDirectory() as folder:
             root = Path(folder)
             make_shelf(root, copies)
-            cold, peak, child = timed_build(root)
+            cold, _, _ = timed_build(root, "--no-cache", "--jobs", "1")
+            auto, peak, child = timed_build(root, "--no-cache", "--jobs", "auto")
+            timed_build(root)  # the cache filled
             noop, _, _ = timed_build(root)
             print(
-                f"{copies:>8} {6 * copies:>7} {cold:>8.2f} {cold / copies:>10.2f} {peak:>9.0f} {child:>10.0f} "
-                f"{noop:>8.2f}",
+                f"{copies:>8} {6 * copies:>7} {cold:>8.2f} {auto:>8.2f} {auto / copies:>10.2f} {peak:>9.0f} "
+                f"{child:>10.0f} {noop:>8.2f}",
                 flush=True,
             )
 

@@ -42,6 +42,7 @@ BOOK_PHASES = (
 # A page's phases in two halves: while the executor's workers draw a page's figures, this process goes on to
 # the next page's tables (a build holds two pages' tables at most), then finishes the page.
 PAGE_PHASES = (
+    ("send", send_work),
     ("tabulate", tabulate_scenes),
     ("check", check_scenes),
     ("figures", send_figures),

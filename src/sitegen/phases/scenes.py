@@ -24,6 +24,7 @@ from ..site.assemble import RenderedScene, dom_id
 from .record import Book, FigureWork, SceneRecord
 from .run import PROGRESS_EVERY, BuildRun
 
+SEND_AHEAD = 1  # pages past the one being tabulated whose tables' work is sent out
 SAID_FROM = 0.1  # seconds: a model whose first stop takes this long (compiled code, mostly) gets a line
 # The code that turns a view's drawing into the page's SVG (followed through its imports, with the view's module).
 DRAWING = frozenset(f.__module__ for f in (figure_svg, laid_out, layer_points, scene_figures))
@@ -53,13 +54,18 @@ def compile_first_stops(book: Book, run: BuildRun) -> Book:
 
 
 def send_work(book: Book, run: BuildRun) -> Book:
-    """Send the work of every table the cache lacks to the executor, each table once, in plan order."""
+    """Send the work of the tables the cache lacks to the executor, each table once, in plan order: those of the
+    page being tabulated and of the SEND_AHEAD pages after it (from the first page, before any is). Enough to keep
+    a pool's workers busy, while the results waiting to be folded stay a few pages' worth."""
     if run.failed:
         return book
-    work = {}
+    order = [page.slug for page in book.writing_order()]
+    start = order.index(book.page.slug) if book.page is not None else 0
+    window = set(order[start : start + SEND_AHEAD + 1])
+    work = dict(book.work)
     for record in book.scenes:
         digest = record.key.digest
-        if digest in work or (run.cache and run.cache.has(record.key)):
+        if record.page.slug not in window or digest in work or (run.cache and run.cache.has(record.key)):
             continue
         try:
             work[digest] = _submitted(planned(record), run.executor)

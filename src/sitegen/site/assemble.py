@@ -218,6 +218,7 @@ def page_html(page: Page, body: str, pages: list[Page], book_title: str, book: B
             previous=previous,
             next=following,
             has_scenes=bool(page.extracted.scenes),
+            has_math="<math" in body,
             description=description(page, body),
             search_index=SEARCH_SCRIPT,
             book=book or BookConfig(Path(".")),

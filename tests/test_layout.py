@@ -130,6 +130,24 @@ def test_no_label_runs_into_a_control(page):
     assert not problems, "\n".join(problems[:15])
 
 
+def test_a_scene_off_the_screen_holds_room_for_itself(page):
+    """A scene away from the screen holds the build's guess of its height until it is laid out; the guess is
+    never below the height it takes then, so its controls never lie over the text after it meanwhile."""
+    guesses = page.evaluate("""() => [...document.querySelectorAll('.scene')].map(e =>
+        [e.id, parseFloat(getComputedStyle(e).containIntrinsicBlockSize.split(' ').pop())])""")
+    page.evaluate("document.documentElement.classList.add('laid-out')")
+    try:
+        heights = page.evaluate("[...document.querySelectorAll('.scene')].map(e => e.getBoundingClientRect().height)")
+    finally:
+        page.evaluate("document.documentElement.classList.remove('laid-out')")
+    short = [
+        f"{name}: guessed {guess:.0f} px, laid out {height:.0f} px"
+        for (name, guess), height in zip(guesses, heights)
+        if guess < height
+    ]
+    assert not short, "\n".join(short)
+
+
 def test_the_checks_find_what_they_look_for(page_at):
     """The checks are not blind: text pushed outside a figure or onto other text, a legend moved onto a
     panel, a label widened over its slider, an equation made to overflow without its shadow, and an

@@ -8,10 +8,8 @@ import gc
 import os
 import signal
 import sys
-import threading
 import time
 import traceback
-from contextlib import contextmanager
 from pathlib import Path
 
 from . import stamp
@@ -276,12 +274,13 @@ def _build(args, book: BookConfig) -> int:
         return 0
     from .build import BuildConfig, build
     from .content.math import MathToolMissing
+    from .phases.run import Terminated, stop_on_sigterm
     from .registry import raising_line
 
     options = {"jobs": args.jobs, "scheduler": args.scheduler, "cache": None if args.no_cache else book.root / ".cache"}
     config = BuildConfig(book.root, book.content, out, book=book, **options)
     try:
-        with _sigterm_interrupts():
+        with stop_on_sigterm():
             report = build(config, progress=BuildProgress(sys.stdout, args.explain))
     except BuildFailed as failure:
         for error in failure.errors:
@@ -332,28 +331,6 @@ def _build(args, book: BookConfig) -> int:
 def _rerun(args) -> str:
     """The advice after a crash: how to see the traceback, unless it was just shown."""
     return "" if args.debug else "; run again with --debug for the traceback"
-
-
-class Terminated(KeyboardInterrupt):
-    """SIGTERM, raised in a build as Ctrl-C is: it stops as after Ctrl-C, its staging folder removed and the
-    processes it started ended (killed without a word, they would outlive it)."""
-
-
-@contextmanager
-def _sigterm_interrupts():
-    """While the block runs, SIGTERM raises Terminated (only the main thread can catch a signal)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def terminated(signum, frame):
-        raise Terminated
-
-    previous = signal.signal(signal.SIGTERM, terminated)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
 
 
 def _bench(args, book: BookConfig) -> int:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import signal
+import threading
 import time
 from collections.abc import Callable
 from concurrent.futures import Executor
@@ -16,6 +18,37 @@ from ..config import BookConfig, read_book
 from ..errors import AuthorError, ErrorLog, SceneCrashed
 from ..registry import Registry, raising_line
 from ..site.writer import StagedTree
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in a build as Ctrl-C is: it stops as after Ctrl-C, its staging folder removed and the
+    processes it started ended (killed without a word, they would outlive it)."""
+
+
+# Set by `stop_on_sigterm`'s handler. The handler raises Terminated where the main thread is, but compiled code
+# that calls back into Python (numba's) can swallow it there; every phase then raises it again at its end.
+_termination_requested = threading.Event()
+
+
+@contextmanager
+def stop_on_sigterm():
+    """While the block runs, SIGTERM raises Terminated (only the main thread can catch a signal)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def terminated(signum, frame):
+        _termination_requested.set()
+        raise Terminated
+
+    _termination_requested.clear()
+    previous = signal.signal(signal.SIGTERM, terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+        _termination_requested.clear()
+
 
 PROGRESS_EVERY = 2.0  # seconds: long work (a heavy scene, compiling) says how far it got at least this often
 
@@ -98,9 +131,12 @@ class BuildRun:
         """Run one phase over the book, adding its seconds to the phase's total."""
         start = time.perf_counter()
         try:
-            return function(book, self)
+            made = function(book, self)
         finally:
             self.seconds[name] = self.seconds.get(name, 0.0) + time.perf_counter() - start
+        if _termination_requested.is_set():
+            raise Terminated
+        return made
 
     def say(self, line: str) -> None:
         """One line of the build's log (nothing when the run is quiet)."""

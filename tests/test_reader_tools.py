@@ -319,6 +319,18 @@ def test_a_result_on_the_page_moves_there_and_keeps_the_scenes(fresh):
     assert not errors
 
 
+def test_a_link_followed_while_a_scene_settles_keeps_its_address(fresh):
+    """A scene writes its state into the address once its controls rest; a link the reader follows before
+    that (a search result, a heading) is the newer address and stays."""
+    scene = next(s for s in SCENES if s.id == "collision")
+    page, errors = fresh(scene.page.output_name)
+    move(page, scene, _elsewhere(scene))  # its state is written to the address 300 ms after it rests
+    page.evaluate("location.hash = '#main-content'")
+    page.wait_for_timeout(600)
+    assert page.evaluate("location.hash") == "#main-content"
+    assert not errors
+
+
 # --- without JavaScript ---------------------------------------------------------------------------------
 
 

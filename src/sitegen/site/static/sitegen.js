@@ -167,11 +167,13 @@
   };
 
   /* The state as a link, "#collision:m1=2,e=0.5" (controls off their defaults, else the scene's id),
-   * replacing the address once the controls rest: Back still leaves the page. */
+   * replacing the address once the controls rest: Back still leaves the page. A link followed
+   * meanwhile (a search result) is the newer address, and stays. */
   Scene.prototype.remember = function () {
-    var self = this;
+    var self = this, from = location.hash;
     clearTimeout(this.pending);
     this.pending = setTimeout(function () {
+      if (location.hash !== from) return;
       var pairs = self.stops().map(function (k, i) {
         var s = self.data.sliders[i];
         if (k === self.defaults[i]) return "";

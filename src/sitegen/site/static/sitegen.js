@@ -167,13 +167,11 @@
   };
 
   /* The state as a link, "#collision:m1=2,e=0.5" (controls off their defaults, else the scene's id),
-   * replacing the address once the controls rest: Back still leaves the page. A link followed
-   * meanwhile (a search result) is the newer address, and stays. */
+   * replacing the address once the controls rest: Back still leaves the page. */
   Scene.prototype.remember = function () {
-    var self = this, from = location.hash;
+    var self = this;
     clearTimeout(this.pending);
     this.pending = setTimeout(function () {
-      if (location.hash !== from) return;
       var pairs = self.stops().map(function (k, i) {
         var s = self.data.sliders[i];
         if (k === self.defaults[i]) return "";
@@ -456,7 +454,10 @@
     revive();
     window.addEventListener("pageshow", revive);
     openLink(live);
-    window.addEventListener("hashchange", function () { openLink(live); });
+    window.addEventListener("hashchange", function () { // a link followed is newer than any state still to be written
+      scenes.forEach(function (scene) { clearTimeout(scene.pending); });
+      openLink(live);
+    });
     searchOnDemand();
     openDetailsToPrint();
     var contents = document.getElementById("book-contents"); // the phone's panel closes on a link

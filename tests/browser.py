@@ -154,11 +154,22 @@ def logged_page(browser, **options):
     return page, errors
 
 
+# Once a page has loaded, its script asks for each scene's data (a script each): settled when the fonts are and
+# every data script asked for has run (at once with scripts off, or on a page without scenes). For every engine.
+SETTLED = """Promise.all([document.fonts.ready, new Promise(function (done) {
+  (function check() {
+    var scenes = window.sitegenScenes || {}, asked = document.querySelectorAll("script.scene-data");
+    if ([].every.call(asked, function (s) { return scenes[s.parentNode.id] !== undefined; })) done();
+    else setTimeout(check, 10);
+  })();
+})]).then(function () { return true; })"""
+
+
 def load(page, url: str) -> None:
-    """Load `url` in `page` as a new document (even if only its fragment differs from the one open), fonts settled."""
+    """Load `url` in `page` as a new document (even if only its fragment differs from the one open), settled."""
     page.goto("about:blank")
     page.goto(url, wait_until="load")
-    page.evaluate("document.fonts.ready.then(() => true)")
+    page.evaluate(SETTLED)
 
 
 # --- the book, as the build parses it (used to parametrize at collection time) -------------------

@@ -251,7 +251,9 @@ class Firefox(Engine):
         return answer["value"]
 
     def load(self, url):
-        self._call("load", url=url)
+        from browser import SETTLED
+
+        self._call("load", url=url, settled=SETTLED)
 
     def evaluate(self, function, arg=None):
         return _parsed(self._call("run", script=_expression(function, arg)))
@@ -328,9 +330,9 @@ class WebKit(Engine):
         self._kept += self._logged()
         self.driver.get("about:blank")
         self.driver.get(url)  # returns once the document has loaded
-        self.driver.execute_async_script(
-            "const done = arguments[arguments.length - 1]; document.fonts.ready.then(() => done(true));"
-        )
+        from browser import SETTLED
+
+        self.driver.execute_async_script(f"const done = arguments[arguments.length - 1]; {SETTLED}.then(done);")
 
     def evaluate(self, function, arg=None):
         answer = self.driver.execute_async_script(

@@ -24,10 +24,10 @@ async function main() {
   });
   const ops = {
     version: async () => browser.version(),
-    load: async ({ url }) => {
+    load: async ({ url, settled }) => {
       await page.goto("about:blank");
       await page.goto(url, { waitUntil: "load" });
-      return page.evaluate("document.fonts.ready.then(() => true)");
+      return page.evaluate(settled); // the fonts and the scenes' data (tests/browser.py)
     },
     run: async ({ script }) => page.evaluate(script),
     resize: async ({ width, height }) => page.setViewport({ width, height }),

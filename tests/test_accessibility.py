@@ -28,7 +28,7 @@ from a11y import (
     target_size_problems,
     text_contrast_problems,
 )
-from browser import ROOT, front, load, new_page
+from browser import ROOT, SETTLED, front, load, new_page
 
 from sitegen.content.pages import discover_pages
 
@@ -50,7 +50,7 @@ def _load(chromium, site, name: str, **options):
     errors = []
     page.on("pageerror", lambda e: errors.append(str(e)))
     page.goto((site / name).as_uri(), wait_until="load")
-    page.evaluate("document.fonts.ready.then(() => true)")
+    page.evaluate(SETTLED)
     assert not errors, errors
     return page
 

@@ -31,6 +31,7 @@ from urllib.parse import unquote, urljoin, urlparse
 import pytest
 from browser import (
     BROKEN_TEXT,
+    SETTLED,
     BookScene,
     SiteServer,
     book,
@@ -133,7 +134,7 @@ def _open_logged(chromium, url: str, javascript: bool = True, **options):
     page.on("console", lambda m: log.console.append((m.type, m.text, m.location)))
     page.on("pageerror", lambda e: log.errors.append(str(e)))
     page.goto(url, wait_until="load")
-    page.evaluate("document.fonts.ready.then(() => true)")
+    page.evaluate(SETTLED)
     return page, log
 
 
@@ -229,7 +230,7 @@ def test_built_site_matches_sources(built_site, loaded, name):
             assert state.button == {"animate": scene.animate, "pressed": "false", "text": "Play"}, scene
         else:
             assert state.button is None, scene
-        assert page.locator(f"#{scene.dom_id} script.scene-data[type='application/json']").count() == 1
+        assert page.locator(f"#{scene.dom_id}[data-src^='assets/scenes/']").count() == 1
 
 
 # --- a) loading ------------------------------------------------------------------------------------

@@ -9,10 +9,12 @@ import re
 import subprocess
 import sys
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 from helpers import tree, write_book
 
+from sitegen.site.assemble import scene_data_file, scene_data_json
 from sitegen.site.sizes import gzip_bytes
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -107,13 +109,28 @@ def test_pages_are_self_contained(built_site, page):
 
 
 def test_scene_tables_are_strict_json(built_site):
-    """Inline tables parse as strict JSON (no NaN/Infinity) and hide no raw '<', '>' or '&'."""
+    """Each scene's data script (one per scene, named in its element) keeps strict JSON (no NaN/Infinity), with no
+    raw '<', '>' or '&', and keeps it by the scene element's id."""
     html = (built_site / "newtons-laws.html").read_text()
-    blocks = re.findall(r'<script type="application/json" class="scene-data">(.*?)</script>', html, re.S)
-    assert len(blocks) == (ROOT / "content" / "newtons-laws.md").read_text().count("```scene")
-    for block in blocks:
+    scenes = re.findall(r'<figure class="scene" id="([^"]+)" data-scene="[^"]+" data-src="([^"]+)"', html)
+    assert len(scenes) == (ROOT / "content" / "newtons-laws.md").read_text().count("```scene")
+    for dom_id, name in scenes:
+        script = (built_site / name).read_bytes()
+        assert script.startswith(b"(window.sitegenScenes = window.sitegenScenes || {})[" + json.dumps(dom_id).encode())
+        block = scene_data_json(script)
         assert not re.search(r"[<>&]", block)
         json.loads(block, parse_constant=lambda name: pytest.fail(f"non-finite constant {name}"))
+
+
+def test_a_scene_data_script_gives_back_its_json_whatever_the_text_holds():
+    """The data script keeps its JSON text as a string literal: text with " = ", "] = ", quotes and
+    backslashes (a caption's formula, say) comes back unchanged, and the file is named by its content."""
+    payload = json.dumps({"caption": 'F = ma, a["x"] = 1 \\ (window.sitegenScenes = {})', "n": [1, 2]})
+    page, scene = SimpleNamespace(slug="laws"), SimpleNamespace(id="cart")
+    name, script = scene_data_file(page, scene, payload)
+    assert scene_data_json(script) == payload
+    assert name.startswith("assets/scenes/laws.cart.") and name.endswith(".js")
+    assert scene_data_file(page, scene, payload + " ")[0] != name
 
 
 def test_math_is_converted_at_build_time(built_site):

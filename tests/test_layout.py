@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import pytest
-from browser import ROOT, front, new_page
+from browser import ROOT, SETTLED, front, new_page
 from layout import (
     control_label_problems,
     equation_number_problems,
@@ -47,7 +47,7 @@ def page_at(chromium, built_site):
             errors = []
             page.on("pageerror", lambda e: errors.append(str(e)))
             page.goto((built_site / name).as_uri(), wait_until="load")
-            page.evaluate("document.fonts.ready.then(() => true)")
+            page.evaluate(SETTLED)
             _settled(page)
             assert not errors, errors
             pages[name, scheme] = page
@@ -179,4 +179,4 @@ def test_the_checks_find_what_they_look_for(page_at):
         assert text_collision_problems(page)
     finally:
         page.reload(wait_until="load")
-        page.evaluate("document.fonts.ready.then(() => true)")
+        page.evaluate(SETTLED)

@@ -23,7 +23,8 @@ from sitegen.content.pages import discover_pages
 
 PAGES = [f"{path.stem}.html" for path in discover_pages(ROOT / "content")]
 _CSS_URL = re.compile(r"""url\(\s*(?:"(?P<dq>[^"]*)"|'(?P<sq>[^']*)'|(?P<bare>[^'"()\s]+))\s*\)""")
-_LINK_ATTRIBUTES = {"href", "src", "xlink:href", "poster", "data", "data-index"}  # data-index: the search box's script
+# data-index, data-src: the search index and a scene's data, scripts loaded when first used
+_LINK_ATTRIBUTES = {"href", "src", "xlink:href", "poster", "data", "data-index", "data-src"}
 _WEB = ("http", "https", "mailto")
 
 

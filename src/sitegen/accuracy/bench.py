@@ -121,7 +121,7 @@ def summary_lines(results: dict) -> list[str]:
             f"  {row['output']:<24} {row['axis_text']:<18} {row['nodes']:>4} nodes  "
             f"{row['error'] / row['display_resolution']:9.3g}×  {row['bytes_float32']:>5} B"
         )
-    lines.append("build, per scene: cold tabulation (median), full-product slider states, stored values, inline data:")
+    lines.append("build, per scene: cold tabulation (median), full-product slider states, stored values, data bytes:")
     for name, scene in results["build"]["scenes"].items():
         data = scene.get("data") or {"raw": 0, "gzip": 0}
         lines.append(

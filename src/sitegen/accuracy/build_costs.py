@@ -1,5 +1,5 @@
 """What building the book costs: per scene its cold tabulation time, the slider states of its full
-cross product, the values it stores and the bytes of its inline data; per page its bytes.
+cross product, the values it stores and the bytes of its data script; per page its bytes.
 
 "Cold" means no table cache and no model-level memo (the bubble keeps an LRU of solved points):
 each timed run tabulates the scene from nothing, as a first build on a fresh checkout would.
@@ -47,7 +47,7 @@ def _tabulate_cold(book, config: BuildConfig) -> int:
 
 def site_sizes(root: Path) -> tuple[dict[str, dict], dict[str, dict]]:
     """The book built once: raw and gzip bytes of each page (alone and with every asset it loads, as the
-    build's summary measured them), and of each scene's inline data by "page#scene"."""
+    build's summary measured them), and of each scene's data by "page#scene"."""
     with tempfile.TemporaryDirectory() as folder:
         report = build(BuildConfig.at(root, Path(folder) / "build"), progress=None)
         pages = {weight.page: weight.sizes() for weight in report.weights}

@@ -1,4 +1,4 @@
-"""The phases that make files: each scene's element and inline data, each page (its accuracy-report
+"""The phases that make files: each scene's element and data script, each page (its accuracy-report
 parts filled from the build's records, not read back from HTML), and the shared assets."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from ..compute.sources import digest, source_digest
 from ..content.bench_results import BENCH_NAME, load_results
 from ..content.markdown_ext import fill_slots
 from ..site import assets, search
-from ..site.assemble import page_html, scene_html
+from ..site.assemble import page_html, scene_data_file, scene_html
 from ..site.payload import scene_payload
 from ..site.report import ReportContext, bench_figures, bench_figures_cached, report_part
 from ..site.sizes import gzip_bytes
@@ -52,7 +52,7 @@ def _drawn_diagrams(book: Book, executor) -> dict[str, bytes]:
 
 
 def assemble_scenes(book: Book, run: BuildRun) -> Book:
-    """Each scene's element: figure, controls, readouts at the defaults, caption and inline data."""
+    """Each scene's element: figure, controls, readouts at the defaults, caption, and its data script."""
     if run.failed:
         return book
     accuracy = next((p for p in book.pages if p.slug == "accuracy"), None)  # the rows exist only on that page
@@ -78,8 +78,10 @@ def _assembled(record: SceneRecord, book: Book, run: BuildRun, linked: bool, par
     if record.accuracy is not None:
         methods = record.accuracy.model in parts  # the accuracy page shows the model's part
         caption = f"{caption} {caption_sentence(record.accuracy, linked, methods)}".strip()
-    html = scene_html(scene, tables, figure, caption, payload.decode(), run.config.book)
-    return replace(record, html=html, data_bytes=_data_bytes(payload, run) if book.has_reports else (len(payload), 0))
+    data_file = scene_data_file(page, scene, payload.decode())
+    html = scene_html(scene, tables, figure, caption, data_file[0], run.config.book)
+    sizes = _data_bytes(payload, run) if book.has_reports else (len(payload), 0)
+    return replace(record, html=html, data_file=data_file, data_bytes=sizes)
 
 
 def _data_bytes(payload: bytes, run: BuildRun) -> tuple[int, int]:
@@ -109,8 +111,9 @@ def write_page(book: Book, run: BuildRun) -> Book:
     )
     html = page_html(page, body, list(book.pages), run.config.book.title or book.title, run.config.book)
     written = _write(run, page.output_name, html.encode(), assets.math_characters(html), search.page_sections(html))
+    data = tuple(_write(run, *r.data_file) for r in records if r.data_file)
     finished = book.with_records(r.finished() for r in records)
-    return replace(finished, written=(*book.written, written), diagrams=() if context else book.diagrams)
+    return replace(finished, written=(*book.written, written, *data), diagrams=() if context else book.diagrams)
 
 
 def _report_context(book: Book, run: BuildRun, drawn: dict[str, bytes]) -> ReportContext:
@@ -132,7 +135,7 @@ def write_assets(book: Book, run: BuildRun) -> Book:
     pages use), the search index of every page with its code, and the files the pages name, as they are."""
     if run.failed:
         return book
-    pages = book.written  # the pages, all written by now
+    pages = [w for w in book.written if w.name.endswith(".html")]  # the pages, all written by now
     characters = set().union(*(w.characters for w in pages))
     files = [(name, (run.config.content / name).read_bytes()) for name in book.files]
     files += [

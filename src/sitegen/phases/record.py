@@ -41,7 +41,8 @@ class SceneRecord:
     drawing: FigureWork | None = None  # figures: its figure sent out to be drawn (until render takes it)
     figure: RenderedScene | None = None  # render
     html: str = ""  # assemble: the scene element
-    data_bytes: tuple[int, int] = (0, 0)  # assemble: raw and gzip bytes of its inline tables (for the report)
+    data_file: tuple[str, bytes] | None = None  # assemble: its data script, (name in the site, bytes)
+    data_bytes: tuple[int, int] = (0, 0)  # assemble: raw and gzip bytes of its data (for the report)
     stored_values: int = 0  # tabulate: numbers its tables ship
 
     @property
@@ -60,7 +61,7 @@ class SceneRecord:
     def finished(self) -> SceneRecord:
         """The record once its page is written: what the accuracy report reads is kept; the tables, figure and
         HTML are let go."""
-        return replace(self, tables=None, drawing=None, figure=None, html="")
+        return replace(self, tables=None, drawing=None, figure=None, html="", data_file=None)
 
 
 @dataclass(frozen=True)

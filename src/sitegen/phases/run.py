@@ -93,7 +93,7 @@ class BuildReport:
     weights: list = field(default_factory=list)  # a site.weight.PageWeight per page
     warnings: list[str] = field(default_factory=list)  # pages above the book's budget, and what would shrink them
     accuracy: list[SceneAccuracy] = field(default_factory=list)  # numerically computed scenes, in page/scene order
-    data_bytes: dict[str, tuple[int, int]] = field(default_factory=dict)  # "page#scene" -> raw, gzip inline bytes
+    data_bytes: dict[str, tuple[int, int]] = field(default_factory=dict)  # "page#scene" -> raw, gzip bytes of its data
 
     @property
     def notes(self) -> list[str]:

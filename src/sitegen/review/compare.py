@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import difflib
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
+from ..site.assemble import SCENE_DATA
 from .figures import PixelDiff, SvgChange, svg_change
 from .tables import TableChange, compare_table, scene_axes
 from .tree import PageDoc, Scene, parse_page, text_lines
@@ -104,10 +106,10 @@ def compare_trees(old: dict[str, bytes], new: dict[str, bytes], old_label: str, 
         a, b = old.get(name), new.get(name)
         if name.endswith(".html"):
             scene_count += len(parse_page(name, (b or a).decode()).scenes)
-        if a == b:
+        if a == b or name.startswith(f"{SCENE_DATA}/"):  # a scene's data is compared with its page
             continue
         if name.endswith(".html"):
-            pages.append(compare_pages(name, a, b))
+            pages.append(compare_pages(name, a, b, old, new))
         else:
             files.append(FileChange(name, _status(a, b), len(a or b""), len(b or b"")))
     page_count = len({n for n in set(old) | set(new) if n.endswith(".html")})
@@ -118,10 +120,12 @@ def _status(a, b) -> str:
     return "added" if a is None else "removed" if b is None else "changed"
 
 
-def compare_pages(name: str, old: bytes | None, new: bytes | None) -> PageChange:
-    """How one page differs: its scenes one by one, then its text outside them."""
-    doc_a = parse_page(name, old.decode()) if old is not None else PageDoc(name, "", (), "")
-    doc_b = parse_page(name, new.decode()) if new is not None else PageDoc(name, "", (), "")
+def compare_pages(
+    name: str, old: bytes | None, new: bytes | None, old_files: Mapping | None = None, new_files: Mapping | None = None
+) -> PageChange:
+    """How one page differs: its scenes one by one (their data read from the trees' files), then the rest."""
+    doc_a = parse_page(name, old.decode(), old_files) if old is not None else PageDoc(name, "", (), "")
+    doc_b = parse_page(name, new.decode(), new_files) if new is not None else PageDoc(name, "", (), "")
     change = PageChange(name, doc_b.title or doc_a.title, _status(old, new))
     by_id_a, by_id_b = {s.id: s for s in doc_a.scenes}, {s.id: s for s in doc_b.scenes}
     for scene_id in [s.id for s in doc_b.scenes] + [s.id for s in doc_a.scenes if s.id not in by_id_b]:

@@ -4,15 +4,17 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
 from html.parser import HTMLParser
 from pathlib import Path
+
+from ..site.assemble import scene_data_json
 
 _FIGURE_OPEN = re.compile(r"<figure\b([^>]*)>")
 _ATTR = re.compile(r'([\w:-]+)="([^"]*)"')
 _SVG = re.compile(r"<svg\b.*?</svg>", re.S)
 _NARROW = re.compile(r'^<svg\b[^>]*\bclass="scene-svg narrow"')
-_DATA = re.compile(r'<script\b[^>]*\bclass="scene-data"[^>]*>(.*?)</script>', re.S)
 _TITLES = (re.compile(r"<h1\b[^>]*>(.*?)</h1>", re.S), re.compile(r"<title>(.*?)</title>", re.S))
 
 
@@ -46,15 +48,16 @@ def read_tree(folder: Path) -> dict[str, bytes]:
     return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
-def parse_page(name: str, html: str) -> PageDoc:
-    """Split a built page into its scenes and the rest (scenes as `[scene: id]` markers)."""
+def parse_page(name: str, html: str, files: Mapping[str, bytes] | None = None) -> PageDoc:
+    """Split a built page into its scenes and the rest (scenes as `[scene: id]` markers); each scene's data is read
+    from its script among `files` (the site's, by name), if given."""
     scenes, rest, position = [], [], 0
     for match in _FIGURE_OPEN.finditer(html):
         attrs = dict(_ATTR.findall(match[1]))
         if match.start() < position or "scene" not in attrs.get("class", "").split():
             continue
         end = html.index("</figure>", match.end()) + len("</figure>")
-        scene = _scene(attrs, html[match.start() : end])
+        scene = _scene(attrs, html[match.start() : end], files or {})
         rest += [html[position : match.start()], f"<p>[scene: {scene.id}]</p>"]
         scenes.append(scene)
         position = end
@@ -63,20 +66,19 @@ def parse_page(name: str, html: str) -> PageDoc:
     return PageDoc(name, _text_of(title), tuple(scenes), "".join(rest))
 
 
-def _scene(attrs: dict[str, str], block: str) -> Scene:
+def _scene(attrs: dict[str, str], block: str, files: Mapping[str, bytes]) -> Scene:
     svgs = [m[0] for m in _SVG.finditer(block)]
-    data = _DATA.search(block)
-    panel = block
-    for found in [*svgs, data[0] if data else None]:
-        if found:
-            panel = panel.replace(found, "", 1)
+    script = files.get(attrs.get("data-src", ""))
+    panel = block.replace(f' data-src="{attrs.get("data-src", "")}"', "", 1)  # its digest changes with the data
+    for found in svgs:
+        panel = panel.replace(found, "", 1)
     scene_id = attrs.get("id", "")
     return Scene(
         scene_id.removeprefix("scene-"),
         attrs.get("data-scene", ""),
         block,
         svgs[0] if svgs else "",
-        json.loads(data[1]) if data else {},
+        json.loads(scene_data_json(script)) if script else {},
         panel,
         next((svg for svg in svgs[1:] if _NARROW.search(svg)), ""),
     )

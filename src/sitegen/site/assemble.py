@@ -1,9 +1,12 @@
-"""HTML through jinja2: scenes (controls, readouts, figure; their inline data is payload.py's) and whole pages."""
+"""HTML through jinja2: scenes (controls, readouts, figure; their data, payload.py's, in a script of its own) and
+whole pages."""
 
 from __future__ import annotations
 
 import functools
+import hashlib
 import html as markup
+import json
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -37,7 +40,7 @@ def templates(theme: Path | None = None) -> jinja2.Environment:
 # The ids the page template gives its own elements (a link may name them too).
 TEMPLATE_IDS = ("main-content", "book-contents", "search-box", "search-status", "search-results")
 SEARCH_SCRIPT = "assets/search.js"  # the search index and its code, loaded when the search box is first used
-_BIG_SVG, _BIG_DATA, _BIG_BODY = (f"\x00sitegen-{name}\x00" for name in ("svg", "data", "body"))
+_BIG_SVG, _BIG_BODY = (f"\x00sitegen-{name}\x00" for name in ("svg", "body"))
 
 
 @dataclass(frozen=True)
@@ -53,10 +56,11 @@ def scene_html(
     tables: dict[str, Table],
     figure: RenderedScene,
     caption: str,
-    payload: str,
+    data_file: str,
     book: BookConfig | None = None,
 ) -> str:
-    """The scene element: figure, labelled controls, readouts at the defaults, and its data (`payload`)."""
+    """The scene element: figure, labelled controls, readouts at the defaults, and the script that brings its
+    data (`data_file`, from `scene_data_file`)."""
     stops = scene.default_stops
     sliders = [_slider_view(scene, i, stops[i]) for i in range(len(scene.axes))]
     readouts = [_readout_view(scene, tables, o, stops) for o in scene.readouts]
@@ -77,12 +81,32 @@ def scene_html(
             readouts=readouts,
             caption=caption,
             animate=scene.spec.animate,
-            data=_BIG_DATA,
+            data_file=data_file,
             heights=guessed_heights(figure.svg, sliders, len(readouts), caption),
         )
     )
     # Large trusted fragments go in after rendering: passing megabytes through jinja2's Markup is slow.
-    return html.replace(_BIG_SVG, figure.svg, 1).replace(_BIG_DATA, payload, 1)
+    return html.replace(_BIG_SVG, figure.svg, 1)
+
+
+SCENE_DATA = "assets/scenes"  # the folder of the scenes' data scripts
+
+
+def scene_data_file(page: Page, scene: ResolvedScene, payload: str) -> tuple[str, bytes]:
+    """A scene's data (`payload`, JSON) as a classic script beside the page, and its name in the site: the page
+    itself stays small (a phone draws it before the data arrives), and file:// allows classic scripts where it
+    blocks fetch. The script only keeps the JSON text, by the scene element's id (parsed when the reader first
+    reaches for the scene); its name carries a digest of it, so a host may keep it cached."""
+    name = f"{SCENE_DATA}/{page.slug}.{scene.id}.{hashlib.sha256(payload.encode()).hexdigest()[:10]}.js"
+    text = (
+        f"(window.sitegenScenes = window.sitegenScenes || {{}})[{json.dumps(dom_id(scene))}] = {json.dumps(payload)};\n"
+    )
+    return name, text.encode()
+
+
+def scene_data_json(script: bytes) -> str:
+    """The JSON a data script of `scene_data_file` keeps."""
+    return json.loads(script.decode().split("] = ", 1)[1].rstrip().removesuffix(";"))  # after the element's id
 
 
 def guessed_heights(svg: str, sliders: list[dict], readouts: int, caption: str) -> tuple[float, float]:

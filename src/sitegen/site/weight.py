@@ -17,7 +17,7 @@ LOADING = (b"href", b"src", b"data-index")  # the attributes by which a page loa
 
 @dataclass(frozen=True)
 class PageWeight:
-    """One page: its HTML raw and gzip, what it loads with it (raw and gzip), and its scenes' inline data (raw
+    """One page: its HTML raw and gzip, what it loads with it (raw and gzip), and its scenes' data (raw
     bytes)."""
 
     page: str

@@ -94,7 +94,7 @@
   function Scene(root) {
     this.root = root;
     this.name = root.id.slice(6); // "scene-collision" -> "collision"
-    var self = this, moved = function () { self.update(); self.remember(); };
+    var self = this, moved = function () { self.ready(function () { self.update(); self.remember(); }); };
     var controls = root.querySelectorAll("[data-param]");
     for (var i = 0; i < controls.length; i++) {
       controls[i].addEventListener("input", moved);
@@ -103,7 +103,20 @@
     var button = root.querySelector("button[data-animate]");
     if (button) this.animation = new Animation(this, root, button);
     var reset = root.querySelector("button[data-reset]"); // none on a scene without controls
-    if (reset) reset.addEventListener("click", function () { self.setStops(self.load().defaults); });
+    if (reset) reset.addEventListener("click", function () { self.ready(function () { self.setStops(self.load().defaults); }); });
+  }
+
+  /* `fn()` once the scene's data has come (at once if it has): asked for now if it has not been yet. */
+  Scene.prototype.ready = function (fn) {
+    if (window.sitegenScenes && window.sitegenScenes[this.root.id] !== undefined) fn();
+    else askForData(this.root).addEventListener("load", fn);
+  };
+
+  /* A scene's data is a classic script of its own (file:// runs those; it blocks fetch), asked for once the
+   * page has loaded (so that it never delays the first screen), or sooner by a scene the reader reaches for. */
+  function askForData(root) {
+    return root.querySelector("script.scene-data") || root.appendChild(Object.assign(document.createElement("script"),
+      { className: "scene-data", src: root.getAttribute("data-src") }));
   }
 
   /* Whether a control holds another value than the page was built with (the browser kept the reader's). */
@@ -119,7 +132,7 @@
   /* The scene's tables and recipes, decoded when first needed; returns the scene. */
   Scene.prototype.load = function () {
     if (this.data) return this;
-    var root = this.root, data = JSON.parse(root.querySelector("script.scene-data").textContent);
+    var root = this.root, data = JSON.parse(window.sitegenScenes[root.id]); // kept by its data script
     Object.keys(data.tables).forEach(function (name) {
       var table = data.tables[name];
       if (table.same) data.tables[name] = data.tables[table.same]; // identical tables are stored once
@@ -333,7 +346,7 @@
     this.button = button;
     this.timer = null;
     var self = this;
-    button.addEventListener("click", function () { if (self.timer) self.pause(); else self.play(); });
+    button.addEventListener("click", function () { if (self.timer) self.pause(); else scene.ready(function () { self.play(); }); });
     if ("IntersectionObserver" in window) {
       new IntersectionObserver(function (entries) {
         if (!entries[entries.length - 1].isIntersecting) self.pause();
@@ -389,15 +402,17 @@
     var link = /^#([^:]+):(.*)$/.exec(location.hash), given = {}; // "#collision:m1=2,e=0.5"
     var root = link && document.getElementById("scene-" + link[1]);
     if (!root || !root.hasAttribute("data-scene")) return;
-    var scene = live(root).load();
     link[2].split(",").forEach(function (pair) {
       var kv = pair.split("=");
       try { given[kv[0]] = decodeURIComponent(kv[1]); } catch (error) { /* malformed: ignored */ }
     });
-    scene.setStops(scene.defaults.map(function (k, i) {
-      var text = given[scene.data.sliders[i].param];
-      return text === undefined ? k : scene.findStop(i, text);
-    }));
+    var scene = live(root);
+    scene.ready(function () {
+      scene.setStops(scene.load().defaults.map(function (k, i) {
+        var text = given[scene.data.sliders[i].param];
+        return text === undefined ? k : scene.findStop(i, text);
+      }));
+    });
     // Blocks off the screen hold a guessed height until they near it, so a scene far down would move
     // once they are laid out: every block is laid out now, and the browser keeps the scene in view.
     document.documentElement.classList.add("laid-out");
@@ -450,7 +465,9 @@
       if (e.key === "Tab") document.documentElement.classList.add("laid-out");
     }, true);
     // Back (or a reload) may give the controls the reader's values without an input event: redraw.
-    var revive = function () { elements.forEach(function (root) { if (restored(root)) live(root).update(); }); };
+    var revive = function () {
+      elements.forEach(function (root) { if (restored(root)) live(root).ready(function () { scenes[elements.indexOf(root)].update(); }); });
+    };
     revive();
     window.addEventListener("pageshow", revive);
     openLink(live);
@@ -460,6 +477,8 @@
     });
     searchOnDemand();
     openDetailsToPrint();
+    var allData = function () { elements.forEach(askForData); };
+    if (document.readyState === "complete") allData(); else window.addEventListener("load", allData);
     var contents = document.getElementById("book-contents"); // the phone's panel closes on a link
     if (contents) contents.addEventListener("click", function (e) { if (e.target.closest("a") && contents.matches(":popover-open")) contents.hidePopover(); });
   }

@@ -154,15 +154,18 @@ def logged_page(browser, **options):
     return page, errors
 
 
-# Once a page has loaded, its script asks for each scene's data (a script each): settled when the fonts are and
-# every data script asked for has run (at once with scripts off, or on a page without scenes). For every engine.
+# Once a page has loaded, its script asks for each scene's data (a script each): settled when the fonts are,
+# every data script asked for has run (at once with scripts off, or on a page without scenes) and the boxes the
+# script measures after the first frame are marked. For every engine.
 SETTLED = """Promise.all([document.fonts.ready, new Promise(function (done) {
   (function check() {
     var scenes = window.sitegenScenes || {}, asked = document.querySelectorAll("script.scene-data");
     if ([].every.call(asked, function (s) { return scenes[s.parentNode.id] !== undefined; })) done();
     else setTimeout(check, 10);
   })();
-})]).then(function () { return true; })"""
+})]).then(function () {
+  return new Promise(function (done) { requestAnimationFrame(function () { setTimeout(done, 0); }); });
+}).then(function () { return true; })"""
 
 
 def load(page, url: str) -> None:

@@ -542,6 +542,7 @@ def test_scenes_after_history_navigation(open_page, site_url, name, transport):
         assert scene_problems(scene, state) == []
     page.goto(site_url("index.html", transport), wait_until="load")
     page.go_back(wait_until="load")
+    page.evaluate(SETTLED)  # a fresh page redraws restored controls once their scene's data has arrived
     # the address may carry a moved scene's state (written in place once its controls rest)
     address, _, fragment = page.url.partition("#")
     assert address == site_url(name, transport)

@@ -240,7 +240,7 @@ def test_a_new_book_builds_and_previews_with_the_installed_tool(installed, tmp_p
             (book / "content" / "pendulum.md").read_text() + "\nOne more line of prose.\n"
         )
         view.wait_for_function(
-            "document.body.innerText.includes('One more line of prose.')", timeout=10_000
+            "document.body?.innerText.includes('One more line of prose.')", timeout=10_000
         )  # a hang guard; bench/preview.py times it
         view.close()
     finally:

@@ -114,8 +114,8 @@ def test_a_prose_edit_shows_in_the_open_page_by_itself(server, book, chromium):
     _edit(
         book / "content" / "pendulum.md", "Edit this page,", "A sentence added while the page was open. Edit this page,"
     )
-    page.wait_for_function(
-        "document.body.innerText.includes('A sentence added while the page was open.')", timeout=HANG
+    page.wait_for_function(  # `?.`: while the new page is being read it has no body yet
+        "document.body?.innerText.includes('A sentence added while the page was open.')", timeout=HANG
     )
     seconds = time.monotonic() - start
     page.wait_for_load_state("load")

@@ -154,18 +154,27 @@ def logged_page(browser, **options):
     return page, errors
 
 
-# Once a page has loaded, its script asks for each scene's data (a script each): settled when the fonts are,
-# every data script asked for has run (at once with scripts off, or on a page without scenes) and the boxes the
-# script measures after the first frame are marked. For every engine.
-SETTLED = """Promise.all([document.fonts.ready, new Promise(function (done) {
-  (function check() {
-    var scenes = window.sitegenScenes || {}, asked = document.querySelectorAll("script.scene-data");
-    if ([].every.call(asked, function (s) { return scenes[s.parentNode.id] !== undefined; })) done();
-    else setTimeout(check, 10);
-  })();
-})]).then(function () {
-  return new Promise(function (done) { requestAnimationFrame(function () { setTimeout(done, 0); }); });
-}).then(function () { return true; })"""
+# A page asks for its scenes' data at the reader's first scroll (or a second after it loads): settled when the
+# fonts are, a scroll has asked for the data, every scene's has arrived and the boxes the script measures after
+# the first frame are marked. With scripts off (the <noscript> in every page's head then holds elements) no
+# timer or frame callback runs, so only the fonts are waited for. For every engine.
+SETTLED = """(function () {
+  var off = [].some.call(document.querySelectorAll("noscript"), function (n) { return n.children.length > 0; });
+  if (off) return document.fonts.ready.then(function () { return true; });
+  return Promise.all([document.fonts.ready, new Promise(function (done, fail) {
+    var until = Date.now() + 20000;
+    window.dispatchEvent(new Event("scroll"));
+    (function check() {
+      var scenes = window.sitegenScenes || {}, roots = [].slice.call(document.querySelectorAll("[data-scene]"));
+      var waiting = roots.filter(function (root) { return scenes[root.id] === undefined; });
+      if (!waiting.length) done();
+      else if (Date.now() > until) fail(new Error("no data came for " + waiting.map(function (r) { return r.id; })));
+      else setTimeout(check, 10);
+    })();
+  })]).then(function () {
+    return new Promise(function (done) { requestAnimationFrame(function () { setTimeout(done, 0); }); });
+  }).then(function () { return true; });
+})()"""
 
 
 def load(page, url: str) -> None:

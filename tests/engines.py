@@ -332,7 +332,10 @@ class WebKit(Engine):
         self.driver.get(url)  # returns once the document has loaded
         from browser import SETTLED
 
-        self.driver.execute_async_script(f"const done = arguments[arguments.length - 1]; {SETTLED}.then(done);")
+        failed = self.driver.execute_async_script(
+            f"const done = arguments[arguments.length - 1]; {SETTLED}.then(() => done(null), e => done(String(e)));"
+        )
+        assert failed is None, failed
 
     def evaluate(self, function, arg=None):
         answer = self.driver.execute_async_script(

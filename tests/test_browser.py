@@ -42,6 +42,7 @@ from browser import (
     layer_deps,
     layer_problems,
     load,
+    logged_page,
     move,
     move_many,
     move_value,
@@ -243,6 +244,32 @@ def _inside_site(url: str, transport: str, built_site: Path, origin: str | None)
     if transport == "file":
         return parts.scheme == "file" and Path(unquote(parts.path)).resolve().is_relative_to(built_site.resolve())
     return f"{parts.scheme}://{parts.netloc}" == origin
+
+
+def test_a_scene_reached_before_its_data_came_shows_the_stop_it_was_moved_to(built_site, chromium):
+    """The page asks for no scene's data before it has loaded (nor, while the reader has not scrolled, for a
+    second after); a slider moved by the keyboard on a scene far down asks for that scene's, and its readouts
+    show the new stop once it has come, as a reader's first move anywhere does. Over http, where the browser
+    times each request."""
+    page, errors = logged_page(chromium)
+    with SiteServer(built_site) as server:
+        page.goto(server.url("newtons-laws.html"), wait_until="load")
+        scene, slider = next(  # the last scene whose first control is a slider
+            (s, page.locator(f'#{s.dom_id} input[type="range"][data-param="{s.params[0]}"]'))
+            for s in reversed([s for s in SCENES if s.page.output_name == "newtons-laws.html"])
+            if page.locator(f'#{s.dom_id} input[type="range"][data-param="{s.params[0]}"]').count()
+        )
+        slider.focus()
+        slider.press("End")
+        page.wait_for_function("id => (window.sitegenScenes || {})[id] !== undefined", arg=scene.dom_id)
+        asked = page.evaluate("""() => { const loaded = performance.getEntriesByType('navigation')[0].loadEventEnd;
+          return performance.getEntriesByType('resource').filter(r => r.name.includes('/assets/scenes/'))
+            .map(r => r.startTime >= loaded); }""")
+        state = read_state(page, scene)
+    assert asked and all(asked), asked  # every data script asked for after the page had loaded
+    assert state.stops[0] == scene.axes[0].count - 1 and scene_problems(scene, state) == [], state
+    assert not errors
+    page.close()
 
 
 @pytest.mark.parametrize("name,transport", _page_params())

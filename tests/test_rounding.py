@@ -11,7 +11,7 @@ import textwrap
 from pathlib import Path
 
 import pytest
-from browser import SiteServer, logged_page
+from browser import SiteServer, load, logged_page
 
 from sitegen.build import BuildConfig, build
 from sitegen.models.bubble.compare import shown_difference
@@ -131,7 +131,7 @@ def test_ties_show_the_same_digits_in_both_kinds_of_readout_in_chromium(ties_sit
     −19.375 → −19.38)."""
     page, errors = logged_page(chromium)
     with SiteServer(ties_site) as server:
-        page.goto(server.url("index.html") if transport == "http" else (ties_site / "index.html").as_uri())
+        load(page, server.url("index.html") if transport == "http" else (ties_site / "index.html").as_uri())
         slider = page.locator('input[data-param="s"]')
         seen = {}
         slider.press("Home")

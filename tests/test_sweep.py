@@ -21,7 +21,7 @@ import re
 
 import numpy as np
 import pytest
-from browser import FIGURES, BookScene, book, describe_stop, front, new_page, stop_inputs
+from browser import FIGURES, BookScene, book, describe_stop, front, load, new_page, stop_inputs
 
 from sitegen.compute.structure import structured_pieces
 
@@ -133,7 +133,7 @@ def scene_pages(chromium, built_site):
         name = scene.page.output_name
         if name not in pages:
             pages[name] = new_page(chromium)
-            pages[name].goto((built_site / name).as_uri(), wait_until="load")
+            load(pages[name], (built_site / name).as_uri())  # with every scene's data come
         return front(pages[name])
 
     return _get

@@ -112,8 +112,8 @@
     else askForData(this.root).addEventListener("load", fn);
   };
 
-  /* A scene's data is a classic script of its own (file:// runs those; it blocks fetch), asked for once the
-   * page has loaded (so that it never delays the first screen), or sooner by a scene the reader reaches for. */
+  /* A scene's data is a classic script of its own (file:// runs those; it blocks fetch), asked for after the
+   * first screen (see start), or sooner by a scene the reader reaches for. */
   function askForData(root) {
     return root.querySelector("script.scene-data") || root.appendChild(Object.assign(document.createElement("script"),
       { className: "scene-data", src: root.getAttribute("data-src") }));
@@ -477,8 +477,12 @@
     });
     searchOnDemand();
     openDetailsToPrint();
-    var allData = function () { elements.forEach(askForData); };
-    if (document.readyState === "complete") allData(); else window.addEventListener("load", allData);
+    // Every scene's data: at the reader's first scroll, press or key, else a second after the page has loaded
+    // (never competing with the first screen); a scene the reader reaches for asks for its own at once.
+    var asked = false, allData = function () { if (!asked) elements.forEach(askForData); asked = true; };
+    ["scroll", "pointerdown", "keydown"].forEach(function (type) { window.addEventListener(type, allData, { once: true, passive: true }); });
+    var later = function () { setTimeout(allData, 1000); };
+    if (document.readyState === "complete") later(); else window.addEventListener("load", later);
     var contents = document.getElementById("book-contents"); // the phone's panel closes on a link
     if (contents) contents.addEventListener("click", function (e) { if (e.target.closest("a") && contents.matches(":popover-open")) contents.hidePopover(); });
   }

@@ -105,8 +105,11 @@ def table(
     cap = f"<caption>{caption}</caption>\n" if caption else ""
     label = escape(re.sub(r"<[^>]+>", "", caption) or "table")
     heads = "".join(f'<th scope="col">{h}</th>' for h in head)
+    # Always marked as scrolling: its edge shadows show only where it does (so nothing measures it on the page),
+    # and its row count sizes the place it holds until it nears the screen and is laid out.
     return (
-        f'<div class="report-scroll" tabindex="0" role="region" aria-label="{label}">\n<table class="report">\n{cap}'
+        f'<div class="report-scroll scrolls" tabindex="0" role="region" aria-label="{label}" '
+        f'style="--rows: {len(rows)}">\n<table class="report">\n{cap}'
         f"<thead><tr>{heads}</tr></thead>\n<tbody>\n{body}\n</tbody>\n</table>\n</div>\n"
     )
 

@@ -383,15 +383,15 @@
     scene.update();
   };
 
-  /* A box wider than the text scrolls; an equation's becomes focusable and says so (a table's is a
-   * labelled region). Overflow depends on font and width: measured once the page is drawn (reading a
-   * finished layout costs nothing; at the start it would force one), on resize and when a font arrives.
-   * Every box is read, then every box marked, so that marking one does not make the next read lay out. */
+  /* A display wider than the text scrolls: it is marked (a shadow at each edge that hides more), becomes
+   * focusable and says so. (A report's table comes marked: its shadows show only where it overflows.)
+   * Overflow depends on font and width: measured once the page is drawn (reading a finished layout costs
+   * nothing; at the start it would force one), on resize and when a font arrives. Every box is read, then
+   * every box marked, so that marking one does not make the next read lay out. */
   function markScrollers(boxes) {
     var wide = boxes.map(function (box) { return box.scrollWidth > box.clientWidth + 1; });
     boxes.forEach(function (box, i) {
       box.classList.toggle("scrolls", wide[i]);
-      if (!box.classList.contains("equation")) return;
       var marks = { tabindex: "0", role: "group", "aria-label": "equation, scrolls sideways" };
       for (var name in marks) if (wide[i]) box.setAttribute(name, marks[name]); else box.removeAttribute(name);
     });
@@ -441,7 +441,7 @@
   }
 
   function start() {
-    var boxes = [].slice.call(document.querySelectorAll(".equation, .report-scroll"));
+    var boxes = [].slice.call(document.querySelectorAll(".equation"));
     var measure = function () { markScrollers(boxes); };
     requestAnimationFrame(function () { setTimeout(measure, 0); }); // after the first frame
     window.addEventListener("resize", measure);

@@ -197,7 +197,7 @@ def test_page_loads_cleanly(engine, url, name, page, transport, width):
     show(engine, url(engine, name, page, transport), width)
     texts = engine.run("return [...document.querySelectorAll('[data-out]')].map(el => el.textContent);")
     assert all(text.strip() and not BROKEN_TEXT.search(text) for text in texts), texts
-    assert engine.errors() == []
+    assert (errors := engine.errors()) == [], errors
 
 
 # --- scenes ---------------------------------------------------------------------------------------
@@ -234,7 +234,7 @@ def test_scene_moves_as_in_chromium(engine, reference, url, name, scene, width):
         assert state.readouts == want.readouts, stops
         assert state.layers == want.layers, stops
         assert [c.valuetext for c in state.controls] == [c.valuetext for c in want.controls], stops
-    assert engine.errors() == []
+    assert (errors := engine.errors()) == [], errors
 
 
 def _link(scene) -> tuple[str, dict[str, int]]:
@@ -266,7 +266,7 @@ def test_a_link_opens_a_state_and_reset_leaves_it(engine, url, name, scene, widt
     state = read_state(engine, scene)
     assert state.stops == scene.defaults and scene_problems(scene, state) == []
     engine.wait_for("return location.hash === '#' + arg;", scene.dom_id)
-    assert engine.errors() == []
+    assert (errors := engine.errors()) == [], errors
 
 
 @pytest.mark.parametrize("name,scene,width", _scenes(lambda scene: scene.animate))
@@ -291,7 +291,7 @@ def test_an_animation_plays_and_pauses(engine, url, name, scene, width):
     assert read_state(engine, scene).stops == paused.stops and paused.button["pressed"] == "false"
     click(engine, f"#{scene.dom_id} button[data-reset]")
     assert read_state(engine, scene).stops == scene.defaults
-    assert engine.errors() == []
+    assert (errors := engine.errors()) == [], errors
 
 
 # --- search ---------------------------------------------------------------------------------------
@@ -324,9 +324,13 @@ def test_search_finds_a_section_and_opens_it(engine, url, transport):
     assert engine.run("return document.getElementById('search-results').hidden;")
     page, section = found[0].split("#")
     engine.press("Enter")
-    engine.wait_for("return location.pathname.endsWith(arg[0]) && location.hash === '#' + arg[1];", [page, section])
+    engine.wait_for(  # loaded before anything reads its layout (Firefox warns of a layout forced before its CSS)
+        "return location.pathname.endsWith(arg[0]) && location.hash === '#' + arg[1]"
+        " && document.readyState === 'complete';",
+        [page, section],
+    )
     engine.wait_for(IN_VIEW_JS, section)
-    assert engine.errors() == []
+    assert (errors := engine.errors()) == [], errors
 
 
 def test_search_on_a_page_links_to_its_places(engine, url):
@@ -336,7 +340,7 @@ def test_search_on_a_page_links_to_its_places(engine, url):
     found = _search(engine, "newton")
     here = [href for href in found if not href.split("#")[0]]
     assert "#main-content" in here and all(len(href) > 1 for href in here), found
-    assert engine.errors() == []
+    assert (errors := engine.errors()) == [], errors
 
 
 # --- figures as drawn -----------------------------------------------------------------------------
